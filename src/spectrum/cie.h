@@ -1,0 +1,20 @@
+// CIE 1931 2° colour-matching functions, embedded at 5 nm from the CIE 2018 open data set
+// (DOI 10.25039/CIE.DS.xvudnb9b) and interpolated linearly; tested against the full 1 nm table
+// in ../shared/data/spectra.
+#pragma once
+
+#include "core/math.h"
+#include "core/spectral.h"
+
+namespace mirage {
+
+// ∫ ȳ(λ) dλ over 360–830 nm at 1 nm steps (CIE): the normalisation of Y so that a constant
+// spectrum of radiance 1 has Y = 1.
+constexpr float kCieYIntegral = 106.856895f;
+
+Vec3 cieXyz(float lambdaNm);  // (x̄, ȳ, z̄) at lambda; 0 outside [360, 830]
+
+// Monte Carlo XYZ of one spectral sample: Σ_i L(λ_i) cmf(λ_i) / pdf(λ_i) / (N · ∫ȳ).
+Vec3 spectrumToXyz(const SampledSpectrum& L, const SampledWavelengths& w);
+
+}  // namespace mirage

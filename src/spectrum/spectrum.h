@@ -1,0 +1,48 @@
+// Spectra: functions of wavelength (nm) that the renderer samples at a path's 4 wavelengths.
+// Every non-constant spectrum is stored densely at 1 nm over [360, 830] nm and interpolated
+// linearly, so evaluation costs the same whatever its origin (table, blackbody, RGB).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/matrix.h"
+#include "core/spectral.h"
+
+namespace mirage {
+
+class Spectrum {
+public:
+    Spectrum() = default;                        // constant 0
+    explicit Spectrum(float c) : mConstant(c) {}  // wavelength-independent
+    // Piecewise-linear through (lambda_nm[i], value[i]); held constant beyond the ends.
+    static Spectrum fromTable(const std::vector<float>& lambdaNm, const std::vector<float>& value);
+
+    bool isConstant() const { return mTable.empty(); }
+    float constantValue() const { return mConstant; }
+    float operator()(float lambdaNm) const;
+    SampledSpectrum sample(const SampledWavelengths& w) const;
+    float maxValue() const;
+    Spectrum scaled(float s) const;
+
+private:
+    float mConstant = 0.f;
+    std::vector<float> mTable;  // 471 values, 360..830 nm at 1 nm, when not constant
+};
+
+// Planck's law: spectral radiance of a blackbody, W·m⁻²·sr⁻¹·m⁻¹ (per metre of wavelength),
+// at wavelength lambdaNm (nm) and temperature T (K). 0 for T <= 0.
+double planck(double lambdaNm, double temperatureK);
+// Blackbody spectrum normalised to peak 1 over the visible range (a colour, not a power).
+Spectrum blackbodyNormalized(float temperatureK);
+
+// RGB → spectrum. Two kinds, because they answer different questions:
+//  - reflectance-like values (albedo, σ tints): a smooth partition-of-unity basis
+//    B_b + B_g + B_r = 1, so (a,a,a) ↦ the constant a and values in [0,1] stay in [0,1];
+//  - illuminants: the same basis with coefficients solved so that the spectrum's XYZ, taken
+//    to the working space by `xyzToWorking`, is exactly the given RGB (negative lobes of very
+//    saturated colours are clamped to 0).
+Spectrum rgbReflectanceSpectrum(const Vec3& rgb);
+Spectrum rgbIlluminantSpectrum(const Vec3& rgb, const Mat3& xyzToWorking);
+
+}  // namespace mirage

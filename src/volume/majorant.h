@@ -1,0 +1,46 @@
+// Majorant grid: a coarse uniform grid over a medium's object-space bounds holding, per cell,
+// an upper bound of σt (1/m) over the cell. Delta tracking and ratio tracking walk it with a
+// 3D-DDA, so that tentative collisions are dense only where the medium is dense (the same idea
+// as pbrt-v4's MajorantGrid).
+#pragma once
+
+#include <vector>
+
+#include "core/math.h"
+#include "volume/grid.h"
+
+namespace mirage {
+
+class MajorantGrid {
+public:
+    MajorantGrid() = default;
+    // A grid of res³ cells at most over `bounds` (object space); cells are cubes-ish.
+    MajorantGrid(const Bounds3& bounds, int maxRes);
+
+    // Adds scale × (max of `grid` over each cell, including the trilinear footprint of the
+    // voxels that touch it) to every cell. Call once per medium component.
+    void addGrid(const FloatGrid& grid, float scale);
+    // Adds a constant (homogeneous component) over the whole bounds.
+    void addConstant(float value);
+
+    const Bounds3& bounds() const { return mBounds; }
+    int res(int axis) const { return mRes[axis]; }
+    float cell(int x, int y, int z) const { return mValues[(size_t(z) * mRes[1] + y) * mRes[0] + x]; }
+    float maxValue() const;
+
+    // Walks the cells a ray crosses in [tMin, tMax] (object-space ray; d need not be unit,
+    // t is the ray parameter). Calls f(t0, t1, sigmaMaj) per segment in order; stops when f
+    // returns false. Returns false if stopped early.
+    template <typename F>
+    bool traverse(const Vec3& o, const Vec3& d, float tMin, float tMax, F&& f) const;
+
+private:
+    Bounds3 mBounds;
+    int mRes[3] = {0, 0, 0};
+    Vec3 mCellSize;
+    std::vector<float> mValues;
+};
+
+}  // namespace mirage
+
+#include "volume/majorant_traverse.inl"

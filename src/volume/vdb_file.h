@@ -1,0 +1,50 @@
+// Reading OpenVDB files: validation, grid listing, and conversion of the grids a shader uses
+// to NanoVDB. This header does not include OpenVDB (its headers cost ~28 s and ~1 GB per
+// translation unit); only vdb_file.cpp and asset_writer.cpp do.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+#include "volume/grid.h"
+
+namespace mirage {
+
+struct GridInfo {
+    std::string name;          // may be empty: unnamed grids are addressed as "#<index>"
+    std::string valueType;     // "float", "half" (stored as half), "double", "vec3s", "bool", ...
+    std::string gridClass;     // "fog volume", "level set", "staggered", "unknown"
+    Vec3d voxelSize;           // metres (object space)
+    int64_t indexMin[3] = {0, 0, 0}, indexMax[3] = {0, 0, 0};  // active index bbox, inclusive
+    Bounds3 objectBounds;      // active bbox in object (VDB world) space, metres
+    uint64_t activeVoxels = 0;
+    uint64_t memoryBytes = 0;  // in-core size OpenVDB reports (file metadata when present)
+    std::string transform;     // human-readable index → object map
+    std::string compression;   // "blosc", "zip", "none", ...
+};
+
+struct VdbFileInfo {
+    std::string path;
+    std::string fileVersion;
+    std::string libraryVersion;
+    std::vector<GridInfo> grids;
+};
+
+// Checks that `path` exists, is a readable OpenVDB file (magic number, version) and that its
+// grid descriptors and offsets lie within the file size, before OpenVDB itself reads it.
+// Throws MirageError naming the file and what is wrong.
+void validateVdbFile(const std::string& path);
+
+// Lists the grids (metadata only, cheap). Throws MirageError on a bad file.
+VdbFileInfo inspectVdbFile(const std::string& path);
+
+// Reads one scalar grid — by name, or "#N" for the N-th grid (0-based) — from an OpenVDB file
+// (float, half or double storage; Blosc/zip) or a NanoVDB file (.nvdb) and returns it as a
+// NanoVDB float grid. Voxels that are not finite or are negative are set to 0 and reported by
+// a warning naming the file, grid and count (the documented rule, see README "Input rules").
+// Throws MirageError if the file or grid is missing, or the grid is not a scalar fog volume.
+FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName);
+
+}  // namespace mirage

@@ -1,0 +1,54 @@
+#include "test_support.h"
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+
+namespace mirage::test {
+
+std::string sharedData() {
+    std::error_code ec;
+    return std::filesystem::is_directory(MIRAGE_SHARED_DATA, ec) ? std::string(MIRAGE_SHARED_DATA)
+                                                                 : std::string();
+}
+
+std::string sharedFile(const std::string& relative) {
+    std::string root = sharedData();
+    if (root.empty()) return {};
+    std::string p = root + "/" + relative;
+    std::error_code ec;
+    return std::filesystem::exists(p, ec) ? p : std::string();
+}
+
+std::string tempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "mirage";
+    auto dir = std::filesystem::temp_directory_path() /
+               ("mirage_test_" + std::to_string(::getpid()) + "_" + name);
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir.string();
+}
+
+int runCommand(const std::string& cmd, std::string* output) {
+    std::string full = cmd + " 2>&1";
+    FILE* pipe = ::popen(full.c_str(), "r");
+    if (!pipe) return -1;
+    std::array<char, 4096> buf;
+    std::string out;
+    size_t n;
+    while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
+    int status = ::pclose(pipe);
+    if (output) *output = out;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+int runMirage(const std::string& args, std::string* output) {
+    return runCommand(std::string("'") + MIRAGE_BINARY + "' " + args, output);
+}
+
+}  // namespace mirage::test

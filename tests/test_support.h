@@ -1,0 +1,24 @@
+// Helpers shared by the test programs: where the reference data is, temporary folders,
+// running the mirage binary.
+#pragma once
+
+#include <string>
+
+namespace mirage::test {
+
+// ../shared/data, or "" when absent (tests that need it call GTEST_SKIP with a message).
+std::string sharedData();
+std::string sharedFile(const std::string& relative);  // "" when missing
+// A fresh folder under the system temp dir, unique per test.
+std::string tempDir();
+// Runs `mirage <args>` (the built binary), returns its exit code; stdout+stderr into *output.
+int runMirage(const std::string& args, std::string* output = nullptr);
+// Runs a shell command, returns its exit code; stdout+stderr into *output.
+int runCommand(const std::string& cmd, std::string* output = nullptr);
+
+}  // namespace mirage::test
+
+#define MIRAGE_REQUIRE_SHARED(var, rel)                                               \
+    std::string var = ::mirage::test::sharedFile(rel);                                \
+    if (var.empty()) GTEST_SKIP() << "reference data ../shared/data/" << (rel)        \
+                                  << " is absent; skipping"

@@ -52,3 +52,18 @@ int runMirage(const std::string& args, std::string* output) {
 }
 
 }  // namespace mirage::test
+
+#include <nanovdb/util/GridBuilder.h>
+
+namespace mirage::test {
+
+FloatGrid makeGrid(const std::function<float(int, int, int)>& value, int lo, int hi, double h,
+                   const Vec3d& origin, const std::string& name) {
+    nanovdb::GridBuilder<float> builder(0.f, nanovdb::GridClass::FogVolume);
+    builder([&](const nanovdb::Coord& c) { return value(c[0], c[1], c[2]); },
+            nanovdb::CoordBBox(nanovdb::Coord(lo), nanovdb::Coord(hi)));
+    auto handle = builder.getHandle<>(h, nanovdb::Vec3d(origin.x, origin.y, origin.z), name);
+    return FloatGrid(std::move(handle), name);
+}
+
+}  // namespace mirage::test

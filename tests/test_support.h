@@ -22,3 +22,16 @@ int runCommand(const std::string& cmd, std::string* output = nullptr);
     std::string var = ::mirage::test::sharedFile(rel);                                \
     if (var.empty()) GTEST_SKIP() << "reference data ../shared/data/" << (rel)        \
                                   << " is absent; skipping"
+
+#include <functional>
+
+#include "volume/grid.h"
+
+namespace mirage::test {
+
+// A NanoVDB fog-volume grid built in memory: value(i, j, k) over the inclusive index box
+// [lo, hi]³, voxel size h (m), index (0,0,0) at `origin`. Zero values stay inactive.
+FloatGrid makeGrid(const std::function<float(int, int, int)>& value, int lo, int hi, double h,
+                   const Vec3d& origin = Vec3d(0.0), const std::string& name = "density");
+
+}  // namespace mirage::test

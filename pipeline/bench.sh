@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Benchmarks (programs, not tests). Renders ../shared/data/vdb/smoke1.vdb single-scattered at
+# 512×512 with Mirage and with OpenVDB's vdb_render at matched camera, light and coefficients,
+# RUNS times each (default 3), and prints the medians and their ratio; then Mirage's NanoVDB
+# lookup rates. Needs ../shared/data (or MIRAGE_SHARED_DATA).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+DATA=${MIRAGE_SHARED_DATA:-../shared/data}
+SMOKE="$(realpath -m "$DATA/vdb/smoke1.vdb")"
+if [ ! -f "$SMOKE" ]; then
+  echo "bench: $SMOKE not found: the benchmark needs the reference data folder" >&2
+  exit 1
+fi
+RUNS=${RUNS:-3}
+SPP=${SPP:-16}
+pipeline/install-deps.sh >/dev/null
+pipeline/build.sh build >/dev/null
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+
+now() { date +%s.%N; }
+median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
+
+: > "$TMP/vdb.txt"; : > "$TMP/mirage.txt"
+for i in $(seq "$RUNS"); do
+  t0=$(now)
+  vdb_render "$SMOKE" "$TMP/vdb_render.exr" -res 512x512 -translate -7.4,60,190 \
+    -lookat -7.4,40.5,0.5 -fov 40 -absorb 0.1,0.1,0.1 -scatter 1.5,1.5,1.5 \
+    -light 0.3,0.3,0 -step 1 -shadowstep 3 -cpus 0 >/dev/null
+  t1=$(now)
+  ./build/mirage render tests/bench/smoke1_single.toml --set "volume.0.file=$SMOKE" \
+    --spp "$SPP" -o "$TMP/mirage.exr" --quiet >/dev/null
+  t2=$(now)
+  awk -v a="$t0" -v b="$t1" 'BEGIN {print b - a}' >> "$TMP/vdb.txt"
+  awk -v a="$t1" -v b="$t2" 'BEGIN {print b - a}' >> "$TMP/mirage.txt"
+done
+v=$(median < "$TMP/vdb.txt"); m=$(median < "$TMP/mirage.txt")
+printf 'smoke1.vdb 512x512, single scattering, %d runs, %d cores\n' "$RUNS" "$(nproc)"
+printf '  vdb_render (ray marching, step 1 voxel, shadow step 3): median %.2f s\n' "$v"
+printf '  mirage (delta/ratio tracking, %d spp):                    median %.2f s\n' "$SPP" "$m"
+printf '  ratio mirage / vdb_render: %.2f\n' "$(awk -v a="$m" -v b="$v" 'BEGIN {print a / b}')"
+./build/bench_lookups "$SMOKE"

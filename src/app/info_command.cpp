@@ -1,0 +1,84 @@
+// `mirage info`: what a VDB file holds, or what a scene loads and which physics it switches on.
+#include <cstdio>
+
+#include "app/commands.h"
+#include "film/color.h"
+#include "scene/scene.h"
+#include "volume/vdb_file.h"
+
+namespace mirage {
+
+namespace {
+
+void printGrids(const std::string& file) {
+    if (file.size() > 5 && file.substr(file.size() - 5) == ".nvdb") {
+        std::printf("  %s (NanoVDB file)\n", file.c_str());
+        return;
+    }
+    VdbFileInfo info = inspectVdbFile(file);
+    std::printf("  %s: OpenVDB file version %s, %zu grid(s)\n", file.c_str(),
+                info.fileVersion.c_str(), info.grids.size());
+    for (size_t i = 0; i < info.grids.size(); ++i) {
+        const GridInfo& g = info.grids[i];
+        std::printf("    [%zu] %s  type %s, class %s, compression %s\n", i,
+                    g.name.empty() ? "(unnamed)" : ("'" + g.name + "'").c_str(),
+                    g.valueType.c_str(), g.gridClass.c_str(), g.compression.c_str());
+        std::printf("        voxel size (%g, %g, %g) m, index bbox [%lld %lld %lld]..[%lld %lld %lld]\n",
+                    g.voxelSize.x, g.voxelSize.y, g.voxelSize.z, (long long)g.indexMin[0],
+                    (long long)g.indexMin[1], (long long)g.indexMin[2], (long long)g.indexMax[0],
+                    (long long)g.indexMax[1], (long long)g.indexMax[2]);
+        std::printf("        world bounds (%g, %g, %g)..(%g, %g, %g) m\n", g.objectBounds.lo.x,
+                    g.objectBounds.lo.y, g.objectBounds.lo.z, g.objectBounds.hi.x,
+                    g.objectBounds.hi.y, g.objectBounds.hi.z);
+        std::printf("        active voxels %llu, memory %s\n", (unsigned long long)g.activeVoxels,
+                    formatBytes(g.memoryBytes).c_str());
+        std::printf("        transform %s\n", g.transform.c_str());
+    }
+}
+
+}  // namespace
+
+int runInfo(const InfoOptions& o) {
+    ColorPipeline color(o.ocioConfig);
+    Scene scene = loadScene(o.input, LoadOptions{1, o.overrides}, color);
+    std::printf("%s\n", o.input.c_str());
+    std::printf("volumes:\n");
+    for (size_t i = 0; i < scene.volumes.size(); ++i) {
+        const VolumeRecord& v = scene.volumes[i];
+        const Medium& m = *scene.render.media[i];
+        printGrids(v.file);
+        std::printf("  shader '%s' (%s), density_scale %g\n", v.shader.c_str(),
+                    m.shader().source.c_str(), v.densityScale);
+        for (size_t b = 0; b < v.bindings.size(); ++b) {
+            const FloatGrid& g = m.grids()[b];
+            std::printf("    slot '%s' ← grid '%s': %llu active voxels, NanoVDB %s, max %g\n",
+                        v.bindings[b].first.c_str(), v.bindings[b].second.c_str(),
+                        (unsigned long long)g.activeVoxels(), formatBytes(g.memoryBytes()).c_str(),
+                        g.maxValue());
+        }
+        for (const auto& u : v.unusedGrids)
+            std::printf("    grid '%s' is read by no shader slot: not loaded\n", u.c_str());
+        Bounds3 b = m.worldBounds();
+        std::printf("    world bounds (%g, %g, %g)..(%g, %g, %g) m, majorant %dx%dx%d cells, "
+                    "max σt %g 1/m\n",
+                    b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z, m.majorant().res(0),
+                    m.majorant().res(1), m.majorant().res(2), m.majorant().maxValue());
+    }
+    std::printf("lights:\n");
+    for (const auto& l : scene.render.lights) std::printf("  %s\n", l->describe().c_str());
+    if (scene.render.lights.empty()) std::printf("  (none)\n");
+    const CameraDesc& c = scene.render.camera;
+    std::printf("camera: position (%g, %g, %g), look_at (%g, %g, %g), fov %g°\n", c.position.x,
+                c.position.y, c.position.z, c.lookAt.x, c.lookAt.y, c.lookAt.z, c.fovDeg);
+    std::printf("film: %dx%d, %d spp, tile %d, seed %llu; integrator '%s'; colour: %s (%s)\n",
+                scene.settings.width, scene.settings.height, scene.settings.spp,
+                scene.settings.tileSize, (unsigned long long)scene.settings.seed,
+                scene.integrator.c_str(), color.workingSpace().c_str(),
+                color.configDescription().c_str());
+    std::printf("physics:\n");
+    for (const auto& t : scene.physics())
+        std::printf("  [%s] %-22s %s\n", t.active ? "on " : "off", t.name.c_str(), t.why.c_str());
+    return 0;
+}
+
+}  // namespace mirage

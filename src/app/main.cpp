@@ -1,0 +1,65 @@
+// mirage — command-line entry point. One try/catch: user mistakes (MirageError) print one
+// message and exit 1; command-line syntax errors exit 2 (CLI11's convention).
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+
+#include "app/commands.h"
+#include "core/error.h"
+
+int main(int argc, char** argv) {
+    using namespace mirage;
+    CLI::App app{"Mirage " MIRAGE_VERSION " — spectral volume renderer for OpenVDB caches"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", MIRAGE_VERSION);
+
+    RenderOptions ro;
+    auto* render = app.add_subcommand("render", "Render a scene file (.toml) or a bare VDB");
+    render->add_option("input", ro.input, "Scene .toml, or a .vdb/.nvdb for a quick look")
+        ->required();
+    render->add_option("-o,--output", ro.output,
+                       "Output EXR (frame patterns $F4 or #### allowed); default: the scene's");
+    render->add_option("--preview", ro.preview, "Also write an sRGB preview (PNG/JPEG)");
+    render->add_option("--frame", ro.frame, "Frame number substituted into $F patterns");
+    render->add_option("--frames", ro.frames, "Frame range A-B (inclusive)")->excludes("--frame");
+    render->add_option("--set", ro.overrides, "Override a scene value: key.path=value")
+        ->take_all();
+    render->add_option("--resolution", ro.resolution, "Image size WxH");
+    render->add_option("--spp", ro.spp, "Samples per pixel")->check(CLI::Range(1, 1 << 20));
+    render->add_option("--threads", ro.threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(1, 4096));
+    render->add_option("--seed", ro.seed, "Random seed")->check(CLI::NonNegativeNumber);
+    render->add_option("--turntable", ro.turntable, "Render N frames orbiting the volume")
+        ->check(CLI::Range(1, 100000));
+    render->add_flag("--float", ro.floatExr, "Write 32-bit float EXR instead of half");
+    render->add_flag("-q,--quiet", ro.quiet, "No progress output");
+    render->add_option("--ocio", ro.ocioConfig, "OCIO config (default: $OCIO, else built-in)");
+
+    InfoOptions io;
+    auto* info = app.add_subcommand("info", "Describe a scene or a VDB file");
+    info->add_option("input", io.input, "Scene .toml or .vdb/.nvdb")->required();
+    info->add_option("--set", io.overrides, "Override a scene value: key.path=value")->take_all();
+    info->add_option("--ocio", io.ocioConfig, "OCIO config (default: $OCIO, else built-in)");
+
+    AssetOptions ao;
+    auto* asset = app.add_subcommand("make-asset", "Write a procedural VDB cache");
+    asset->add_option("kind", ao.kind, "smoke | fire | fog-sphere")->required();
+    asset->add_option("-o,--output", ao.output, "Output .vdb")->required();
+    asset->add_option("--resolution", ao.resolution, "Voxels along the tallest axis")
+        ->check(CLI::Range(4, 2048));
+    asset->add_option("--seed", ao.seed, "Noise seed");
+
+    CLI11_PARSE(app, argc, argv);
+    try {
+        if (*render) return runRender(ro);
+        if (*info) return runInfo(io);
+        if (*asset) return runMakeAsset(ao);
+    } catch (const MirageError& e) {
+        std::fprintf(stderr, "mirage: error: %s\n", e.what());
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "mirage: error: %s\n", boundedMessage(e.what()).c_str());
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,143 @@
+// `mirage render`: load → render → develop → write, per frame, with a summary at the end.
+#include <tbb/global_control.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "app/commands.h"
+#include "core/error.h"
+#include "film/color.h"
+#include "film/image_io.h"
+#include "scene/scene.h"
+
+namespace mirage {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::vector<int> frameList(const RenderOptions& o) {
+    std::vector<int> frames;
+    if (o.turntable > 0) {
+        for (int i = 1; i <= o.turntable; ++i) frames.push_back(i);
+    } else if (!o.frames.empty()) {
+        int a = 0, b = 0;
+        char dash = 0;
+        if (std::sscanf(o.frames.c_str(), "%d%c%d", &a, &dash, &b) != 3 || dash != '-' || b < a)
+            throw MirageError("--frames '" + o.frames + "': expected A-B with A ≤ B, e.g. 1-24");
+        for (int f = a; f <= b; ++f) frames.push_back(f);
+    } else {
+        frames.push_back(o.frame >= 0 ? o.frame : 1);
+    }
+    return frames;
+}
+
+// An output path for one frame: expand a pattern, or number the frames of a sequence.
+std::string framePath(const std::string& path, int frame, bool sequence) {
+    if (hasFramePattern(path)) return expandFramePattern(path, frame);
+    if (!sequence) return path;
+    fs::path p(path);
+    char num[32];
+    std::snprintf(num, sizeof num, ".%04d", frame);
+    return (p.parent_path() / (p.stem().string() + num + p.extension().string())).string();
+}
+
+}  // namespace
+
+int runRender(const RenderOptions& o) {
+    auto t0 = std::chrono::steady_clock::now();
+    std::unique_ptr<tbb::global_control> threads;
+    if (o.threads > 0)
+        threads = std::make_unique<tbb::global_control>(
+            tbb::global_control::max_allowed_parallelism, size_t(o.threads));
+    ColorPipeline color(o.ocioConfig);
+
+    std::vector<int> frames = frameList(o);
+    bool sequence = frames.size() > 1;
+    for (int frame : frames) {
+        auto tLoad = std::chrono::steady_clock::now();
+        Scene scene = loadScene(o.input, LoadOptions{frame, o.overrides}, color);
+        RenderSettings& s = scene.settings;
+        if (!o.resolution.empty()) {
+            int w = 0, h = 0;
+            char x = 0;
+            if (std::sscanf(o.resolution.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' ||
+                w < 1 || h < 1 || w > 65536 || h > 65536)
+                throw MirageError("--resolution '" + o.resolution + "': expected WxH, e.g. 640x360");
+            s.width = w;
+            s.height = h;
+            // Keep an automatic camera framed for the new aspect ratio.
+            if (isVolumeFile(o.input))
+                scene.render.camera = frameBounds(scene.render.bounds(), scene.render.camera.fovDeg,
+                                                  float(w) / float(h));
+        }
+        if (o.spp > 0) s.spp = o.spp;
+        if (o.seed >= 0) s.seed = uint64_t(o.seed);
+        s.progress = o.quiet ? Progress::Mode::Quiet : Progress::Mode::Auto;
+        if (o.turntable > 0)
+            scene.render.camera =
+                orbitCamera(scene.render.camera, 360.f * float(frame - 1) / float(o.turntable));
+        double loadSeconds = secondsSince(tLoad);
+
+        auto integrator = makeSingleScatterIntegrator();
+        integrator->preprocess(scene.render);
+        RenderStats stats;
+        Film film = render(scene.render, *integrator, s, &stats);
+
+        auto tWrite = std::chrono::steady_clock::now();
+        Image image = film.develop(color);
+        ExrOptions exr;
+        exr.halfFloat = !o.floatExr && scene.output.halfFloat;
+        exr.colorSpace = color.workingSpace();
+        if (!scene.output.colorSpace.empty() && scene.output.colorSpace != color.workingSpace()) {
+            color.convert(image.rgba, 4, scene.output.colorSpace);
+            exr.colorSpace = scene.output.colorSpace;
+        } else {
+            exr.chromaticities = color.workingChromaticities();
+        }
+        exr.metadata = {{"scene", scene.source},
+                        {"seed", std::to_string(s.seed)},
+                        {"spp", std::to_string(s.spp)},
+                        {"frame", std::to_string(frame)},
+                        {"integrator", integrator->name()},
+                        {"render_seconds", std::to_string(stats.seconds)},
+                        {"nonfinite_samples", std::to_string(stats.nonFiniteSamples)},
+                        {"version", MIRAGE_VERSION},
+                        {"ocio_config", color.configDescription()}};
+        std::string out = framePath(o.output.empty() ? scene.output.path : o.output, frame, sequence);
+        writeExr(out, image, exr);
+        std::string preview = o.preview.empty() ? scene.output.preview : o.preview;
+        if (!preview.empty()) {
+            preview = framePath(preview, frame, sequence);
+            Image linear = film.develop(color);
+            writePreview(preview, linear, color, scene.output.display, scene.output.view);
+        }
+        double writeSeconds = secondsSince(tWrite);
+
+        if (!o.quiet) {
+            double mlps = stats.seconds > 0 ? stats.mediumLookups / stats.seconds / 1e6 : 0;
+            std::fprintf(stderr,
+                         "frame %d: %dx%d, %d spp, %llu samples | load %.2fs, render %.2fs, "
+                         "write %.2fs | %.1f M medium lookups/s | non-finite samples %llu | "
+                         "peak memory %s\n",
+                         frame, s.width, s.height, s.spp, (unsigned long long)stats.samples,
+                         loadSeconds, stats.seconds, writeSeconds, mlps,
+                         (unsigned long long)stats.nonFiniteSamples,
+                         formatBytes(peakMemoryBytes()).c_str());
+        }
+        std::printf("%s\n", out.c_str());
+        if (!preview.empty()) std::printf("%s\n", preview.c_str());
+    }
+    if (!o.quiet)
+        std::fprintf(stderr, "done: %zu frame(s) in %s\n", frames.size(),
+                     formatSeconds(secondsSince(t0)).c_str());
+    return 0;
+}
+
+}  // namespace mirage

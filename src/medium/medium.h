@@ -1,0 +1,86 @@
+// A heterogeneous medium at render time: a shader bound to NanoVDB grids, placed in the world
+// by a transform, with a majorant grid for tracking. It only reports coefficients and
+// majorants; free-flight sampling and transmittance are written once, in transport/.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "core/transform.h"
+#include "medium/phase.h"
+#include "medium/shader.h"
+#include "volume/grid.h"
+#include "volume/majorant.h"
+
+namespace mirage {
+
+constexpr int kMaxComponents = 8;
+
+// Coefficients at one point for a path's wavelengths.
+struct MediumPoint {
+    SampledSpectrum sigmaA, sigmaS;  // 1/m
+    SampledSpectrum Le;              // emitted radiance, W·m⁻²·sr⁻¹·nm⁻¹ (emission = σa·Le)
+    int components = 0;
+    std::array<SampledSpectrum, kMaxComponents> sigmaSComponent;  // for the phase mixture
+};
+
+class Medium {
+public:
+    // `grids` holds one grid per entry of shader.gridSlots(), in that order.
+    Medium(ShaderDesc shader, std::vector<FloatGrid> grids, const Transform& objectToWorld,
+           float densityScale, int majorantResolution = 64);
+
+    const ShaderDesc& shader() const { return mShader; }
+    const std::vector<FloatGrid>& grids() const { return mGrids; }
+    const Transform& objectToWorld() const { return mObjectToWorld; }
+    Bounds3 worldBounds() const { return mWorldBounds; }
+    Bounds3 objectBounds() const { return mMajorant.bounds(); }
+    const MajorantGrid& majorant() const { return mMajorant; }
+    bool emissive() const { return mShader.emission.has_value(); }
+    bool homogeneous() const { return mGrids.empty(); }
+
+    // The ray in object space with the same parameter t (direction not renormalised).
+    Ray toObject(const Ray& worldRay) const {
+        return {mWorldToObject.point(worldRay.o), mWorldToObject.vector(worldRay.d),
+                worldRay.tMax};
+    }
+
+    // Per-path state: grid accessors and the cross-sections at the path's wavelengths.
+    class Context {
+    public:
+        explicit Context(const Medium& m);
+        void setWavelengths(const SampledWavelengths& w);
+        const SampledWavelengths& wavelengths() const { return mLambda; }
+
+    private:
+        friend class Medium;
+        const Medium* mMedium;
+        SampledWavelengths mLambda;
+        std::vector<FloatGrid::Accessor> mAcc;
+        std::array<SampledSpectrum, kMaxComponents> mSigmaA, mSigmaS;
+        std::array<int, kMaxComponents> mSlot;  // grid index per component, -1 homogeneous
+        int mTemperatureSlot = -1;
+    };
+
+    // Coefficients at an object-space point.
+    void eval(const Vec3& pObject, Context& ctx, MediumPoint* out) const;
+
+    // Phase function of the mixture at a point: p(λ) = Σ_c σs,c(λ) p_c / σs(λ).
+    SampledSpectrum phaseEval(const MediumPoint& mp, const Vec3& wi, const Vec3& wo) const;
+    // Samples wo by choosing a component ∝ its mean σs, then its HG lobe; returns the
+    // per-wavelength weight p(λ)/pdf.
+    Vec3 phaseSample(const MediumPoint& mp, const Vec3& wi, float uc, float u1, float u2,
+                     SampledSpectrum* weight, float* pdf) const;
+
+private:
+    ShaderDesc mShader;
+    std::vector<FloatGrid> mGrids;
+    Transform mObjectToWorld, mWorldToObject;
+    float mDensityScale;
+    Bounds3 mWorldBounds;
+    MajorantGrid mMajorant;
+    std::vector<HGPhase> mPhases;
+};
+
+}  // namespace mirage

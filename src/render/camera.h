@@ -1,0 +1,43 @@
+// Perspective pinhole camera. Raster (0,0) is the top-left corner of the image; the vertical
+// field of view is in degrees, as in most DCC applications.
+#pragma once
+
+#include "core/math.h"
+
+namespace mirage {
+
+struct CameraDesc {
+    Vec3 position{0, 0, 5};
+    Vec3 lookAt{0, 0, 0};
+    Vec3 up{0, 1, 0};
+    float fovDeg = 40.f;  // vertical
+};
+
+class PerspectiveCamera {
+public:
+    PerspectiveCamera(const CameraDesc& d, int width, int height)
+        : mPos(d.position), mWidth(width), mHeight(height) {
+        mForward = normalize(d.lookAt - d.position);
+        mRight = normalize(cross(mForward, d.up));
+        mUp = cross(mRight, mForward);
+        mTanHalf = std::tan(radians(d.fovDeg) * 0.5f);
+        mAspect = float(width) / float(height);
+    }
+    // Ray through raster position (px, py) in pixels.
+    Ray generate(float px, float py) const {
+        float sx = (2.f * px / mWidth - 1.f) * mTanHalf * mAspect;
+        float sy = (1.f - 2.f * py / mHeight) * mTanHalf;
+        return {mPos, normalize(mForward + mRight * sx + mUp * sy), kInfinity};
+    }
+
+private:
+    Vec3 mPos, mForward, mRight, mUp;
+    int mWidth, mHeight;
+    float mTanHalf, mAspect;
+};
+
+// Camera orbit for turntables: rotates the camera position about the vertical axis (up)
+// through lookAt by `degrees`.
+CameraDesc orbitCamera(const CameraDesc& base, float degrees);
+
+}  // namespace mirage

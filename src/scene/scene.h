@@ -1,0 +1,74 @@
+// A loaded scene: what the render stage needs (RenderScene), the render and output settings,
+// and a record of what was loaded and why, for `mirage info`.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "render/render_scene.h"
+#include "render/renderer.h"
+
+namespace mirage {
+
+class ColorPipeline;
+
+struct OutputSettings {
+    std::string path = "out/render.exr";  // may hold a frame pattern ($F4, ####)
+    std::string colorSpace;               // "" = the working space
+    bool halfFloat = true;
+    std::string preview;                  // "" = none; else a PNG/JPEG path
+    std::string display = "sRGB", view = "Standard";
+};
+
+struct VolumeRecord {
+    std::string file;  // after frame substitution
+    std::string shader;
+    std::vector<std::pair<std::string, std::string>> bindings;  // shader slot → grid in file
+    std::vector<std::string> unusedGrids;  // grids in the file no shader reads (not loaded)
+    float densityScale = 1;
+};
+
+struct PhysicsTerm {
+    std::string name;
+    bool active;
+    std::string why;
+};
+
+struct Scene {
+    std::string source;  // scene file or VDB file
+    RenderScene render;
+    RenderSettings settings;
+    OutputSettings output;
+    std::string integrator = "single";
+    int majorantResolution = 64;
+    std::vector<VolumeRecord> volumes;
+
+    // Which physics terms this scene activates, and why ("model only what a scene requires").
+    std::vector<PhysicsTerm> physics() const;
+};
+
+struct LoadOptions {
+    int frame = 1;                        // substituted into $F patterns
+    std::vector<std::string> overrides;   // --set key=value, applied before parsing
+};
+
+Scene loadScene(const std::string& path, const LoadOptions& options, const ColorPipeline& color);
+// A bare VDB: automatic camera framing its bounds, a key light, the built-in smoke shader
+// bound to its density grid (or its only scalar grid).
+Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const ColorPipeline& color);
+bool isVolumeFile(const std::string& path);  // .vdb or .nvdb
+
+// "$F4" → frame zero-padded to 4 digits, "$F" → unpadded, a run of '#' → padded to its length.
+std::string expandFramePattern(const std::string& pattern, int frame);
+bool hasFramePattern(const std::string& pattern);
+
+// A camera looking at the bounds from the front and slightly above, far enough that the
+// bounding sphere fills the vertical field of view.
+CameraDesc frameBounds(const Bounds3& bounds, float fovDeg, float aspect);
+
+// Irradiance (W/m²) under which a white Lambertian surface facing a flat-spectrum light has
+// luminance-like Y = 1: E = π · (830 − 360) nm · 1 W·m⁻²·sr⁻¹·nm⁻¹.
+constexpr float kUnitWhiteIrradiance = 3.14159265f * 470.f;
+
+}  // namespace mirage

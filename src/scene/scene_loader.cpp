@@ -1,0 +1,345 @@
+// Scene files (TOML) → Scene. The schema is documented in README.md ("Scene files"); every
+// table is read through TableReader, so unknown keys, wrong types and out-of-range values are
+// errors naming the file, line and column.
+#include <filesystem>
+#include <sstream>
+
+#include "film/color.h"
+#include "scene/scene.h"
+#include "scene/shader_loader.h"
+#include "scene/toml_reader.h"
+#include "volume/vdb_file.h"
+
+namespace mirage {
+
+namespace fs = std::filesystem;
+
+std::string expandFramePattern(const std::string& pattern, int frame) {
+    std::string out;
+    for (size_t i = 0; i < pattern.size();) {
+        if (pattern[i] == '$' && i + 1 < pattern.size() && pattern[i + 1] == 'F') {
+            size_t j = i + 2;
+            int width = 0;
+            while (j < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[j])))
+                width = width * 10 + (pattern[j++] - '0');
+            std::string num = std::to_string(std::abs(frame));
+            if (int(num.size()) < width) num.insert(0, size_t(width) - num.size(), '0');
+            out += (frame < 0 ? "-" : "") + num;
+            i = j;
+        } else if (pattern[i] == '#') {
+            size_t j = i;
+            while (j < pattern.size() && pattern[j] == '#') ++j;
+            std::string num = std::to_string(frame);
+            if (num.size() < j - i) num.insert(0, (j - i) - num.size(), '0');
+            out += num;
+            i = j;
+        } else {
+            out += pattern[i++];
+        }
+    }
+    return out;
+}
+
+bool hasFramePattern(const std::string& pattern) {
+    return pattern.find("$F") != std::string::npos || pattern.find('#') != std::string::npos;
+}
+
+bool isVolumeFile(const std::string& path) {
+    auto ext = fs::path(path).extension().string();
+    return ext == ".vdb" || ext == ".nvdb";
+}
+
+CameraDesc frameBounds(const Bounds3& b, float fovDeg, float aspect) {
+    CameraDesc c;
+    c.fovDeg = fovDeg;
+    c.lookAt = b.center();
+    float radius = 0.5f * length(b.diagonal());
+    // Fit the bounding sphere in the narrower of the two fields of view, with a 5 % margin.
+    float halfV = radians(fovDeg) * 0.5f;
+    float halfH = std::atan(std::tan(halfV) * aspect);
+    float half = std::min(halfV, halfH);
+    float dist = 1.05f * radius / std::sin(half);
+    Vec3 dir = normalize(Vec3(0.f, 0.2f, 1.f));
+    c.position = c.lookAt + dir * dist;
+    c.up = Vec3(0, 1, 0);
+    return c;
+}
+
+namespace {
+
+Spectrum lightColour(const TableReader& t, const ColorPipeline& color) {
+    if (t.has("temperature") && t.has("color"))
+        t.fail("temperature", "give either 'color' or 'temperature', not both");
+    if (t.has("temperature")) {
+        double T = t.getNumber("temperature", 6500, 100, 1e6);
+        return blackbodyNormalized(float(T));
+    }
+    Vec3 rgb = t.getVec3("color", Vec3(1, 1, 1));
+    if (rgb.x < 0 || rgb.y < 0 || rgb.z < 0 || (rgb.x + rgb.y + rgb.z) <= 0)
+        t.fail("color", "expected non-negative RGB values, not all zero");
+    return rgbIlluminantSpectrum(rgb, color.xyzToWorking());
+}
+
+std::unique_ptr<Light> readLight(const TableReader& t, const ColorPipeline& color) {
+    std::string type = t.getString("type");
+    std::unique_ptr<Light> light;
+    if (type == "point") {
+        light = makePointLight(t.getVec3("position"), float(t.getNumber("power", 100, 0, 1e15)),
+                               lightColour(t, color));
+    } else if (type == "spot") {
+        Vec3 p = t.getVec3("position");
+        Vec3 dir = t.has("look_at") ? t.getVec3("look_at") - p : t.getVec3("direction");
+        if (!(length(dir) > 0)) t.fail("direction", "the spot light points nowhere");
+        float outer = float(t.getNumber("cone_angle", 30, 0.1, 180));
+        float inner = float(t.getNumber("cone_inner", outer * 0.8, 0, outer));
+        light = makeSpotLight(p, dir, float(t.getNumber("power", 100, 0, 1e15)), inner, outer,
+                              lightColour(t, color));
+    } else if (type == "distant" || type == "sun") {
+        Vec3 dir = t.getVec3("direction");
+        if (!(length(dir) > 0)) t.fail("direction", "expected a non-zero direction");
+        light = makeDistantLight(dir, float(t.getNumber("irradiance", kUnitWhiteIrradiance, 0, 1e15)),
+                                 lightColour(t, color));
+    } else if (type == "quad") {
+        light = makeQuadLight(t.getVec3("corner"), t.getVec3("edge_u"), t.getVec3("edge_v"),
+                              float(t.getNumber("power", 100, 0, 1e15)), lightColour(t, color));
+    } else {
+        t.fail("type", "unknown light type '" + type + "'; expected point, spot, distant, sun or quad");
+    }
+    t.finish();
+    return light;
+}
+
+Transform readTransform(const TableReader& t) {
+    Transform xf;
+    if (t.has("scale")) {
+        const toml::node* n = t.node("scale");
+        Vec3d s = n->is_number() ? Vec3d(t.getNumber("scale")) : Vec3d(t.getVec3("scale"));
+        if (s.x == 0 || s.y == 0 || s.z == 0) t.fail("scale", "a zero scale collapses the volume");
+        xf = Transform::scale(s) * xf;
+    }
+    if (t.has("rotate")) {
+        auto r = t.getNumbers("rotate", 4, 4);
+        Vec3d axis(r[1], r[2], r[3]);
+        if (!(length(axis) > 0)) t.fail("rotate", "expected [degrees, axis x, y, z] with a non-zero axis");
+        xf = Transform::rotate(r[0], axis) * xf;
+    }
+    if (t.has("translate")) xf = Transform::translate(Vec3d(t.getVec3("translate"))) * xf;
+    t.finish();
+    return xf;
+}
+
+// Resolves the grid each shader slot binds to, checking it exists in the file.
+std::vector<std::pair<std::string, std::string>> bindGrids(
+    const ShaderDesc& shader, const std::vector<std::pair<std::string, std::string>>& explicitBind,
+    const std::string& file, std::vector<std::string>* unused, const FileLoc& where) {
+    std::vector<std::string> names;
+    bool nano = fs::path(file).extension() == ".nvdb";
+    if (!nano)
+        for (const auto& g : inspectVdbFile(file).grids) names.push_back(g.name);
+    auto slots = shader.gridSlots();
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const auto& slot : slots) {
+        std::string target = slot;
+        for (const auto& [s, g] : explicitBind)
+            if (s == slot) target = g;
+        bool isIndex = !target.empty() && target[0] == '#';
+        bool found = isIndex || nano ||
+                     std::find(names.begin(), names.end(), target) != names.end();
+        if (!found && slots.size() == 1 && names.size() == 1) {
+            target = names[0].empty() ? "#0" : names[0];  // the file's only grid
+            found = true;
+        }
+        if (nano && slots.size() == 1 && target == slot) target = "#0";
+        if (!found) {
+            std::string list;
+            for (size_t i = 0; i < names.size(); ++i)
+                list += (i ? ", " : "") + (names[i].empty() ? "#" + std::to_string(i) : "'" + names[i] + "'");
+            throw MirageError(where, "shader '" + shader.name + "' reads grid slot '" + slot +
+                                         "', but " + file + " has no grid '" + target +
+                                         "' (it has: " + list + "); bind one with bind = { " +
+                                         slot + " = \"<grid>\" }");
+        }
+        out.emplace_back(slot, target);
+    }
+    if (unused)
+        for (size_t i = 0; i < names.size(); ++i) {
+            bool used = false;
+            for (const auto& b : out) used |= b.second == names[i] || b.second == "#" + std::to_string(i);
+            if (!used) unused->push_back(names[i].empty() ? "#" + std::to_string(i) : names[i]);
+        }
+    return out;
+}
+
+}  // namespace
+
+// Builds a medium from a shader and a file: loads only the grids the shader reads.
+static std::unique_ptr<Medium> buildMedium(const ShaderDesc& shader, VolumeRecord& rec,
+                                           const std::vector<std::pair<std::string, std::string>>& explicitBind,
+                                           const Transform& xf, int majorantRes,
+                                           const FileLoc& where) {
+    rec.bindings = bindGrids(shader, explicitBind, rec.file, &rec.unusedGrids, where);
+    std::vector<FloatGrid> grids;
+    for (const auto& [slot, gridName] : rec.bindings)
+        grids.push_back(loadFloatGrid(rec.file, gridName));
+    return std::make_unique<Medium>(shader, std::move(grids), xf, rec.densityScale, majorantRes);
+}
+
+Scene loadScene(const std::string& path, const LoadOptions& options, const ColorPipeline& color) {
+    if (isVolumeFile(path)) return sceneFromVdb(path, options, color);
+    toml::table doc = parseTomlFile(path);
+    for (const auto& o : options.overrides) applyOverride(doc, o);
+    std::string dir = fs::path(path).parent_path().string();
+    auto resolve = [&](const std::string& p) {
+        return fs::path(p).is_relative() && !dir.empty() ? (fs::path(dir) / p).string() : p;
+    };
+
+    Scene scene;
+    scene.source = path;
+    TableReader top(doc, path, "");
+
+    if (auto f = top.optionalTable("film")) {
+        if (f->has("resolution")) {
+            auto r = f->getNumbers("resolution", 2, 2);
+            if (r[0] < 1 || r[1] < 1 || r[0] > 65536 || r[1] > 65536 || r[0] != std::floor(r[0]) ||
+                r[1] != std::floor(r[1]))
+                f->fail("resolution", "expected two whole numbers from 1 to 65536");
+            scene.settings.width = int(r[0]);
+            scene.settings.height = int(r[1]);
+        }
+        scene.settings.tileSize = int(f->getInt("tile_size", 32, 1, 4096));
+        scene.settings.spp = int(f->getInt("spp", 16, 1, 1 << 20));
+        scene.settings.seed = uint64_t(f->getInt("seed", 0, 0, INT64_MAX));
+        f->finish();
+    }
+    if (auto r = top.optionalTable("render")) {
+        scene.integrator = r->getString("integrator", "single");
+        if (scene.integrator != "single")
+            r->fail("integrator", "unknown integrator '" + scene.integrator + "'; expected: single");
+        scene.majorantResolution = int(r->getInt("majorant_resolution", 64, 1, 1024));
+        r->finish();
+    }
+    if (auto o = top.optionalTable("output")) {
+        scene.output.path = resolve(o->getString("path", "render.exr"));
+        scene.output.colorSpace = o->getString("color_space", "");
+        scene.output.halfFloat = o->getBool("half", true);
+        std::string preview = o->getString("preview", "");
+        scene.output.preview = preview.empty() ? "" : resolve(preview);
+        scene.output.display = o->getString("display", "sRGB");
+        scene.output.view = o->getString("view", "Standard");
+        o->finish();
+    }
+
+    for (const auto& v : top.tables("volume")) {
+        VolumeRecord rec;
+        FileLoc where = v.loc("file");
+        rec.file = resolve(expandFramePattern(v.getString("file"), options.frame));
+        if (!fs::exists(rec.file))
+            v.fail("file", "volume file not found: " + rec.file);
+        rec.shader = v.getString("shader", "smoke");
+        ShaderDesc shader;
+        try {
+            shader = loadShader(rec.shader, dir);
+        } catch (const MirageError& e) {
+            if (e.location().line > 0) throw;  // an error inside the shader file itself
+            v.fail("shader", e.what());
+        }
+        rec.densityScale = float(v.getNumber("density_scale", 1.0, 0.0, 1e12));
+        std::vector<std::pair<std::string, std::string>> bind;
+        if (auto b = v.optionalTable("bind")) {
+            for (const auto& k : b->keys()) {
+                auto slots = shader.gridSlots();
+                if (std::find(slots.begin(), slots.end(), k) == slots.end()) {
+                    std::string list;
+                    for (const auto& s : slots) list += (list.empty() ? "" : ", ") + s;
+                    b->fail(k, "shader '" + shader.name + "' has no grid slot '" + k +
+                                   "'; its slots are: " + list);
+                }
+                bind.emplace_back(k, b->getString(k));
+            }
+        }
+        Transform xf;
+        if (auto t = v.optionalTable("transform")) xf = readTransform(*t);
+        v.finish();
+        scene.render.media.push_back(
+            buildMedium(shader, rec, bind, xf, scene.majorantResolution, where));
+        scene.volumes.push_back(std::move(rec));
+    }
+
+    for (const auto& l : top.tables("light")) scene.render.lights.push_back(readLight(l, color));
+
+    float aspect = float(scene.settings.width) / float(scene.settings.height);
+    if (auto c = top.optionalTable("camera")) {
+        CameraDesc cam;
+        cam.position = c->getVec3("position");
+        cam.lookAt = c->getVec3("look_at");
+        cam.up = c->getVec3("up", Vec3(0, 1, 0));
+        cam.fovDeg = float(c->getNumber("fov", 40, 0.01, 179));
+        if (!(length(cam.lookAt - cam.position) > 0))
+            c->fail("look_at", "the camera looks at its own position");
+        if (!(length(cross(cam.lookAt - cam.position, cam.up)) > 0))
+            c->fail("up", "'up' is parallel to the viewing direction");
+        c->finish();
+        scene.render.camera = cam;
+    } else if (!scene.render.media.empty()) {
+        scene.render.camera = frameBounds(scene.render.bounds(), 40.f, aspect);
+    }
+    top.finish();
+    return scene;
+}
+
+Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const ColorPipeline& color) {
+    Scene scene;
+    scene.source = path;
+    VolumeRecord rec;
+    rec.file = expandFramePattern(path, options.frame);
+    if (!fs::exists(rec.file)) throw MirageError("volume file not found: " + rec.file);
+    rec.shader = "smoke";
+    ShaderDesc shader = loadShader("smoke", "");
+    scene.render.media.push_back(
+        buildMedium(shader, rec, {}, Transform(), scene.majorantResolution, FileLoc{rec.file, 0, 0}));
+    scene.volumes.push_back(rec);
+    float aspect = float(scene.settings.width) / float(scene.settings.height);
+    scene.render.camera = frameBounds(scene.render.bounds(), 40.f, aspect);
+    // Key light from the camera's upper left, white in the working space (a D65 spectrum's
+    // colour); a white diffuser facing it would read Y = 1.
+    scene.render.lights.push_back(makeDistantLight(
+        Vec3(1.f, -1.2f, -0.8f), kUnitWhiteIrradiance,
+        rgbIlluminantSpectrum(Vec3(1.f, 1.f, 1.f), color.xyzToWorking())));
+    scene.output.path = (fs::path(rec.file).stem().string() + ".exr");
+    return scene;
+}
+
+std::vector<PhysicsTerm> Scene::physics() const {
+    std::vector<PhysicsTerm> terms;
+    bool scatter = false, spectral = false, emission = false;
+    std::string emitWhy, spectralWhy;
+    for (size_t i = 0; i < render.media.size(); ++i) {
+        const ShaderDesc& s = render.media[i]->shader();
+        for (const auto& c : s.components) scatter |= c.sigmaS.maxValue() > 0;
+        if (s.spectralCoefficients() && spectralWhy.empty())
+            spectralWhy = "shader '" + s.name + "' has wavelength-dependent σ";
+        spectral |= s.spectralCoefficients();
+        if (s.emission) {
+            emission = true;
+            emitWhy = "shader '" + s.name + "' emits as a blackbody at grid slot '" +
+                      s.emission->temperatureGrid + "'";
+        }
+    }
+    terms.push_back({"absorption", !render.media.empty(),
+                     render.media.empty() ? "no volumes" : std::to_string(render.media.size()) + " volume(s)"});
+    terms.push_back({"single scattering", scatter && !render.lights.empty(),
+                     !scatter ? "no component scatters (σs = 0)"
+                              : render.lights.empty() ? "no lights" : "σs > 0 and " + std::to_string(render.lights.size()) + " light(s): shadow rays by ratio tracking"});
+    terms.push_back({"multiple scattering", false,
+                     "integrator '" + integrator + "' computes single scattering only"});
+    terms.push_back({"emission", emission, emission ? emitWhy : "no shader has an [emission] table"});
+    terms.push_back({"spectral coefficients", spectral,
+                     spectral ? spectralWhy
+                              : "every σ is wavelength-independent: one grid lookup and one "
+                                "coefficient per component serve all 4 wavelengths"});
+    terms.push_back({"fluorescence", false, "no shader declares a quantum efficiency"});
+    terms.push_back({"curved paths", false, "no refractive-index field: straight-line tracking"});
+    return terms;
+}
+
+}  // namespace mirage

@@ -1,0 +1,115 @@
+#include "scene/shader_loader.h"
+
+#include <cstdlib>
+#include <filesystem>
+
+namespace mirage {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> builtinShaderNames() {
+    std::vector<std::string> names;
+    for (const auto& [name, text] : builtinShaders()) names.push_back(name);
+    return names;
+}
+
+Spectrum readCoefficientSpectrum(const TableReader& t, const std::string& key, float def) {
+    const toml::node* n = t.node(key);
+    if (!n) return Spectrum(def);
+    if (n->is_number()) {
+        double v = t.getNumber(key, def, 0.0, 1e12);
+        return Spectrum(float(v));
+    }
+    if (n->is_array()) {
+        auto v = t.getNumbers(key, 3, 3);
+        for (double c : v)
+            if (c < 0) t.fail(key, "RGB values must be ≥ 0");
+        if (v[0] == v[1] && v[1] == v[2]) return Spectrum(float(v[0]));  // grey stays constant
+        // The basis has peak 1 per channel; scale so the largest channel is preserved.
+        double m = std::max({v[0], v[1], v[2]});
+        Spectrum s = rgbReflectanceSpectrum(Vec3(float(v[0] / m), float(v[1] / m), float(v[2] / m)));
+        return s.scaled(float(m));
+    }
+    if (n->is_table()) {
+        TableReader st = *t.optionalTable(key);
+        auto lambda = st.getNumbers("wavelengths", 2, 10000);
+        auto values = st.getNumbers("values", 2, 10000);
+        st.finish();
+        if (lambda.size() != values.size())
+            st.fail("values", "expected as many values as wavelengths (" +
+                                  std::to_string(lambda.size()) + ")");
+        for (size_t i = 1; i < lambda.size(); ++i)
+            if (!(lambda[i] > lambda[i - 1])) st.fail("wavelengths", "must increase strictly");
+        for (double v : values)
+            if (v < 0) st.fail("values", "must be ≥ 0");
+        return Spectrum::fromTable(std::vector<float>(lambda.begin(), lambda.end()),
+                                   std::vector<float>(values.begin(), values.end()));
+    }
+    t.fail(key, "expected a number, an [r, g, b] array or a {wavelengths, values} table");
+}
+
+ShaderDesc parseShader(const toml::table& doc, const std::string& file) {
+    TableReader top(doc, file, "");
+    ShaderDesc s;
+    s.source = file;
+    s.name = top.getString("name", fs::path(file).stem().string());
+    top.getString("description", "");
+    auto comps = top.tables("component");
+    if (comps.empty())
+        throw MirageError(top.tableLoc(), "shader '" + s.name +
+                                              "': expected at least one [[component]] table");
+    for (const auto& c : comps) {
+        MediumComponent mc;
+        mc.name = c.getString("name", "component" + std::to_string(s.components.size()));
+        mc.grid = c.getString("grid", "");
+        mc.concentration = float(c.getNumber("concentration", 1.0, 0.0, 1e12));
+        mc.sigmaA = readCoefficientSpectrum(c, "sigma_a", 0.f);
+        mc.sigmaS = readCoefficientSpectrum(c, "sigma_s", 0.f);
+        mc.g = float(c.getNumber("g", 0.0, -1.0, 1.0));
+        c.finish();
+        s.components.push_back(std::move(mc));
+    }
+    if (auto e = top.optionalTable("emission")) {
+        EmissionSpec es;
+        es.temperatureGrid = e->getString("temperature");
+        es.temperatureScale = float(e->getNumber("temperature_scale", 1.0, 0.0, 1e9));
+        es.temperatureOffset = float(e->getNumber("temperature_offset", 0.0, -1e9, 1e9));
+        es.intensity = float(e->getNumber("intensity", 1.0, 0.0, 1e12));
+        es.minTemperature = float(e->getNumber("min_temperature", 500.0, 0.0, 1e9));
+        e->finish();
+        s.emission = es;
+    }
+    top.finish();
+    return s;
+}
+
+ShaderDesc loadShader(const std::string& nameOrPath, const std::string& sceneDir) {
+    auto fromFile = [](const fs::path& p) { return parseShader(parseTomlFile(p.string()), p.string()); };
+    bool looksLikePath = nameOrPath.find('/') != std::string::npos ||
+                         fs::path(nameOrPath).extension() == ".toml";
+    if (looksLikePath) {
+        fs::path p(nameOrPath);
+        if (p.is_relative() && !sceneDir.empty()) p = fs::path(sceneDir) / p;
+        if (!fs::exists(p)) throw MirageError("shader file not found: " + p.string());
+        return fromFile(p);
+    }
+    std::vector<fs::path> candidates;
+    if (!sceneDir.empty()) {
+        candidates.push_back(fs::path(sceneDir) / (nameOrPath + ".toml"));
+        candidates.push_back(fs::path(sceneDir) / "shaders" / (nameOrPath + ".toml"));
+    }
+    if (const char* env = std::getenv("MIRAGE_SHADER_PATH"))
+        candidates.push_back(fs::path(env) / (nameOrPath + ".toml"));
+    for (const auto& c : candidates)
+        if (fs::exists(c)) return fromFile(c);
+    for (const auto& [name, text] : builtinShaders())
+        if (name == nameOrPath)
+            return parseShader(parseTomlText(text, "<built-in shader " + name + ">"),
+                               "<built-in shader " + name + ">");
+    std::string names;
+    for (const auto& n : builtinShaderNames()) names += (names.empty() ? "" : ", ") + n;
+    throw MirageError("unknown shader '" + nameOrPath + "': not a file next to the scene, and "
+                      "not a built-in shader (" + names + ")");
+}
+
+}  // namespace mirage

@@ -1,0 +1,81 @@
+#include "transport/tracking.h"
+
+namespace mirage {
+
+TrackingContext::TrackingContext(const std::vector<const Medium*>& media) : mMedia(media) {
+    mContexts.reserve(media.size());
+    for (const Medium* m : media) mContexts.emplace_back(*m);
+}
+
+void TrackingContext::setWavelengths(const SampledWavelengths& w) {
+    mLambda = w;
+    for (auto& c : mContexts) c.setWavelengths(w);
+}
+
+bool nextTentativeCollision(const MajorantGrid& majorant, const Ray& objectRay, float t,
+                            float tEnd, float tau, float* tHit, float* sigmaMaj) {
+    bool found = false;
+    majorant.traverse(objectRay.o, objectRay.d, t, tEnd, [&](float t0, float t1, float s) {
+        if (!(s > 0.f)) return true;  // empty cell: no collisions
+        float dt = t1 - t0;
+        float need = tau / s;  // distance at which the majorant's optical depth reaches tau
+        if (need < dt) {
+            *tHit = t0 + need;
+            *sigmaMaj = s;
+            found = true;
+            return false;
+        }
+        tau -= s * dt;
+        return true;
+    });
+    // A collision at exactly the start (need = 0 from tau = 0) would stall the walk.
+    if (found && !(*tHit > t)) *tHit = std::nextafter(t, kInfinity);
+    return found;
+}
+
+EventProbabilities eventProbabilities(const Collision& c) {
+    EventProbabilities e;
+    SampledSpectrum sigmaMaj(c.sigmaMaj);
+    e.sigmaN = sigmaMaj - c.mp.sigmaA - c.mp.sigmaS;
+    float inv = 1.f / c.sigmaMaj;
+    e.pAbsorb = c.mp.sigmaA.average() * inv;
+    e.pScatter = c.mp.sigmaS.average() * inv;
+    // A majorant that underestimates σt (it must not; see majorant tests) would make σn
+    // negative: the null probability is clamped so the walk still ends.
+    e.pNull = std::max(0.f, e.sigmaN.average() * inv);
+    float sum = e.pAbsorb + e.pScatter + e.pNull;
+    if (sum > 0.f) {
+        e.pAbsorb /= sum;
+        e.pScatter /= sum;
+        e.pNull /= sum;
+    }
+    return e;
+}
+
+SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float tMax,
+                              Sampler& sampler) {
+    SampledSpectrum T(1.f);
+    trackCollisions(ctx, worldRay, tMax, sampler, [&](const Collision& c) {
+        // Ratio tracking: multiply by the null-collision probability σn/σ̄ per wavelength.
+        SampledSpectrum sigmaT = c.mp.sigmaA + c.mp.sigmaS;
+        T *= (SampledSpectrum(c.sigmaMaj) - sigmaT) / c.sigmaMaj;
+        float maxT = T.maxValue();
+        if (maxT <= 0.f) {
+            T = SampledSpectrum(0.f);
+            return Track::Stop;
+        }
+        if (maxT < 0.05f) {
+            // Russian roulette: survive with probability 1 − q and reweight by 1/(1 − q).
+            constexpr float q = 0.75f;
+            if (sampler.get1D() < q) {
+                T = SampledSpectrum(0.f);
+                return Track::Stop;
+            }
+            T /= (1.f - q);
+        }
+        return Track::Continue;
+    });
+    return T;
+}
+
+}  // namespace mirage

@@ -1,0 +1,78 @@
+// Free-flight sampling and transmittance, written once for every integrator.
+//
+// Null-collision formulation (Woodcock tracking; Novák et al. 2014; Kutz et al. 2017): each
+// medium is a Poisson process of tentative collisions with rate σ̄ from its majorant grid.
+// σ̄ is grey (the maximum over wavelengths), so the exponential terms of all wavelengths are
+// identical and cancel in every weight; at a tentative collision the caller decides between
+// absorption (σa), real scattering (σs) and a null collision (σn = σ̄ − σa − σs). Several media
+// are superposed exactly: the union of independent Poisson processes is the process of the
+// summed rate, so the next collision of the scene is the earliest of each medium's next.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/rng.h"
+#include "medium/medium.h"
+
+namespace mirage {
+
+// Per-thread tracking state: one Medium::Context per medium, plus counters for the summary.
+class TrackingContext {
+public:
+    explicit TrackingContext(const std::vector<const Medium*>& media);
+    void setWavelengths(const SampledWavelengths& w);
+    const SampledWavelengths& wavelengths() const { return mLambda; }
+    size_t size() const { return mMedia.size(); }
+    const Medium& medium(size_t i) const { return *mMedia[i]; }
+    Medium::Context& context(size_t i) { return mContexts[i]; }
+
+    uint64_t lookups = 0;  // medium evaluations (each reads every grid of the shader)
+
+private:
+    std::vector<const Medium*> mMedia;
+    std::vector<Medium::Context> mContexts;
+    SampledWavelengths mLambda;
+};
+
+// Next tentative collision of one medium along an object-space ray, after parameter t: walks
+// the majorant grid until the optical depth of the majorant reaches tau (an Exp(1) sample).
+// Returns false when the ray leaves the medium (or passes tEnd) first.
+bool nextTentativeCollision(const MajorantGrid& majorant, const Ray& objectRay, float t,
+                            float tEnd, float tau, float* tHit, float* sigmaMaj);
+
+enum class Track { Continue, Stop };
+
+// A tentative collision handed to the caller of trackCollisions.
+struct Collision {
+    int medium;          // index into the context
+    float t;             // world ray parameter (m)
+    Vec3 p;              // world position
+    float sigmaMaj;      // majorant at the collision (1/m)
+    MediumPoint mp;      // coefficients at the path's wavelengths
+};
+
+// Calls f(const Collision&) at every tentative collision along worldRay in (0, tMax), in
+// increasing t, until f returns Track::Stop. Returns true when the ray got through to tMax
+// without being stopped.
+template <typename F>
+bool trackCollisions(TrackingContext& ctx, const Ray& worldRay, float tMax, Sampler& sampler,
+                     F&& f);
+
+// Transmittance along worldRay over (0, tMax) by ratio tracking (Novák et al. 2014), unbiased,
+// with Russian roulette once it falls below 0.05.
+SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float tMax,
+                              Sampler& sampler);
+
+// Null-collision weight factors for the three events of one tentative collision: the
+// per-wavelength σ/σ̄ and the probabilities (their mean over wavelengths, so that an event
+// with any non-zero σ at any wavelength can be chosen and every estimator stays unbiased).
+struct EventProbabilities {
+    SampledSpectrum sigmaN;  // σ̄ − σa − σs, per wavelength
+    float pAbsorb, pScatter, pNull;
+};
+EventProbabilities eventProbabilities(const Collision& c);
+
+}  // namespace mirage
+
+#include "transport/tracking.inl"

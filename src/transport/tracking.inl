@@ -1,0 +1,51 @@
+// Template body of trackCollisions (included from tracking.h).
+#pragma once
+
+#include <cmath>
+
+namespace mirage {
+
+template <typename F>
+bool trackCollisions(TrackingContext& ctx, const Ray& worldRay, float tMax, Sampler& sampler,
+                     F&& f) {
+    // A handful of media at most in practice; a fixed array keeps the hot path free of heap.
+    constexpr size_t kMaxMedia = 32;
+    struct Stream {
+        Ray objectRay;
+        float tEnd, tNext, sigmaMaj;
+    };
+    Stream streams[kMaxMedia];
+    const size_t n = std::min(ctx.size(), kMaxMedia);
+    auto exp1 = [&] { return -std::log1p(-sampler.get1D()); };
+
+    for (size_t i = 0; i < n; ++i) {
+        Stream& s = streams[i];
+        s.objectRay = ctx.medium(i).toObject(worldRay);
+        s.tEnd = tMax;
+        if (!nextTentativeCollision(ctx.medium(i).majorant(), s.objectRay, 0.f, s.tEnd, exp1(),
+                                    &s.tNext, &s.sigmaMaj))
+            s.tNext = kInfinity;
+    }
+    for (;;) {
+        size_t m = n;
+        float tMin = kInfinity;
+        for (size_t i = 0; i < n; ++i)
+            if (streams[i].tNext < tMin) { tMin = streams[i].tNext; m = i; }
+        if (m == n) return true;
+
+        Stream& s = streams[m];
+        Collision c;
+        c.medium = int(m);
+        c.t = s.tNext;
+        c.p = worldRay.at(c.t);
+        c.sigmaMaj = s.sigmaMaj;
+        ctx.medium(m).eval(s.objectRay.at(c.t), ctx.context(m), &c.mp);
+        ++ctx.lookups;
+        if (f(static_cast<const Collision&>(c)) == Track::Stop) return false;
+        if (!nextTentativeCollision(ctx.medium(m).majorant(), s.objectRay, c.t, s.tEnd, exp1(),
+                                    &s.tNext, &s.sigmaMaj))
+            s.tNext = kInfinity;
+    }
+}
+
+}  // namespace mirage

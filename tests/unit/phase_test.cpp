@@ -1,0 +1,72 @@
+// Henyey–Greenstein: normalisation, sampling matches the pdf (χ²), mean cosine equals g.
+#include "medium/phase.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "core/rng.h"
+
+using namespace mirage;
+
+class PhaseHG : public ::testing::TestWithParam<float> {};
+
+TEST_P(PhaseHG, NormalisesToOne) {
+    HGPhase p(GetParam());
+    // ∫ p dω = 2π ∫_{-1}^{1} p(μ) dμ, midpoint rule on a fine grid (the peak at g = 0.95 is
+    // ~1e3 wide in μ, so 2e6 cells resolve it).
+    const int n = 2000000;
+    double sum = 0.0;
+    for (int i = 0; i < n; ++i) sum += p.eval(-1.f + (i + 0.5f) * 2.f / n);
+    EXPECT_NEAR(sum * 2.0 / n * 2.0 * M_PI, 1.0, 2e-4);
+}
+
+TEST_P(PhaseHG, SamplesMatchPdfChiSquare) {
+    const float g = GetParam();
+    HGPhase p(g);
+    const int bins = 40, n = 400000;
+    std::vector<double> observed(bins, 0.0);
+    Vec3 wi = normalize(Vec3(0.3f, -0.5f, 0.8f));
+    Sampler s(7, 0, 0);
+    for (int i = 0; i < n; ++i) {
+        float pdf;
+        Vec3 wo = p.sample(wi, s.get1D(), s.get1D(), &pdf);
+        ASSERT_NEAR(length(wo), 1.f, 1e-4f);
+        ASSERT_NEAR(pdf, p.eval(wi, wo), 1e-3f * pdf);
+        float mu = clamp(dot(wi, wo), -1.f, 0.999999f);
+        observed[int((mu + 1.f) * 0.5f * bins)] += 1;
+    }
+    // Expected counts by integrating the pdf over each μ bin (fine midpoint rule).
+    double chi2 = 0.0;
+    int dof = 0;
+    for (int b = 0; b < bins; ++b) {
+        double lo = -1.0 + 2.0 * b / bins, hi = lo + 2.0 / bins, e = 0.0;
+        const int sub = 2000;
+        for (int k = 0; k < sub; ++k)
+            e += p.eval(float(lo + (k + 0.5) * (hi - lo) / sub)) * (hi - lo) / sub;
+        e *= 2.0 * M_PI * n;
+        if (e < 5) continue;  // χ² needs ≥ 5 expected per bin; pool the rest
+        chi2 += (observed[b] - e) * (observed[b] - e) / e;
+        ++dof;
+    }
+    // 99.9 % quantile of χ² with ≤ 39 dof is 72.1.
+    EXPECT_LT(chi2, 72.1) << "g = " << g << ", dof " << dof - 1;
+}
+
+TEST_P(PhaseHG, MeanCosineIsG) {
+    const float g = GetParam();
+    HGPhase p(g);
+    Sampler s(11, 0, 0);
+    const int n = 200000;
+    double sum = 0.0, sum2 = 0.0;
+    Vec3 wi(0, 0, 1);
+    for (int i = 0; i < n; ++i) {
+        Vec3 wo = p.sample(wi, s.get1D(), s.get1D(), nullptr);
+        sum += wo.z;
+        sum2 += double(wo.z) * wo.z;
+    }
+    double mean = sum / n, sigma = std::sqrt((sum2 / n - mean * mean) / n);
+    EXPECT_NEAR(mean, g, 4.0 * sigma + 1e-4);
+}
+
+INSTANTIATE_TEST_SUITE_P(Asymmetries, PhaseHG, ::testing::Values(-0.9f, -0.3f, 0.f, 0.5f, 0.95f));

@@ -20,6 +20,7 @@ struct RenderOptions {
     int64_t seed = -1;
     bool quiet = false, floatExr = false;
     std::string ocioConfig;
+    std::string integrator;        // --integrator; "" = the scene's
 };
 int runRender(const RenderOptions& o);
 

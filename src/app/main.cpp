@@ -31,6 +31,8 @@ int main(int argc, char** argv) {
     render->add_option("--seed", ro.seed, "Random seed")->check(CLI::NonNegativeNumber);
     render->add_option("--turntable", ro.turntable, "Render N frames orbiting the volume")
         ->check(CLI::Range(1, 100000));
+    render->add_option("--integrator", ro.integrator,
+                       "single (single scattering + emission) or volpath (reference path tracer)");
     render->add_flag("--float", ro.floatExr, "Write 32-bit float EXR instead of half");
     render->add_flag("-q,--quiet", ro.quiet, "No progress output");
     render->add_option("--ocio", ro.ocioConfig, "OCIO config (default: $OCIO, else built-in)");

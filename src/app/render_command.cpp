@@ -85,7 +85,8 @@ int runRender(const RenderOptions& o) {
                 orbitCamera(scene.render.camera, 360.f * float(frame - 1) / float(o.turntable));
         double loadSeconds = secondsSince(tLoad);
 
-        auto integrator = makeSingleScatterIntegrator();
+        auto integrator =
+            makeIntegrator(o.integrator.empty() ? scene.integrator : o.integrator, scene.maxDepth);
         integrator->preprocess(scene.render);
         RenderStats stats;
         Film film = render(scene.render, *integrator, s, &stats);
@@ -108,6 +109,7 @@ int runRender(const RenderOptions& o) {
                         {"integrator", integrator->name()},
                         {"render_seconds", std::to_string(stats.seconds)},
                         {"nonfinite_samples", std::to_string(stats.nonFiniteSamples)},
+                        {"capped_paths", std::to_string(integrator->cappedPaths())},
                         {"version", MIRAGE_VERSION},
                         {"ocio_config", color.configDescription()}};
         std::string out = framePath(o.output.empty() ? scene.output.path : o.output, frame, sequence);
@@ -125,11 +127,11 @@ int runRender(const RenderOptions& o) {
             std::fprintf(stderr,
                          "frame %d: %dx%d, %d spp, %llu samples | load %.2fs, render %.2fs, "
                          "write %.2fs | %.1f M medium lookups/s | non-finite samples %llu | "
-                         "peak memory %s\n",
+                         "paths cut at max_depth %llu | peak memory %s\n",
                          frame, s.width, s.height, s.spp, (unsigned long long)stats.samples,
                          loadSeconds, stats.seconds, writeSeconds, mlps,
                          (unsigned long long)stats.nonFiniteSamples,
-                         formatBytes(peakMemoryBytes()).c_str());
+                         (unsigned long long)integrator->cappedPaths(), formatBytes(peakMemoryBytes()).c_str());
         }
         std::printf("%s\n", out.c_str());
         if (!preview.empty()) std::printf("%s\n", preview.c_str());

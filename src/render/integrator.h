@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/rng.h"
 #include "render/render_scene.h"
@@ -32,11 +33,21 @@ public:
     virtual RadianceSample Li(const RenderScene& scene, const Ray& ray,
                               const SampledWavelengths& w, Sampler& sampler,
                               ThreadState& ts) const = 0;
+    // Paths cut at the depth cap so far (a bias, reported in the summary).
+    virtual uint64_t cappedPaths() const { return 0; }
 };
 
 // Single scattering plus emission: delta tracking along the camera ray, next-event estimation
 // to every light with ratio-tracked shadow rays at the real scattering event. Unbiased for the
 // single-scattered and emitted radiance.
 std::unique_ptr<Integrator> makeSingleScatterIntegrator();
+
+// The reference spectral volumetric path tracer (volpath.cpp); paths longer than maxDepth
+// scattering events are cut and counted.
+std::unique_ptr<Integrator> makeVolPathIntegrator(int maxDepth = 10000);
+
+// By name ("single", "volpath"); throws MirageError listing the names for anything else.
+std::unique_ptr<Integrator> makeIntegrator(const std::string& name, int maxDepth = 10000);
+std::vector<std::string> integratorNames();
 
 }  // namespace mirage

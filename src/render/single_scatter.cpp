@@ -10,29 +10,12 @@
 // β is 1 at every wavelength for grey media; Russian roulette keeps long spectral walks short.
 // The probability of leaving the medium is T, so β at escape estimates the transmittance and
 // 1 − β is the pixel's coverage (alpha).
+#include "render/direct_light.h"
 #include "render/integrator.h"
 
 namespace mirage {
 
 namespace {
-
-SampledSpectrum directLight(const RenderScene& scene, const Collision& c, const Vec3& wo,
-                            Sampler& sampler, ThreadState& ts) {
-    SampledSpectrum L(0.f);
-    const Medium& m = ts.tracking.medium(c.medium);
-    for (const auto& light : scene.lights) {
-        float u1 = sampler.get1D(), u2 = sampler.get1D();
-        LightSample ls;
-        if (!light->sampleLi(c.p, u1, u2, ts.tracking.wavelengths(), &ls)) continue;
-        // The light travels along −wi into the point and leaves along wo (towards the camera).
-        SampledSpectrum phase = m.phaseEval(c.mp, -ls.wi, wo);
-        if (phase.isZero()) continue;
-        Ray shadow{c.p, ls.wi, ls.distance};
-        SampledSpectrum T = transmittance(ts.tracking, shadow, ls.distance, sampler);
-        L += T * phase * ls.Li;
-    }
-    return L;
-}
 
 class SingleScatterIntegrator : public Integrator {
 public:
@@ -54,7 +37,7 @@ public:
             }
             if (u < e.pAbsorb + e.pScatter) {
                 SampledSpectrum w = beta * c.mp.sigmaS / (c.sigmaMaj * e.pScatter);
-                out.L += w * directLight(scene, c, -ray.d, sampler, ts);
+                out.L += w * directLightMedium(scene, c, -ray.d, sampler, ts);
                 beta = SampledSpectrum(0.f);
                 return Track::Stop;
             }

@@ -40,7 +40,8 @@ struct Scene {
     RenderScene render;
     RenderSettings settings;
     OutputSettings output;
-    std::string integrator = "single";
+    std::string integrator = "single";  // [render] integrator: single | volpath
+    int maxDepth = 10000;                // [render] max_depth: scattering events per path
     int majorantResolution = 64;
     std::vector<VolumeRecord> volumes;
 

@@ -213,8 +213,13 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
     }
     if (auto r = top.optionalTable("render")) {
         scene.integrator = r->getString("integrator", "single");
-        if (scene.integrator != "single")
-            r->fail("integrator", "unknown integrator '" + scene.integrator + "'; expected: single");
+        auto names = integratorNames();
+        if (std::find(names.begin(), names.end(), scene.integrator) == names.end()) {
+            std::string list;
+            for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+            r->fail("integrator", "unknown integrator '" + scene.integrator + "'; expected one of: " + list);
+        }
+        scene.maxDepth = int(r->getInt("max_depth", 10000, 1, 1 << 30));
         scene.majorantResolution = int(r->getInt("majorant_resolution", 64, 1, 1024));
         r->finish();
     }
@@ -330,8 +335,13 @@ std::vector<PhysicsTerm> Scene::physics() const {
     terms.push_back({"single scattering", scatter && !render.lights.empty(),
                      !scatter ? "no component scatters (σs = 0)"
                               : render.lights.empty() ? "no lights" : "σs > 0 and " + std::to_string(render.lights.size()) + " light(s): shadow rays by ratio tracking"});
-    terms.push_back({"multiple scattering", false,
-                     "integrator '" + integrator + "' computes single scattering only"});
+    bool multiple = integrator != "single" && scatter && !render.lights.empty();
+    terms.push_back({"multiple scattering", multiple,
+                     integrator == "single"
+                         ? "integrator 'single' computes single scattering only"
+                         : multiple ? "integrator '" + integrator + "' follows paths of up to " +
+                                          std::to_string(maxDepth) + " scattering events"
+                                    : "nothing scatters or nothing lights the scene"});
     terms.push_back({"emission", emission, emission ? emitWhy : "no shader has an [emission] table"});
     terms.push_back({"spectral coefficients", spectral,
                      spectral ? spectralWhy

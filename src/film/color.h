@@ -25,8 +25,9 @@ public:
     // OCIO processor is captured as a matrix.
     const Mat3& xyzToWorking() const;
     const Mat3& workingToXyz() const;
-    // Working-space RGB → chromaticities of the working space primaries and white
-    // (rx, ry, gx, gy, bx, by, wx, wy) for EXR metadata.
+    // Chromaticities of the working space primaries and white (rx, ry, gx, gy, bx, by, wx, wy)
+    // for EXR metadata: through ACES2065-1 when the config has the aces_interchange role (so
+    // ACEScg gets AP1 and the ACES white), else through CIE XYZ D65 (see color.cpp).
     std::vector<float> workingChromaticities() const;
 
     // In-place conversion of interleaved RGB(A) pixels from the working space to another
@@ -35,6 +36,7 @@ public:
     void toDisplay(std::vector<float>& pixels, int channels, const std::string& display,
                    const std::string& view) const;
     std::vector<std::string> displays() const;
+    std::vector<std::string> views(const std::string& display) const;  // empty if unknown
     std::vector<std::string> colorSpaces() const;
 
 private:

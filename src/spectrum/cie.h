@@ -1,6 +1,7 @@
 // CIE 1931 2° colour-matching functions, embedded at 5 nm from the CIE 2018 open data set
-// (DOI 10.25039/CIE.DS.xvudnb9b) and interpolated linearly; tested against the full 1 nm table
-// in ../shared/data/spectra.
+// (DOI 10.25039/CIE.DS.xvudnb9b), refined to 1 nm by Sprague interpolation at compile time
+// (CIE 167:2005) and interpolated linearly between those; tested against the full 1 nm table in
+// ../shared/data/spectra (cie.cpp explains why linear interpolation of 5 nm is not enough).
 #pragma once
 
 #include "core/math.h"

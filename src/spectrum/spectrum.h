@@ -17,6 +17,9 @@ public:
     explicit Spectrum(float c) : mConstant(c) {}  // wavelength-independent
     // Piecewise-linear through (lambda_nm[i], value[i]); held constant beyond the ends.
     static Spectrum fromTable(const std::vector<float>& lambdaNm, const std::vector<float>& value);
+    // The dense form directly: kDenseSamples values at 360, 361, …, 830 nm.
+    static Spectrum fromDense(std::vector<float> values1nm);
+    static constexpr int kDenseSamples = 471;
 
     bool isConstant() const { return mTable.empty(); }
     float constantValue() const { return mConstant; }
@@ -27,7 +30,7 @@ public:
 
 private:
     float mConstant = 0.f;
-    std::vector<float> mTable;  // 471 values, 360..830 nm at 1 nm, when not constant
+    std::vector<float> mTable;  // kDenseSamples values, 360..830 nm at 1 nm, when not constant
 };
 
 // Planck's law: spectral radiance of a blackbody, W·m⁻²·sr⁻¹·m⁻¹ (per metre of wavelength),
@@ -44,5 +47,10 @@ Spectrum blackbodyNormalized(float temperatureK);
 //    saturated colours are clamped to 0).
 Spectrum rgbReflectanceSpectrum(const Vec3& rgb);
 Spectrum rgbIlluminantSpectrum(const Vec3& rgb, const Mat3& xyzToWorking);
+
+// CIE XYZ of a whole spectrum: Σ S(λ) cmf(λ) Δλ / ∫ȳ over 360–830 nm at Δλ = 1 nm, so a constant
+// spectrum 1 has Y ≈ 1 (the same normalisation as the per-sample `spectrumToXyz` in cie.h, whose
+// expectation this is). rgbIlluminantSpectrum is exact with respect to this sum.
+Vec3d spectrumToXyz(const Spectrum& s);
 
 }  // namespace mirage

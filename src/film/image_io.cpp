@@ -1,0 +1,190 @@
+// Image files through OpenImageIO: scene-linear OpenEXR with colour tags and Mirage metadata,
+// 8-bit display previews, and the EXR reader the tests and the tradeoff instrument use.
+//
+// Every write goes to `<dir>/.<name>.tmp-<pid>` and is renamed over `<dir>/<name>` only once the
+// file is complete and closed: rename within one folder is atomic on POSIX file systems, so a
+// reader (a compositor watching the folder, a render farm's checker) sees the old file or the
+// new one, never half of one, and a render killed mid-write leaves the previous good file alone.
+
+#include "film/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "core/error.h"
+#include "film/color.h"
+
+namespace mirage {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The colour-space tag as an EXR header attribute. OIIO 2.4 treats "oiio:ColorSpace" as an
+// in-memory hint: it does not store it in EXR files and reports "Linear" for every EXR it reads.
+// Mirage therefore also writes the name under its own prefix and maps it back when reading.
+constexpr const char* kColorSpaceAttr = "mirage:colorSpace";
+
+// Largest finite half (IEEE 754 binary16). Larger values would become +∞ in a half EXR and
+// poison every filter a compositor runs over them; a clamped highlight is still a highlight.
+constexpr float kHalfMax = 65504.f;
+
+[[noreturn]] void fail(const std::string& path, const std::string& message) {
+    throw MirageError(FileLoc{path, 0, 0}, message);
+}
+
+void checkImage(const std::string& path, const Image& image) {
+    if (image.width <= 0 || image.height <= 0 ||
+        image.rgba.size() != size_t(image.width) * size_t(image.height) * 4)
+        fail(path, "cannot write an empty or inconsistent image (" + std::to_string(image.width) +
+                       " x " + std::to_string(image.height) + ", " +
+                       std::to_string(image.rgba.size()) + " floats)");
+}
+
+// Writes `spec` and the pixels (float, `xstride` bytes apart) through a temporary file next to
+// `path`, then renames it into place. On any failure the temporary file is removed and a
+// MirageError names `path`. The format follows the extension of `path`, not of the temporary.
+void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec, const float* pixels,
+                     OIIO::stride_t xstride) {
+    fs::path target(path);
+    if (target.filename().empty() || target.filename() == "." || target.filename() == "..")
+        fail(path, "not a file name");
+    fs::path dir = target.parent_path();
+    std::error_code ec;
+    if (!dir.empty() && !fs::is_directory(dir, ec)) {
+        fs::create_directories(dir, ec);
+        if (ec) fail(path, "cannot create the folder '" + dir.string() + "': " + ec.message());
+    }
+    fs::path tmp = (dir.empty() ? fs::path(".") : dir) /
+                   ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()));
+
+    auto removeTmp = [&tmp] {
+        std::error_code ignored;
+        fs::remove(tmp, ignored);
+    };
+    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(target.string());
+    if (!out) fail(path, "no image writer for this file type: " + OIIO::geterror());
+    if (!out->open(tmp.string(), spec)) {
+        std::string message = out->geterror();
+        removeTmp();
+        fail(path, "cannot open '" + tmp.string() + "' for writing: " + message);
+    }
+    bool ok = out->write_image(OIIO::TypeFloat, pixels, xstride);
+    ok = out->close() && ok;
+    if (!ok) {
+        std::string message = out->geterror();
+        removeTmp();
+        fail(path, "cannot write: " + message);
+    }
+    fs::rename(tmp, target, ec);
+    if (ec) {
+        removeTmp();
+        fail(path, "cannot move the finished file into place: " + ec.message());
+    }
+}
+
+std::string lowerExtension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+}  // namespace
+
+void writeExr(const std::string& path, const Image& image, const ExrOptions& options) {
+    checkImage(path, image);
+    if (lowerExtension(path) != ".exr") fail(path, "an OpenEXR file name must end in .exr");
+    MIRAGE_CHECK(options.chromaticities.empty() || options.chromaticities.size() == 8);
+
+    OIIO::ImageSpec spec(image.width, image.height, 4,
+                         options.halfFloat ? OIIO::TypeHalf : OIIO::TypeFloat);
+    spec.channelnames = {"R", "G", "B", "A"};
+    spec.alpha_channel = 3;
+    // ZIP (16 scanlines per block, lossless): the usual choice for final frames, read fast by
+    // every compositor; rendered noise defeats the gain PIZ has on photographs.
+    spec.attribute("compression", "zip");
+    if (!options.colorSpace.empty()) {
+        spec.attribute("oiio:ColorSpace", options.colorSpace);
+        spec.attribute(kColorSpaceAttr, options.colorSpace);
+    }
+    if (!options.chromaticities.empty())
+        spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8),
+                       options.chromaticities.data());
+    for (const auto& [key, value] : options.metadata) spec.attribute("mirage:" + key, value);
+
+    if (!options.halfFloat) {
+        writeAtomically(path, spec, image.rgba.data(), OIIO::AutoStride);
+        return;
+    }
+    std::vector<float> clamped(image.rgba);
+    for (float& v : clamped)
+        if (std::isfinite(v)) v = clamp(v, -kHalfMax, kHalfMax);
+    writeAtomically(path, spec, clamped.data(), OIIO::AutoStride);
+}
+
+Image readExr(const std::string& path, std::map<std::string, std::string>* metadata) {
+    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
+    if (!in) fail(path, "cannot read image: " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    int n = spec.nchannels;
+    if (spec.width <= 0 || spec.height <= 0 || n <= 0) fail(path, "image has no pixels");
+
+    std::vector<float> all(size_t(spec.width) * spec.height * n);
+    if (!in->read_image(0, 0, 0, n, OIIO::TypeFloat, all.data()))
+        fail(path, "cannot read pixels: " + in->geterror());
+
+    // Channels by name (EXR stores them sorted: A, B, G, R); a single-channel image is grey.
+    auto channel = [&spec, n](const char* name, int fallback) {
+        int c = spec.channelindex(name);
+        return c >= 0 ? c : std::min(fallback, n - 1);
+    };
+    int r = channel("R", 0), g = channel("G", 1), b = channel("B", 2);
+    int a = spec.alpha_channel >= 0 ? spec.alpha_channel : spec.channelindex("A");
+
+    Image image;
+    image.width = spec.width;
+    image.height = spec.height;
+    image.rgba.resize(size_t(spec.width) * spec.height * 4);
+    for (size_t p = 0; p < size_t(spec.width) * spec.height; ++p) {
+        const float* src = &all[p * n];
+        float* dst = &image.rgba[p * 4];
+        dst[0] = src[r];
+        dst[1] = src[g];
+        dst[2] = src[b];
+        dst[3] = a >= 0 ? src[a] : 1.f;  // no alpha: fully covered
+    }
+
+    if (metadata) {
+        metadata->clear();
+        for (const OIIO::ParamValue& p : spec.extra_attribs)
+            (*metadata)[p.name().string()] = p.get_string(1024);
+        auto tag = metadata->find(kColorSpaceAttr);
+        if (tag != metadata->end()) (*metadata)["oiio:ColorSpace"] = tag->second;
+    }
+    in->close();
+    return image;
+}
+
+// Previews are 8-bit RGB: the image is premultiplied (alpha is coverage), so dropping alpha shows
+// it over black, which is what a viewer of a render expects; PNG would otherwise need
+// un-premultiplied colour and JPEG has no alpha at all. OIIO rounds and clamps float → 8 bit.
+void writePreview(const std::string& path, const Image& image, const ColorPipeline& color,
+                  const std::string& display, const std::string& view) {
+    checkImage(path, image);
+    std::string ext = lowerExtension(path);
+    if (ext != ".png" && ext != ".jpg" && ext != ".jpeg")
+        fail(path, "a preview must be a .png, .jpg or .jpeg file");
+
+    std::vector<float> pixels(image.rgba);
+    color.toDisplay(pixels, 4, display, view);
+    OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeUInt8);
+    if (ext != ".png") spec.attribute("CompressionQuality", 95);
+    writeAtomically(path, spec, pixels.data(), 4 * sizeof(float));
+}
+
+}  // namespace mirage

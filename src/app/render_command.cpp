@@ -1,6 +1,7 @@
 // `mirage render`: load → render → develop → write, per frame, with a summary at the end.
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -48,6 +49,38 @@ std::string framePath(const std::string& path, int frame, bool sequence) {
     return (p.parent_path() / (p.stem().string() + num + p.extension().string())).string();
 }
 
+// Chromaticities of a linear output space (a display-encoded space has none: empty).
+std::vector<float> outputChromaticities(const std::string& config, const std::string& space) {
+    try {
+        return ColorPipeline(config, space).workingChromaticities();
+    } catch (const MirageError&) {
+        return {};
+    }
+}
+
+// Checks the output colour space and preview display/view before a long render, not after.
+void checkOutputSettings(const Scene& scene, const ColorPipeline& color) {
+    const OutputSettings& out = scene.output;
+    auto list = [](const std::vector<std::string>& v) {
+        std::string s;
+        for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+        return s;
+    };
+    auto spaces = color.colorSpaces();
+    if (!out.colorSpace.empty() &&
+        std::find(spaces.begin(), spaces.end(), out.colorSpace) == spaces.end())
+        throw MirageError(scene.source + ": [output] color_space '" + out.colorSpace +
+                          "' is not in the OCIO config; it has: " + list(spaces));
+    auto displays = color.displays();
+    if (std::find(displays.begin(), displays.end(), out.display) == displays.end())
+        throw MirageError(scene.source + ": [output] display '" + out.display +
+                          "' is not in the OCIO config; it has: " + list(displays));
+    auto views = color.views(out.display);
+    if (std::find(views.begin(), views.end(), out.view) == views.end())
+        throw MirageError(scene.source + ": [output] view '" + out.view + "' is not a view of display '" +
+                          out.display + "'; it has: " + list(views));
+}
+
 }  // namespace
 
 int runRender(const RenderOptions& o) {
@@ -83,6 +116,7 @@ int runRender(const RenderOptions& o) {
         if (o.turntable > 0)
             scene.render.camera =
                 orbitCamera(scene.render.camera, 360.f * float(frame - 1) / float(o.turntable));
+        checkOutputSettings(scene, color);
         double loadSeconds = secondsSince(tLoad);
 
         auto integrator =
@@ -93,14 +127,19 @@ int runRender(const RenderOptions& o) {
 
         auto tWrite = std::chrono::steady_clock::now();
         Image image = film.develop(color);
+        std::string preview = o.preview.empty() ? scene.output.preview : o.preview;
+        if (!preview.empty()) {
+            preview = framePath(preview, frame, sequence);
+            writePreview(preview, image, color, scene.output.display, scene.output.view);
+        }
         ExrOptions exr;
         exr.halfFloat = !o.floatExr && scene.output.halfFloat;
         exr.colorSpace = color.workingSpace();
+        exr.chromaticities = color.workingChromaticities();
         if (!scene.output.colorSpace.empty() && scene.output.colorSpace != color.workingSpace()) {
             color.convert(image.rgba, 4, scene.output.colorSpace);
             exr.colorSpace = scene.output.colorSpace;
-        } else {
-            exr.chromaticities = color.workingChromaticities();
+            exr.chromaticities = outputChromaticities(o.ocioConfig, scene.output.colorSpace);
         }
         exr.metadata = {{"scene", scene.source},
                         {"seed", std::to_string(s.seed)},
@@ -114,12 +153,6 @@ int runRender(const RenderOptions& o) {
                         {"ocio_config", color.configDescription()}};
         std::string out = framePath(o.output.empty() ? scene.output.path : o.output, frame, sequence);
         writeExr(out, image, exr);
-        std::string preview = o.preview.empty() ? scene.output.preview : o.preview;
-        if (!preview.empty()) {
-            preview = framePath(preview, frame, sequence);
-            Image linear = film.develop(color);
-            writePreview(preview, linear, color, scene.output.display, scene.output.view);
-        }
         double writeSeconds = secondsSince(tWrite);
 
         if (!o.quiet) {

@@ -38,4 +38,16 @@ struct AssetOptions {
 };
 int runMakeAsset(const AssetOptions& o);
 
+// `mirage slab`: photons through a plane-parallel slab (slab_command.cpp documents it).
+struct SlabOptions {
+    double albedo = 0, tau = 1, g = 0;  // single-scattering albedo, optical thickness, HG g
+    double n = 1, nOutside = 1;         // refractive index of the slab and of its surroundings
+    std::string incidence = "normal";   // normal (collimated) | diffuse (Lambertian)
+    uint64_t photons = 1000000, seed = 0;
+    int64_t maxEvents = 1000000;  // per photon: scatterings + internal reflections
+    int threads = 0;
+    bool json = false, quiet = false;
+};
+int runSlab(const SlabOptions& o);
+
 }  // namespace mirage

@@ -51,11 +51,37 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(4, 2048));
     asset->add_option("--seed", ao.seed, "Noise seed");
 
+    SlabOptions so;
+    auto* slab = app.add_subcommand(
+        "slab", "Reflectance and transmittance of a plane-parallel slab, by photon tracing");
+    slab->add_option("--albedo", so.albedo, "Single-scattering albedo σs/σt")
+        ->required()
+        ->check(CLI::Range(0.0, 1.0));
+    slab->add_option("--tau", so.tau, "Optical thickness σt·d; inf for a semi-infinite slab")
+        ->required();
+    slab->add_option("--g", so.g, "Henyey–Greenstein asymmetry")
+        ->check(CLI::Range(-0.9999, 0.9999));
+    slab->add_option("--n", so.n, "Refractive index of the slab")->check(CLI::PositiveNumber);
+    slab->add_option("--n-outside", so.nOutside, "Refractive index around the slab (default 1)")
+        ->check(CLI::PositiveNumber);
+    slab->add_option("--incidence", so.incidence, "normal (collimated) or diffuse (Lambertian)")
+        ->check(CLI::IsMember({"normal", "diffuse"}));
+    slab->add_option("--photons", so.photons, "Photons to trace")->check(CLI::PositiveNumber);
+    slab->add_option("--seed", so.seed, "Random seed");
+    slab->add_option("--max-events", so.maxEvents,
+                     "Cap on scatterings + internal reflections per photon (capped: reported)")
+        ->check(CLI::PositiveNumber);
+    slab->add_option("--threads", so.threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(1, 4096));
+    slab->add_flag("--json", so.json, "Print the result as JSON");
+    slab->add_flag("-q,--quiet", so.quiet, "No progress output");
+
     CLI11_PARSE(app, argc, argv);
     try {
         if (*render) return runRender(ro);
         if (*info) return runInfo(io);
         if (*asset) return runMakeAsset(ao);
+        if (*slab) return runSlab(so);
     } catch (const MirageError& e) {
         std::fprintf(stderr, "mirage: error: %s\n", e.what());
         return 1;

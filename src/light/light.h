@@ -1,12 +1,17 @@
 // Lights. Every light carries a spectral power distribution normalised to ∫ S(λ) dλ = 1 over
 // 360–830 nm (1/nm), scaled by its power in watts (point, spot, quad) or its irradiance in W/m²
 // (distant): "100 W" means 100 W radiated over the visible range, whatever the colour.
+//
+// Lights serve both passes: the render pass samples incident light at a point (sampleLi), the
+// photon pass emits photons (emittedPower, emitPhoton) with origin and direction drawn ∝ the
+// emitted radiance and the wavelength ∝ the spectral power distribution (Jensen 2001, §5.1).
 #pragma once
 
 #include <memory>
 #include <string>
 
 #include "core/math.h"
+#include "core/rng.h"
 #include "core/spectral.h"
 #include "spectrum/spectrum.h"
 
@@ -18,12 +23,32 @@ struct LightSample {
     SampledSpectrum Li;   // incident radiance divided by the sampling pdf (W·m⁻²·nm⁻¹)
 };
 
+// One photon leaving a light. Of N photons emitted from a light of power Φ, each carries
+// Φ/N × weight watts at its single wavelength: the origin, direction and wavelength are drawn
+// ∝ the emitted spectral radiance, so that Φ/N is the exact, unbiased share of each.
+struct PhotonEmission {
+    Vec3 origin;     // world metres
+    Vec3 direction;  // unit
+    float lambda;    // nm, drawn from the normalised spectral power distribution
+    // Emitted radiance over the density the direction was drawn with, scaled to mean 1. It is
+    // 1 wherever the emission is sampled exactly; a spot light samples its cone uniformly in
+    // solid angle and carries its falloff here (mean 1 over the cone).
+    float weight = 1.f;
+};
+
 class Light {
 public:
     virtual ~Light() = default;
     // Samples incident light at p. Returns false when p receives nothing from this sample.
     virtual bool sampleLi(const Vec3& p, float u1, float u2, const SampledWavelengths& w,
                           LightSample* out) const = 0;
+    // Power the light sends into a scene bounded by sceneBounds (W). Point, spot and quad
+    // lights: their power. A distant light: its irradiance × the area of the disc covering the
+    // bounding sphere of sceneBounds, seen along the light (0 for empty bounds).
+    virtual float emittedPower(const Bounds3& sceneBounds) const = 0;
+    // Draws one photon. Returns false when the light emits nothing into the scene.
+    virtual bool emitPhoton(const Bounds3& sceneBounds, Sampler& sampler,
+                            PhotonEmission* out) const = 0;
     virtual std::string describe() const = 0;
 };
 

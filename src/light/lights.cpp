@@ -1,8 +1,14 @@
+// The four light types: incident-light sampling for the render pass, photon emission for the
+// photon pass. Emission sampling (origin, direction) is exact for every light but the spot,
+// whose falloff rides in PhotonEmission::weight; wavelengths come from a SpectrumSampler over
+// the normalised spectral power distribution.
 #include "light/light.h"
 
 #include <cstdio>
 
 #include "core/error.h"
+#include "medium/phase.h"
+#include "spectrum/spectrum_sampling.h"
 
 namespace mirage {
 
@@ -22,10 +28,21 @@ std::string vecStr(const Vec3& v) {
     return buf;
 }
 
+// Cosine-weighted direction about n (Malley's method: uniform on the unit disc, lifted to the
+// hemisphere), pdf cosθ/π: a Lambertian emitter's radiance is constant, so its flux leaves
+// ∝ cosθ.
+Vec3 sampleCosineHemisphere(const Vec3& n, float u1, float u2) {
+    float r = std::sqrt(u1), phi = 2.f * kPi * u2;
+    return Frame(n).toWorld(Vec3(r * std::cos(phi), r * std::sin(phi), safeSqrt(1.f - u1)));
+}
+
 class PointLight : public Light {
 public:
     PointLight(const Vec3& p, float power, const Spectrum& c)
-        : mP(p), mPower(power), mI(normalizedPowerSpectrum(c).scaled(power * kInv4Pi)) {}
+        : mP(p),
+          mPower(power),
+          mI(normalizedPowerSpectrum(c).scaled(power * kInv4Pi)),
+          mLambda(normalizedPowerSpectrum(c)) {}
     bool sampleLi(const Vec3& p, float, float, const SampledWavelengths& w,
                   LightSample* out) const override {
         Vec3 d = mP - p;
@@ -36,6 +53,16 @@ public:
         out->Li = mI.sample(w) / d2;  // I/r²: inverse-square law
         return true;
     }
+    float emittedPower(const Bounds3&) const override { return mPower; }
+    // Isotropic: uniform directions on the sphere.
+    bool emitPhoton(const Bounds3&, Sampler& s, PhotonEmission* out) const override {
+        out->origin = mP;
+        float u1 = s.get1D(), u2 = s.get1D();
+        out->direction = sampleUniformSphere(u1, u2);
+        out->lambda = mLambda.sample(s.get1D());
+        out->weight = 1.f;
+        return mPower > 0.f;
+    }
     std::string describe() const override {
         return "point light at " + vecStr(mP) + ", " + std::to_string(mPower) + " W";
     }
@@ -44,6 +71,7 @@ private:
     Vec3 mP;
     float mPower;
     Spectrum mI;  // W/sr/nm
+    SpectrumSampler mLambda;
 };
 
 class SpotLight : public Light {
@@ -55,10 +83,15 @@ public:
         inner = clamp(inner, 0.f, outer);
         mCosOuter = std::cos(radians(outer));
         mCosInner = std::cos(radians(inner));
-        // Solid angle weighted by the falloff, with the smoothstep approximated by the
-        // midpoint: Ω ≈ 2π(1 − (cosInner + cosOuter)/2), as in pbrt-v3's spot light.
+        // Solid angle weighted by the falloff, Ω_f = ∫ f dω. The falloff is a smoothstep in
+        // cosθ, and ∫₀¹ (3t² − 2t³) dt = 1/2, so the ramp counts for half its width in cosθ
+        // and Ω_f = 2π(1 − (cosInner + cosOuter)/2) exactly: the light radiates `power`.
         float omega = 2.f * kPi * (1.f - 0.5f * (mCosInner + mCosOuter));
         mI = normalizedPowerSpectrum(c).scaled(power / omega);
+        mLambda = SpectrumSampler(normalizedPowerSpectrum(c));
+        // Photons are drawn uniformly over the cone, Ω_c = 2π(1 − cosOuter), and weighted by
+        // f Ω_c / Ω_f: I f / (1/Ω_c) divided by the mean I Ω_f, so that the weight's mean is 1.
+        mWeightScale = (1.f - mCosOuter) / (1.f - 0.5f * (mCosInner + mCosOuter));
     }
     bool sampleLi(const Vec3& p, float, float, const SampledWavelengths& w,
                   LightSample* out) const override {
@@ -73,6 +106,18 @@ public:
         out->Li = mI.sample(w) * (f / d2);
         return true;
     }
+    float emittedPower(const Bounds3&) const override { return mPower; }
+    bool emitPhoton(const Bounds3&, Sampler& s, PhotonEmission* out) const override {
+        float u1 = s.get1D(), u2 = s.get1D();
+        float cosT = 1.f - u1 * (1.f - mCosOuter), sinT = safeSqrt(1.f - cosT * cosT);
+        float phi = 2.f * kPi * u2;
+        out->origin = mP;
+        out->direction =
+            Frame(mDir).toWorld(Vec3(sinT * std::cos(phi), sinT * std::sin(phi), cosT));
+        out->lambda = mLambda.sample(s.get1D());
+        out->weight = falloff(cosT) * mWeightScale;
+        return mPower > 0.f && out->weight > 0.f;
+    }
     std::string describe() const override {
         return "spot light at " + vecStr(mP) + " towards " + vecStr(mDir) + ", " +
                std::to_string(mPower) + " W";
@@ -86,20 +131,49 @@ private:
         return t * t * (3.f - 2.f * t);
     }
     Vec3 mP, mDir;
-    float mPower, mCosInner, mCosOuter;
+    float mPower, mCosInner, mCosOuter, mWeightScale;
     Spectrum mI;
+    SpectrumSampler mLambda;
 };
 
 class DistantLight : public Light {
 public:
     DistantLight(const Vec3& dir, float E, const Spectrum& c)
-        : mDir(normalize(dir)), mE(E), mSpd(normalizedPowerSpectrum(c).scaled(E)) {}
+        : mDir(normalize(dir)),
+          mE(E),
+          mSpd(normalizedPowerSpectrum(c).scaled(E)),
+          mLambda(normalizedPowerSpectrum(c)) {}
     bool sampleLi(const Vec3&, float, float, const SampledWavelengths& w,
                   LightSample* out) const override {
         out->wi = -mDir;
         out->distance = kInfinity;
         out->Li = mSpd.sample(w);
         return true;
+    }
+    // The light crosses the scene through the disc of radius r (the bounding sphere's) normal
+    // to its direction: E π r² watts. A bounding sphere rather than the box's exact shadow
+    // keeps the disc round and easy to sample whatever the direction; the photons that miss
+    // the box (58 % for a cube of side a seen along an axis: shadow a², disc 3πa²/4) fly out
+    // at the cost of a box test, and a sun over a small cache still aims every photon at it.
+    float emittedPower(const Bounds3& b) const override {
+        if (b.empty()) return 0.f;
+        float r = 0.5f * length(b.diagonal());
+        return mE * kPi * r * r;
+    }
+    // Uniform point on that disc, placed upstream of the sphere (just outside it, so that the
+    // photon starts outside every medium), travelling along the light's direction.
+    bool emitPhoton(const Bounds3& b, Sampler& s, PhotonEmission* out) const override {
+        if (b.empty()) return false;
+        float r = 0.5f * length(b.diagonal());
+        float u1 = s.get1D(), u2 = s.get1D();
+        float rho = r * std::sqrt(u1), phi = 2.f * kPi * u2;
+        Frame f(mDir);
+        out->origin = b.center() + f.s * (rho * std::cos(phi)) + f.t * (rho * std::sin(phi)) -
+                      mDir * (r * 1.001f);
+        out->direction = mDir;
+        out->lambda = mLambda.sample(s.get1D());
+        out->weight = 1.f;
+        return mE > 0.f && r > 0.f;
     }
     std::string describe() const override {
         return "distant light along " + vecStr(mDir) + ", " + std::to_string(mE) + " W/m²";
@@ -109,6 +183,7 @@ private:
     Vec3 mDir;
     float mE;
     Spectrum mSpd;  // W/m²/nm
+    SpectrumSampler mLambda;
 };
 
 class QuadLight : public Light {
@@ -120,6 +195,7 @@ public:
         if (!(mArea > 0.f)) throw MirageError("quad light: edges are parallel or zero");
         mN = n / mArea;
         mL = normalizedPowerSpectrum(c).scaled(power / (kPi * mArea));
+        mLambda = SpectrumSampler(normalizedPowerSpectrum(c));
     }
     bool sampleLi(const Vec3& p, float u1, float u2, const SampledWavelengths& w,
                   LightSample* out) const override {
@@ -136,6 +212,18 @@ public:
         out->distance *= 0.9999f;  // stop shadow rays just short of the emitter
         return true;
     }
+    float emittedPower(const Bounds3&) const override { return mPower; }
+    // Constant radiance: the origin is uniform over the area, the direction cosine-weighted
+    // about the normal (dΦ = L cosθ dA dω), so the photon weight is exactly 1.
+    bool emitPhoton(const Bounds3&, Sampler& s, PhotonEmission* out) const override {
+        float u1 = s.get1D(), u2 = s.get1D();
+        out->origin = mCorner + mU * u1 + mV * u2;
+        float u3 = s.get1D(), u4 = s.get1D();
+        out->direction = sampleCosineHemisphere(mN, u3, u4);
+        out->lambda = mLambda.sample(s.get1D());
+        out->weight = 1.f;
+        return mPower > 0.f;
+    }
     std::string describe() const override {
         return "quad light at " + vecStr(mCorner) + ", " + std::to_string(mArea) + " m², " +
                std::to_string(mPower) + " W";
@@ -145,6 +233,7 @@ private:
     Vec3 mCorner, mU, mV, mN;
     float mArea, mPower;
     Spectrum mL;  // W/m²/sr/nm
+    SpectrumSampler mLambda;
 };
 
 }  // namespace

@@ -6,6 +6,17 @@
 
 namespace mirage {
 
+namespace {
+
+void checkComponentCount(const ShaderDesc& shader) {
+    if (shader.components.empty() || int(shader.components.size()) > kMaxComponents)
+        throw MirageError("shader '" + shader.name + "': expected 1 to " +
+                          std::to_string(kMaxComponents) + " components, found " +
+                          std::to_string(shader.components.size()));
+}
+
+}  // namespace
+
 Medium::Medium(ShaderDesc shader, std::vector<FloatGrid> grids, const Transform& objectToWorld,
                float densityScale, int majorantResolution)
     : mShader(std::move(shader)),
@@ -13,10 +24,7 @@ Medium::Medium(ShaderDesc shader, std::vector<FloatGrid> grids, const Transform&
       mObjectToWorld(objectToWorld),
       mWorldToObject(objectToWorld.inverse()),
       mDensityScale(densityScale) {
-    if (mShader.components.empty() || int(mShader.components.size()) > kMaxComponents)
-        throw MirageError("shader '" + mShader.name + "': expected 1 to " +
-                          std::to_string(kMaxComponents) + " components, found " +
-                          std::to_string(mShader.components.size()));
+    checkComponentCount(mShader);
     auto slots = mShader.gridSlots();
     MIRAGE_CHECK(slots.size() == mGrids.size());
 
@@ -32,9 +40,37 @@ Medium::Medium(ShaderDesc shader, std::vector<FloatGrid> grids, const Transform&
         throw MirageError("shader '" + mShader.name +
                           "': no component reads a grid with active voxels, so the medium has "
                           "no extent");
+    buildMajorantAndPhases(objectBounds, majorantResolution);
+}
+
+Medium::Medium(ShaderDesc shader, const Bounds3& objectBox, const Transform& objectToWorld,
+               float densityScale)
+    : mShader(std::move(shader)),
+      mObjectToWorld(objectToWorld),
+      mWorldToObject(objectToWorld.inverse()),
+      mDensityScale(densityScale) {
+    checkComponentCount(mShader);
+    for (const auto& c : mShader.components)
+        if (!c.grid.empty())
+            throw MirageError("shader '" + mShader.name + "': component '" + c.name +
+                              "' reads grid '" + c.grid +
+                              "', but a homogeneous medium has no grids");
+    if (mShader.emission)
+        throw MirageError("shader '" + mShader.name +
+                          "': emission needs a temperature grid, which a homogeneous medium "
+                          "does not have");
+    if (objectBox.empty() || !isFinite(objectBox.lo) || !isFinite(objectBox.hi))
+        throw MirageError("shader '" + mShader.name +
+                          "': a homogeneous medium needs a finite, non-empty box");
+    // One majorant cell: the coefficients are the same everywhere in the box.
+    buildMajorantAndPhases(objectBox, 1);
+}
+
+void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantResolution) {
     mWorldBounds = mObjectToWorld.apply(objectBounds);
 
     // Majorant: Σ_c concentration_c · max_λ(σa,c + σs,c) · max of the grid over each cell.
+    auto slots = mShader.gridSlots();
     mMajorant = MajorantGrid(objectBounds, majorantResolution);
     for (const auto& c : mShader.components) {
         float sigmaT = c.sigmaA.maxValue() + c.sigmaS.maxValue();

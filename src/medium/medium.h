@@ -1,6 +1,8 @@
-// A heterogeneous medium at render time: a shader bound to NanoVDB grids, placed in the world
-// by a transform, with a majorant grid for tracking. It only reports coefficients and
-// majorants; free-flight sampling and transmittance are written once, in transport/.
+// A medium at render time: a shader bound to NanoVDB grids, placed in the world by a
+// transform, with a majorant grid for tracking; or a homogeneous medium, a shader whose
+// components are all constants over an explicit object-space box. It only reports
+// coefficients and majorants; free-flight sampling and transmittance are written once, in
+// transport/ (which takes a closed form for homogeneous media, DESIGN.md).
 #pragma once
 
 #include <array>
@@ -30,6 +32,12 @@ public:
     // `grids` holds one grid per entry of shader.gridSlots(), in that order.
     Medium(ShaderDesc shader, std::vector<FloatGrid> grids, const Transform& objectToWorld,
            float densityScale, int majorantResolution = 64);
+    // A homogeneous medium filling objectBox: every component must have grid == "" and the
+    // shader must not emit (emission reads a temperature grid). Its majorant is one cell of
+    // σ̄ = Σ_c concentration_c · densityScale · max_λ(σa,c + σs,c): for a grey medium σ̄ = σt,
+    // so delta tracking meets no null collision.
+    Medium(ShaderDesc shader, const Bounds3& objectBox, const Transform& objectToWorld,
+           float densityScale);
 
     const ShaderDesc& shader() const { return mShader; }
     const std::vector<FloatGrid>& grids() const { return mGrids; }
@@ -38,6 +46,10 @@ public:
     Bounds3 objectBounds() const { return mMajorant.bounds(); }
     const MajorantGrid& majorant() const { return mMajorant; }
     bool emissive() const { return mShader.emission.has_value(); }
+    // The scale the constructor applied to every component's concentration.
+    float densityScale() const { return mDensityScale; }
+    // Constant coefficients over objectBounds(): transmittance has the closed form
+    // exp(−σt(λ) · length inside the box).
     bool homogeneous() const { return mGrids.empty(); }
 
     // The ray in object space with the same parameter t (direction not renormalised).
@@ -74,6 +86,8 @@ public:
                      SampledSpectrum* weight, float* pdf) const;
 
 private:
+    void buildMajorantAndPhases(const Bounds3& objectBounds, int majorantResolution);
+
     ShaderDesc mShader;
     std::vector<FloatGrid> mGrids;
     Transform mObjectToWorld, mWorldToObject;

@@ -54,8 +54,35 @@ EventProbabilities eventProbabilities(const Collision& c) {
 
 SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float tMax,
                               Sampler& sampler) {
-    SampledSpectrum T(1.f);
+    // Optical depths add over superposed media, so T is the product of each medium's
+    // transmittance. Homogeneous media have Beer–Lambert's closed form, exp(−σt(λ) ℓ) with ℓ
+    // the length of the ray inside the box (t is world metres in object space too, see
+    // Medium::toObject): exact and noiseless (DESIGN.md, "homogeneous closed-form
+    // transmittance where a medium is constant").
+    SampledSpectrum tau(0.f);
+    bool heterogeneous = false;
+    for (size_t i = 0; i < ctx.size(); ++i) {
+        const Medium& m = ctx.medium(i);
+        if (!m.homogeneous()) {
+            heterogeneous = true;
+            continue;
+        }
+        Ray r = m.toObject(worldRay);
+        float t0, t1;
+        if (!m.objectBounds().intersect(r.o, r.d, 0.f, tMax, &t0, &t1) || !(t1 > t0)) continue;
+        MediumPoint mp;
+        m.eval(m.objectBounds().center(), ctx.context(i), &mp);
+        tau += (mp.sigmaA + mp.sigmaS) * (t1 - t0);
+    }
+    SampledSpectrum T = exp(tau * -1.f);
+    if (!heterogeneous || T.maxValue() <= 0.f) return T;
+
+    // The rest by ratio tracking. Each medium's tentative collisions are an independent
+    // Poisson stream, so skipping the homogeneous media's collisions leaves an unbiased
+    // estimate of the heterogeneous media's transmittance alone (it still pays for sampling
+    // them; trackCollisions has no per-medium mask).
     trackCollisions(ctx, worldRay, tMax, sampler, [&](const Collision& c) {
+        if (ctx.medium(size_t(c.medium)).homogeneous()) return Track::Continue;
         // Ratio tracking: multiply by the null-collision probability σn/σ̄ per wavelength.
         SampledSpectrum sigmaT = c.mp.sigmaA + c.mp.sigmaS;
         T *= (SampledSpectrum(c.sigmaMaj) - sigmaT) / c.sigmaMaj;

@@ -1,0 +1,293 @@
+// `mirage slab`: total reflectance and transmittance of a plane-parallel slab by photon tracing,
+// the instrument that checks the photon pass's transport against published adding-doubling
+// values (Prahl's iadpython tests; /work/shared/data/README.md).
+//
+//   mirage slab --albedo A --tau T [--g G] [--n N] [--n-outside M] [--incidence normal|diffuse]
+//               [--photons P] [--seed S] [--max-events E] [--threads K] [--json] [-q]
+//
+// The slab: a homogeneous medium of single-scattering albedo A and optical thickness T with a
+// Henyey–Greenstein phase function (g = G) and refractive index N, between two smooth
+// interfaces with a medium of index M (both faces alike). Light arrives on the top face
+// either collimated along the normal, or diffuse (Lambertian: directions cosine-weighted).
+//
+// Output (JSON with --json, else a table), each a fraction of the incident power with its
+// sample standard error (`_stderr`; the photons are equal, so it is the binomial one):
+//   reflectance                total reflected: specular at entry + everything leaving the top
+//   transmittance              total transmitted: unscattered + diffuse, leaving the bottom
+//   reflectance_diffuse        reflected after at least one scattering event
+//   reflectance_specular       reflected without scattering (entry + internal reflections)
+//   transmittance_unscattered  transmitted without scattering (Beer–Lambert, with reflections)
+//   absorbed, capped           absorbed; stopped by --max-events (a bias: should be ~0)
+//   photons, seconds
+//
+// Geometry. The slab is 1 m thick with σt = T/m. It is invariant under translations
+// parallel to its faces, so a photon's lateral position is irrelevant: every flight starts at
+// x = y = 0, and the medium is a box of ±1e6 m laterally only so that a single flight stays
+// inside it. A flight that still leaves through a side (a grazing flight longer than 1e6 m,
+// |cos θ| < 1e-6) is continued from x = y = 0 at the height where it left: free paths are
+// memoryless, so this is exact. T = inf (or T ≥ 1e6) is simulated as T = 1e6: for A < 1 the
+// light reaching depth τ falls like exp(−τ √(3(1 − A)(1 − A g))) (diffusion theory), and for
+// A = 1 a walk ~1e6 events long reaches ~1e3 mean free paths deep, so no photon meets the
+// bottom face. A conservative semi-infinite walk returns with certainty but after a
+// heavy-tailed number of events (P(n > N) ∝ N^(−1/2)), so --max-events bounds it and the
+// capped fraction is reported.
+//
+// The walk inside is the photon pass's (photon/photon_walk.h): delta tracking, albedo
+// roulette, phase sampling. The faces are handled here: at each crossing the unpolarised
+// Fresnel reflectance of a smooth dielectric interface decides by roulette between specular
+// reflection and Snell refraction, with total internal reflection past the critical angle.
+// Parallel over blocks of photons, each photon's random numbers keyed by (seed, index), the
+// tallies summed in block order: the output depends on the seed only, not on the threads.
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/commands.h"
+#include "core/error.h"
+#include "core/progress.h"
+#include "core/rng.h"
+#include "photon/photon_walk.h"
+
+namespace mirage {
+
+namespace {
+
+constexpr double kInfiniteTau = 1e6;  // T ≥ this is "semi-infinite" (see the header)
+constexpr float kThickness = 1.f;     // m
+constexpr float kHalfWidth = 1e6f;    // m, lateral half-size of the medium box
+constexpr uint64_t kBlockPhotons = 4096;
+constexpr float kLambdaNm = 550.f;  // any: the slab is grey
+
+// Unpolarised Fresnel reflectance of a smooth interface from index n1 to n2 at incidence
+// cosine cosI (Born & Wolf §1.5): R = (r_s² + r_p²)/2 with
+// r_s = (n1 cosI − n2 cosT)/(n1 cosI + n2 cosT), r_p = (n2 cosI − n1 cosT)/(n2 cosI + n1 cosT),
+// and 1 past the critical angle (total internal reflection). *cosT is the refracted cosine.
+double fresnel(double cosI, double n1, double n2, double* cosT) {
+    double sinT2 = (n1 / n2) * (n1 / n2) * std::max(0.0, 1.0 - cosI * cosI);
+    if (sinT2 >= 1.0) {
+        *cosT = 0.0;
+        return 1.0;
+    }
+    *cosT = std::sqrt(1.0 - sinT2);
+    if (n1 == n2) return 0.0;
+    double rs = (n1 * cosI - n2 * *cosT) / (n1 * cosI + n2 * *cosT);
+    double rp = (n2 * cosI - n1 * *cosT) / (n2 * cosI + n1 * *cosT);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+enum Outcome {
+    kReflSpecular,
+    kReflDiffuse,
+    kTransUnscattered,
+    kTransDiffuse,
+    kAbsorbed,
+    kCapped,
+    kOutcomes
+};
+const char* const kOutcomeNames[kOutcomes] = {"reflectance_specular",
+                                              "reflectance_diffuse",
+                                              "transmittance_unscattered",
+                                              "transmittance_diffuse",
+                                              "absorbed",
+                                              "capped"};
+
+// Σw and Σw² of each outcome, w the photon's final power relative to its initial power (1
+// for a single HG lobe: kept for generality, it costs nothing).
+struct Tally {
+    double sum[kOutcomes] = {}, sum2[kOutcomes] = {};
+    void add(Outcome o, double w) {
+        sum[o] += w;
+        sum2[o] += w * w;
+    }
+    void add(const Tally& t) {
+        for (int i = 0; i < kOutcomes; ++i) {
+            sum[i] += t.sum[i];
+            sum2[i] += t.sum2[i];
+        }
+    }
+};
+
+struct Slab {
+    double nIn, nOut;
+    bool diffuse;
+    int64_t maxEvents;
+};
+
+// One photon, from the top face to its outcome.
+void tracePhoton(const Slab& slab, uint64_t index, uint64_t seed, PhotonWalk& walk, Tally* t) {
+    Sampler s(seed, index, 0);
+    // Incident direction (travelling +z into the slab, whose top face is z = 0).
+    Vec3 d(0.f, 0.f, 1.f);
+    if (slab.diffuse) {
+        float r = std::sqrt(s.get1D()), phi = 2.f * kPi * s.get1D();
+        d = Vec3(r * std::cos(phi), r * std::sin(phi), safeSqrt(1.f - r * r));
+    }
+    double cosT;
+    if (s.get1D() < fresnel(d.z, slab.nOut, slab.nIn, &cosT)) {
+        t->add(kReflSpecular, 1.0);
+        return;
+    }
+    // Snell: the tangential component scales by n_out/n_in, the normal one becomes cosT.
+    float eta = float(slab.nOut / slab.nIn);
+    d = normalize(Vec3(d.x * eta, d.y * eta, float(cosT)));
+    Vec3 p(0.f, 0.f, 0.f);
+    double w = 1.0;
+    bool scattered = false;
+
+    for (int64_t events = 0;;) {
+        FlightEvent ev = walk.fly(Ray{p, d, kInfinity}, kInfinity, s);
+        if (ev.end == FlightEnd::Absorbed) {
+            t->add(kAbsorbed, w);
+            return;
+        }
+        if (ev.end == FlightEnd::Scattered) {
+            scattered = true;
+            w *= ev.weight;
+            p = Vec3(0.f, 0.f, clamp(ev.p.z, 0.f, kThickness));
+            d = ev.wo;
+        } else {
+            // Left the box: through a face, or (grazing) through a side, whichever is nearer.
+            float tFace =
+                d.z > 0.f ? (kThickness - p.z) / d.z : (d.z < 0.f ? -p.z / d.z : kInfinity);
+            float tSide = std::min(std::abs(d.x) > 0.f ? kHalfWidth / std::abs(d.x) : kInfinity,
+                                   std::abs(d.y) > 0.f ? kHalfWidth / std::abs(d.y) : kInfinity);
+            if (tSide < tFace) {
+                p = Vec3(0.f, 0.f, clamp(p.z + d.z * tSide, 0.f, kThickness));
+                continue;  // memoryless: the flight goes on from the same height
+            }
+            bool bottom = d.z > 0.f;
+            if (s.get1D() >= fresnel(std::abs(d.z), slab.nIn, slab.nOut, &cosT)) {
+                if (bottom)
+                    t->add(scattered ? kTransDiffuse : kTransUnscattered, w);
+                else
+                    t->add(scattered ? kReflDiffuse : kReflSpecular, w);
+                return;
+            }
+            // Specular (or total internal) reflection back into the slab.
+            p = Vec3(0.f, 0.f, bottom ? kThickness : 0.f);
+            d.z = -d.z;
+        }
+        if (++events >= slab.maxEvents) {
+            t->add(kCapped, w);
+            return;
+        }
+    }
+}
+
+void validate(const SlabOptions& o) {
+    if (!(o.tau > 0.0))
+        throw MirageError("slab: --tau must be a positive optical thickness or inf (got " +
+                          std::to_string(o.tau) + ")");
+    if (!(o.albedo >= 0.0 && o.albedo <= 1.0))
+        throw MirageError("slab: --albedo must be in [0, 1]");
+    if (!(o.n > 0.0 && o.nOutside > 0.0) || !std::isfinite(o.n) || !std::isfinite(o.nOutside))
+        throw MirageError("slab: refractive indices must be positive and finite");
+    if (o.incidence != "normal" && o.incidence != "diffuse")
+        throw MirageError("slab: --incidence must be normal or diffuse (got '" + o.incidence +
+                          "')");
+    if (o.photons == 0) throw MirageError("slab: --photons must be at least 1");
+}
+
+}  // namespace
+
+int runSlab(const SlabOptions& o) {
+    validate(o);
+    std::unique_ptr<tbb::global_control> threads;
+    if (o.threads > 0)
+        threads = std::make_unique<tbb::global_control>(
+            tbb::global_control::max_allowed_parallelism, size_t(o.threads));
+
+    const bool infinite = o.tau >= kInfiniteTau;
+    const float sigmaT = float(infinite ? kInfiniteTau : o.tau) / kThickness;
+    ShaderDesc shader;
+    shader.name = "slab";
+    shader.source = "mirage slab";
+    MediumComponent c;
+    c.name = "slab";
+    c.sigmaA = Spectrum(sigmaT * float(1.0 - o.albedo));
+    c.sigmaS = Spectrum(sigmaT * float(o.albedo));
+    c.g = float(o.g);
+    shader.components.push_back(c);
+    Bounds3 box;
+    box.lo = Vec3(-kHalfWidth, -kHalfWidth, 0.f);
+    box.hi = Vec3(kHalfWidth, kHalfWidth, kThickness);
+    Medium medium(shader, box, Transform(), 1.f);
+    const std::vector<const Medium*> media{&medium};
+    const Slab slab{o.n, o.nOutside, o.incidence == "diffuse", o.maxEvents};
+
+    auto start = std::chrono::steady_clock::now();
+    const uint64_t blocks = (o.photons + kBlockPhotons - 1) / kBlockPhotons;
+    std::vector<Tally> blockTally(blocks);
+    {
+        Progress progress("slab", o.photons, "photons",
+                          o.quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
+        tbb::parallel_for(tbb::blocked_range<uint64_t>(0, blocks, 1),
+                          [&](const tbb::blocked_range<uint64_t>& r) {
+                              PhotonWalk walk(media);
+                              walk.setWavelength(kLambdaNm);
+                              for (uint64_t b = r.begin(); b != r.end(); ++b) {
+                                  uint64_t first = b * kBlockPhotons,
+                                           last = std::min(o.photons, first + kBlockPhotons);
+                                  for (uint64_t i = first; i < last; ++i)
+                                      tracePhoton(slab, i, o.seed, walk, &blockTally[b]);
+                                  progress.advance(last - first);
+                              }
+                          });
+    }
+    Tally total;
+    for (const Tally& t : blockTally) total.add(t);  // block order: thread-independent
+    double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    // Mean and standard error of the per-photon score X (w for the photons with the outcome, 0
+    // for the others); exclusive outcomes add in both Σw and Σw².
+    const double n = double(o.photons);
+    auto stat = [&](std::initializer_list<Outcome> outcomes) {
+        double s = 0, s2 = 0;
+        for (Outcome oc : outcomes) {
+            s += total.sum[oc];
+            s2 += total.sum2[oc];
+        }
+        double mean = s / n;
+        return std::make_pair(mean, std::sqrt(std::max(0.0, s2 / n - mean * mean) / n));
+    };
+    struct Row {
+        std::string name;
+        std::pair<double, double> v;
+    };
+    std::vector<Row> rows = {{"reflectance", stat({kReflSpecular, kReflDiffuse})},
+                             {"transmittance", stat({kTransUnscattered, kTransDiffuse})}};
+    for (int i = 0; i < kOutcomes; ++i) rows.push_back({kOutcomeNames[i], stat({Outcome(i)})});
+
+    if (o.json) {
+        std::printf(
+            "{\n  \"albedo\": %.9g,\n  \"tau\": %.9g,\n  \"tau_infinite\": %s,\n"
+            "  \"g\": %.9g,\n  \"n\": %.9g,\n  \"n_outside\": %.9g,\n"
+            "  \"incidence\": \"%s\",\n",
+            o.albedo, double(sigmaT * kThickness), infinite ? "true" : "false", o.g, o.n,
+            o.nOutside, o.incidence.c_str());
+        for (const Row& r : rows)
+            std::printf("  \"%s\": %.9g,\n  \"%s_stderr\": %.9g,\n", r.name.c_str(), r.v.first,
+                        r.name.c_str(), r.v.second);
+        std::printf("  \"photons\": %llu,\n  \"seed\": %llu,\n  \"seconds\": %.6g\n}\n",
+                    (unsigned long long)o.photons, (unsigned long long)o.seed, seconds);
+    } else {
+        std::printf("slab: albedo %g, tau %s, g %g, n %g (outside %g), %s incidence\n", o.albedo,
+                    infinite ? "inf" : std::to_string(o.tau).c_str(), o.g, o.n, o.nOutside,
+                    o.incidence.c_str());
+        for (const Row& r : rows)
+            std::printf("  %-26s %.6f ± %.6f\n", r.name.c_str(), r.v.first, r.v.second);
+        std::printf("  %llu photons in %s (%.3g M photons/s)\n", (unsigned long long)o.photons,
+                    formatSeconds(seconds).c_str(), n / seconds * 1e-6);
+    }
+    return 0;
+}
+
+}  // namespace mirage

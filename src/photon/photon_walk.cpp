@@ -1,0 +1,48 @@
+#include "photon/photon_walk.h"
+
+namespace mirage {
+
+PhotonWalk::PhotonWalk(const std::vector<const Medium*>& media) : mTracking(media) {}
+
+void PhotonWalk::setWavelength(float lambdaNm) {
+    mLambda = lambdaNm;
+    SampledWavelengths w;
+    w.lambda.fill(lambdaNm);
+    // The pdf of the wavelength never enters a photon's weight: the light drew λ ∝ its
+    // spectral power, and the photon's power Φ/N already accounts for it.
+    w.pdf.fill(1.f);
+    mTracking.setWavelengths(w);
+}
+
+FlightEvent PhotonWalk::fly(const Ray& ray, float tMax, Sampler& sampler) {
+    FlightEvent ev;
+    ev.end = FlightEnd::Escaped;
+    ev.p = ray.o;
+    ev.wi = ray.d;
+    trackCollisions(mTracking, ray, tMax, sampler, [&](const Collision& c) {
+        // All four wavelengths are the photon's, so the means eventProbabilities takes are
+        // the probabilities at index 0: P_a = σa(λ)/σ̄, P_s = σs(λ)/σ̄, P_n = σn(λ)/σ̄.
+        EventProbabilities e = eventProbabilities(c);
+        float u = sampler.get1D();
+        if (u < e.pAbsorb) {
+            ev.end = FlightEnd::Absorbed;
+            ev.p = c.p;
+            return Track::Stop;
+        }
+        if (u < e.pAbsorb + e.pScatter) {
+            ev.end = FlightEnd::Scattered;
+            ev.p = c.p;
+            const Medium& m = mTracking.medium(size_t(c.medium));
+            SampledSpectrum weight;
+            float pdf;
+            float uc = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
+            ev.wo = m.phaseSample(c.mp, ray.d, uc, u1, u2, &weight, &pdf);
+            ev.weight = weight[0];
+            return Track::Stop;
+        }
+        return Track::Continue;
+    });
+    return ev;
+}
+
+}  // namespace mirage

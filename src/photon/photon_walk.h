@@ -1,0 +1,55 @@
+// One photon's random walk through the media, one free flight at a time: the part of the
+// photon pass that the slab instrument (`mirage slab`) shares, so that both measure the same
+// transport code. The walk itself (what to store, where boundaries are, when to stop) belongs
+// to the caller.
+//
+// A flight is delta tracking (transport/tracking.h) with the albedo roulette of Jensen &
+// Christensen (1998) at each tentative collision: absorption with probability σa/σ̄, real
+// scattering with σs/σ̄, otherwise a null collision and the flight goes on. The roulette makes
+// the three events' weights σ/(σ̄ P) equal to 1, so a photon's power never changes at a
+// collision, and photons of equal power stay of equal power (the best case for a density
+// estimate). Photons are monochromatic: the tracking context's four wavelengths are all the
+// photon's, so the event probabilities (means over wavelengths) are those at its wavelength.
+#pragma once
+
+#include <vector>
+
+#include "core/rng.h"
+#include "transport/tracking.h"
+
+namespace mirage {
+
+enum class FlightEnd {
+    Escaped,  // no real collision before tMax: the photon left every medium (tMax = ∞)
+    Absorbed,
+    Scattered,
+};
+
+struct FlightEvent {
+    FlightEnd end;
+    Vec3 p;              // world position of the absorption or scattering (m)
+    Vec3 wi;             // direction of the flight
+    Vec3 wo;             // Scattered: new direction, sampled from the phase function
+    float weight = 1.f;  // Scattered: phase weight p/pdf at the photon's wavelength; 1 for a
+                         // single lobe, which is sampled exactly
+};
+
+class PhotonWalk {
+public:
+    explicit PhotonWalk(const std::vector<const Medium*>& media);
+
+    // The photon's wavelength (nm); call before its first flight.
+    void setWavelength(float lambdaNm);
+    float wavelength() const { return mLambda; }
+
+    // One free flight along ray (unit direction) over (0, tMax).
+    FlightEvent fly(const Ray& ray, float tMax, Sampler& sampler);
+
+    TrackingContext& tracking() { return mTracking; }
+
+private:
+    TrackingContext mTracking;
+    float mLambda = 0.f;
+};
+
+}  // namespace mirage

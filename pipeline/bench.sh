@@ -40,3 +40,26 @@ printf '  vdb_render (ray marching, step 1 voxel, shadow step 3): median %.2f s\
 printf '  mirage (delta/ratio tracking, %d spp):                    median %.2f s\n' "$SPP" "$m"
 printf '  ratio mirage / vdb_render: %.2f\n' "$(awk -v a="$m" -v b="$v" 'BEGIN {print a / b}')"
 ./build/bench_lookups "$SMOKE"
+
+# Peer check against Blender Cycles (when installed): same cache, camera, medium and sun,
+# single scattering, 64 spp at 256×256. Prints both times and the ratio of mean luminance.
+if command -v blender >/dev/null; then
+  CYC=$(blender -b --factory-startup --python-exit-code 1 --python ../shared/tools/cycles_vdb.py -- \
+    "$SMOKE" "$TMP/cycles.exr" 256 256 64 --density-scale 1 --albedo 0.9 --anisotropy 0 \
+    --volume-bounces 0 --sun-strength 5 --threads "$(nproc)" 2>&1 | grep RENDER_SECONDS | awk '{print $2}')
+  t0=$(now)
+  ./build/mirage render tests/bench/smoke1_cycles.toml --set "volume.0.file=$SMOKE" \
+    -o "$TMP/mirage_cycles.exr" --quiet >/dev/null
+  t1=$(now)
+  mt=$(awk -v a="$t0" -v b="$t1" 'BEGIN {print b - a}')
+  mean() { oiiotool --stats "$1" | awk '/Stats Avg/ {print 0.2126*$3 + 0.7152*$4 + 0.0722*$5; exit}'; }
+  alpha() { oiiotool --stats "$1" | awk '/Stats Avg/ {print $6; exit}'; }
+  printf 'smoke1.vdb 256x256, 64 spp, single scattering, against Cycles (ray marching, step 1 voxel)\n'
+  printf '  cycles render %.2f s, mirage %.2f s, ratio mirage / cycles %.2f\n' "$CYC" "$mt" \
+    "$(awk -v a="$mt" -v b="$CYC" 'BEGIN {print a / b}')"
+  printf '  mean luminance: cycles %s, mirage %s; mean alpha: cycles %s, mirage %s\n' \
+    "$(mean "$TMP/cycles.exr")" "$(mean "$TMP/mirage_cycles.exr")" \
+    "$(alpha "$TMP/cycles.exr")" "$(alpha "$TMP/mirage_cycles.exr")"
+else
+  echo "blender not installed: skipping the Cycles comparison (apt-get install blender)"
+fi

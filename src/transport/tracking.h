@@ -59,8 +59,9 @@ template <typename F>
 bool trackCollisions(TrackingContext& ctx, const Ray& worldRay, float tMax, Sampler& sampler,
                      F&& f);
 
-// Transmittance along worldRay over (0, tMax) by ratio tracking (Novák et al. 2014), unbiased,
-// with Russian roulette once it falls below 0.05.
+// Transmittance along worldRay over (0, tMax): the closed form exp(−σt(λ)·d) for homogeneous
+// media, ratio tracking (Novák et al. 2014) for the others — unbiased, with Russian roulette
+// once it falls below 0.05.
 SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float tMax,
                               Sampler& sampler);
 

@@ -44,7 +44,7 @@ printf '  ratio mirage / vdb_render: %.2f\n' "$(awk -v a="$m" -v b="$v" 'BEGIN {
 # Peer check against Blender Cycles (when installed): same cache, camera, medium and sun,
 # single scattering, 64 spp at 256×256. Prints both times and the ratio of mean luminance.
 if command -v blender >/dev/null; then
-  CYC=$(blender -b --factory-startup --python-exit-code 1 --python ../shared/tools/cycles_vdb.py -- \
+  CYC=$(blender -b --factory-startup --python-exit-code 1 --python "$(dirname "$DATA")/tools/cycles_vdb.py" -- \
     "$SMOKE" "$TMP/cycles.exr" 256 256 64 --density-scale 1 --albedo 0.9 --anisotropy 0 \
     --volume-bounces 0 --sun-strength 5 --threads "$(nproc)" 2>&1 | grep RENDER_SECONDS | awk '{print $2}')
   t0=$(now)

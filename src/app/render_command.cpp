@@ -119,8 +119,11 @@ int runRender(const RenderOptions& o) {
         checkOutputSettings(scene, color);
         double loadSeconds = secondsSince(tLoad);
 
-        auto integrator =
-            makeIntegrator(o.integrator.empty() ? scene.integrator : o.integrator, scene.maxDepth);
+        PhotonIntegratorSettings photon = scene.photon;
+        photon.seed = s.seed;
+        photon.progress = s.progress;
+        auto integrator = makeIntegrator(o.integrator.empty() ? scene.integrator : o.integrator,
+                                         scene.maxDepth, photon);
         integrator->preprocess(scene.render);
         RenderStats stats;
         Film film = render(scene.render, *integrator, s, &stats);
@@ -165,6 +168,8 @@ int runRender(const RenderOptions& o) {
                          loadSeconds, stats.seconds, writeSeconds, mlps,
                          (unsigned long long)stats.nonFiniteSamples,
                          (unsigned long long)integrator->cappedPaths(), formatBytes(peakMemoryBytes()).c_str());
+            std::string extra = integrator->summary();
+            if (!extra.empty()) std::fprintf(stderr, "frame %d: %s\n", frame, extra.c_str());
         }
         std::printf("%s\n", out.c_str());
         if (!preview.empty()) std::printf("%s\n", preview.c_str());

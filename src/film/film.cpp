@@ -25,6 +25,11 @@ Film::Film(int width, int height)
 // pixel (each pixel is written by one thread only, so no atomics are needed) and reported.
 void Film::addSample(int x, int y, const SampledSpectrum& L, const SampledWavelengths& w,
                      float alpha) {
+    addSample(x, y, L, w, alpha, Vec3(0.f));
+}
+
+void Film::addSample(int x, int y, const SampledSpectrum& L, const SampledWavelengths& w,
+                     float alpha, const Vec3& extraXyz) {
     MIRAGE_DCHECK(x >= 0 && x < mWidth && y >= 0 && y < mHeight);
     Pixel& p = mPixels[size_t(y) * mWidth + x];
     if (!L.isFinite() || !std::isfinite(alpha)) {
@@ -32,7 +37,7 @@ void Film::addSample(int x, int y, const SampledSpectrum& L, const SampledWavele
         return;
     }
     // Finite radiance can still overflow float in L / pdf for a wavelength of tiny density.
-    Vec3 xyz = spectrumToXyz(L, w);
+    Vec3 xyz = spectrumToXyz(L, w) + extraXyz;
     if (!isFinite(xyz)) {
         ++p.nonFinite;
         return;

@@ -32,6 +32,10 @@ public:
     // Non-finite samples are dropped and counted (reported in the summary and EXR metadata).
     void addSample(int x, int y, const SampledSpectrum& L, const SampledWavelengths& w,
                    float alpha);
+    // The same, plus radiance already in XYZ (a photon-map estimate, integrator.h), added to
+    // the sample's own XYZ; a non-finite xyz drops the whole sample.
+    void addSample(int x, int y, const SampledSpectrum& L, const SampledWavelengths& w,
+                   float alpha, const Vec3& xyz);
     uint64_t nonFiniteSamples() const;
 
     // Averages the samples and converts XYZ to the working space of `color`.

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/progress.h"
 #include "core/rng.h"
 #include "render/render_scene.h"
 #include "transport/tracking.h"
@@ -22,6 +23,9 @@ struct ThreadState {
 struct RadianceSample {
     SampledSpectrum L;   // W·m⁻²·sr⁻¹·nm⁻¹
     float alpha = 0.f;   // 1 − transmittance of the ray (coverage)
+    // Radiance already reduced to CIE XYZ in the film's normalisation (spectrumToXyz), added to
+    // the pixel beside L: what a photon-map estimate gives, each photon at its own wavelength.
+    Vec3 xyz;
 };
 
 class Integrator {
@@ -35,6 +39,8 @@ public:
                               ThreadState& ts) const = 0;
     // Paths cut at the depth cap so far (a bias, reported in the summary).
     virtual uint64_t cappedPaths() const { return 0; }
+    // One line of integrator-specific figures for the render summary ("" for none).
+    virtual std::string summary() const { return ""; }
 };
 
 // Single scattering plus emission: delta tracking along the camera ray, next-event estimation
@@ -46,8 +52,31 @@ std::unique_ptr<Integrator> makeSingleScatterIntegrator();
 // scattering events are cut and counted.
 std::unique_ptr<Integrator> makeVolPathIntegrator(int maxDepth = 10000);
 
-// By name ("single", "volpath"); throws MirageError listing the names for anything else.
-std::unique_ptr<Integrator> makeIntegrator(const std::string& name, int maxDepth = 10000);
+// Settings of the photon-map integrator (scene file: [render] photons, estimate, k,
+// max_radius). Zeros select the defaults noted.
+enum class PhotonEstimate { Beam, Point };
+struct PhotonIntegratorSettings {
+    uint64_t photons = 100000;     // emitted, over all lights
+    PhotonEstimate estimate = PhotonEstimate::Beam;
+    int k = 0;                     // photons per estimate, ≥ 2; 0: 16 (beam radii), 32 (point)
+    float maxRadius = 0.f;         // m; 0: a tenth of the diagonal of the media's bounds
+    float marchStep = 0.f;         // m, point estimate; 0: half the median k-nearest radius
+    uint64_t seed = 0;             // the render seed; the photon pass derives its own from it
+    int maxBounces = 10000;        // scattering events per photon
+    Progress::Mode progress = Progress::Mode::Auto;
+
+    int kOrDefault() const { return k > 0 ? k : (estimate == PhotonEstimate::Beam ? 16 : 32); }
+};
+
+// Volumetric photon mapping (Jensen & Christensen 1998) with the beam radiance estimate
+// (Jarosz et al. 2008) or the ray-marched point estimate for multiple scattering; single
+// scattering and emission as the single-scatter integrator computes them.
+std::unique_ptr<Integrator> makePhotonIntegrator(const PhotonIntegratorSettings& settings);
+
+// By name ("single", "volpath", "photon"); throws MirageError listing the names for anything
+// else. `photon` configures the photon integrator and is ignored by the others.
+std::unique_ptr<Integrator> makeIntegrator(const std::string& name, int maxDepth = 10000,
+                                           const PhotonIntegratorSettings& photon = {});
 std::vector<std::string> integratorNames();
 
 }  // namespace mirage

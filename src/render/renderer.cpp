@@ -36,7 +36,7 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
                         ts.tracking.setWavelengths(w);
                         Ray ray = camera.generate(float(x) + jx, float(y) + jy);
                         RadianceSample rs = integrator.Li(scene, ray, w, sampler, ts);
-                        film.addSample(x, y, rs.L, w, rs.alpha);
+                        film.addSample(x, y, rs.L, w, rs.alpha, rs.xyz);
                     }
                 }
             progress.advance();

@@ -40,8 +40,11 @@ struct Scene {
     RenderScene render;
     RenderSettings settings;
     OutputSettings output;
-    std::string integrator = "single";  // [render] integrator: single | volpath
+    std::string integrator = "single";  // [render] integrator: single | volpath | photon
     int maxDepth = 10000;                // [render] max_depth: scattering events per path
+    // [render] photons, estimate (beam | point), k, max_radius: the photon integrator's
+    // settings (its seed and progress mode come from the render settings).
+    PhotonIntegratorSettings photon;
     int majorantResolution = 64;
     std::vector<VolumeRecord> volumes;
 

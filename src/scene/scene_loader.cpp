@@ -221,6 +221,17 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
         }
         scene.maxDepth = int(r->getInt("max_depth", 10000, 1, 1 << 30));
         scene.majorantResolution = int(r->getInt("majorant_resolution", 64, 1, 1024));
+        scene.photon.photons = uint64_t(r->getInt("photons", 100000, 0, int64_t(1) << 40));
+        std::string estimate = r->getString("estimate", "beam");
+        if (estimate != "beam" && estimate != "point")
+            r->fail("estimate",
+                    "unknown photon estimate '" + estimate + "'; expected beam or point");
+        scene.photon.estimate = estimate == "beam" ? PhotonEstimate::Beam : PhotonEstimate::Point;
+        scene.photon.k = int(r->getInt("k", 0, 0, 1 << 16));
+        if (scene.photon.k == 1)
+            r->fail("k", "expected 0 (the default for the estimate) or at least 2 photons: a "
+                         "density from one neighbour has no finite mean");
+        scene.photon.maxRadius = float(r->getNumber("max_radius", 0.0, 0.0, 1e12));
         r->finish();
     }
     if (auto o = top.optionalTable("output")) {

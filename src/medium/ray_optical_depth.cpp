@@ -1,0 +1,122 @@
+#include "medium/ray_optical_depth.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace mirage {
+
+RayOpticalDepth::RayOpticalDepth(const std::vector<const Medium*>& media, float stepVoxels)
+    : mStepVoxels(stepVoxels) {
+    MIRAGE_CHECK(stepVoxels > 0.f);
+    for (const Medium* m : media) {
+        MediumInfo info;
+        info.medium = m;
+        info.voxel = kInfinity;
+        for (const FloatGrid& g : m->grids()) {
+            info.accessors.push_back(g.accessor());
+            auto v = g.grid()->voxelSize();
+            info.voxel = std::min(info.voxel, float(std::min(v[0], std::min(v[1], v[2]))));
+        }
+        if (m->grids().empty()) {
+            const MajorantGrid& maj = m->majorant();
+            Vec3 diag = maj.bounds().diagonal();
+            for (int a = 0; a < 3; ++a)
+                info.voxel = std::min(info.voxel, diag[a] / float(std::max(maj.res(a), 1)));
+        }
+        auto slots = m->shader().gridSlots();
+        for (const MediumComponent& c : m->shader().components) {
+            Term term;
+            term.grid = c.grid.empty()
+                            ? -1
+                            : int(std::find(slots.begin(), slots.end(), c.grid) - slots.begin());
+            float k = c.concentration * m->densityScale();
+            if (c.sigmaA.isConstant() && c.sigmaS.isConstant()) {
+                float sigmaT = c.sigmaA.constantValue() + c.sigmaS.constantValue();
+                if (!(sigmaT * k > 0.f)) continue;  // a component that neither absorbs nor scatters
+                term.scale = k * sigmaT;
+                term.channel = 0;
+            } else {
+                term.scale = k;
+                term.channel = mChannels++;
+                mSpectral.push_back({&c.sigmaA, &c.sigmaS});
+            }
+            info.terms.push_back(term);
+        }
+        mMedia.push_back(std::move(info));
+    }
+    mIntegrand.resize(size_t(mChannels));
+}
+
+void RayOpticalDepth::march(const Ray& ray, float tMax) {
+    MIRAGE_DCHECK(std::abs(length(ray.d) - 1.f) < 1e-3f);
+    mSpans.clear();
+    mNodes = 0;
+    float t0 = kInfinity, t1 = -kInfinity, h = kInfinity;
+    for (size_t i = 0; i < mMedia.size(); ++i) {
+        const Medium& m = *mMedia[i].medium;
+        Ray objectRay = m.toObject(ray);
+        float a, b;
+        if (!m.objectBounds().intersect(objectRay.o, objectRay.d, 0.f, tMax, &a, &b) || !(a < b))
+            continue;
+        mSpans.push_back({int(i), objectRay, a, b});
+        t0 = std::min(t0, a);
+        t1 = std::max(t1, b);
+        // The object ray has the world ray's parameter, so one voxel spans voxel/|d_object| in t.
+        h = std::min(h, mStepVoxels * mMedia[i].voxel / length(objectRay.d));
+    }
+    if (mSpans.empty() || !(t0 < t1)) {
+        mT0 = mT1 = 0.f;
+        return;
+    }
+    mT0 = t0;
+    mT1 = t1;
+    float nodes = std::ceil((t1 - t0) / h);
+    mNodes = !(nodes >= 1.f) ? 1 : (nodes > float(kMaxNodes) ? kMaxNodes : int(nodes));
+    mH = (t1 - t0) / float(mNodes);
+
+    const size_t C = size_t(mChannels);
+    mTau.resize((size_t(mNodes) + 1) * C);
+    std::fill(mTau.begin(), mTau.begin() + C, 0.f);
+    for (int j = 0; j < mNodes; ++j) {
+        float a = t0 + float(j) * mH;
+        float b = j + 1 == mNodes ? t1 : t0 + float(j + 1) * mH;
+        std::fill(mIntegrand.begin(), mIntegrand.end(), 0.f);
+        for (const Span& s : mSpans) {
+            // Midpoint rule on the part of the interval inside this medium's box.
+            float lo = std::max(a, s.t0), hi = std::min(b, s.t1);
+            if (!(hi > lo)) continue;
+            MediumInfo& info = mMedia[size_t(s.medium)];
+            Vec3 p = s.objectRay.at(0.5f * (lo + hi));
+            const auto& grids = info.medium->grids();
+            for (const Term& term : info.terms) {
+                size_t g = size_t(term.grid);
+                float v = term.grid < 0 ? 1.f : grids[g].sample(info.accessors[g], p);
+                mIntegrand[size_t(term.channel)] += (hi - lo) * term.scale * v;
+            }
+        }
+        const float* prev = &mTau[size_t(j) * C];
+        float* next = &mTau[size_t(j + 1) * C];
+        for (size_t c = 0; c < C; ++c) next[c] = prev[c] + mIntegrand[c];
+    }
+}
+
+float RayOpticalDepth::transmittance(float t, float lambdaNm) const {
+    if (mNodes == 0 || !(t > mT0)) return 1.f;
+    float u = (t - mT0) / mH;
+    int j = u >= float(mNodes) ? mNodes - 1 : int(u);
+    float f = std::min(u - float(j), 1.f);
+    const size_t C = size_t(mChannels);
+    const float* a = &mTau[size_t(j) * C];
+    const float* b = a + C;
+    float tau = a[0] + f * (b[0] - a[0]);
+    for (size_t c = 1; c < C; ++c) {
+        const SpectralChannel& s = mSpectral[c - 1];
+        float sigmaT = (*s.sigmaA)(lambdaNm) + (*s.sigmaS)(lambdaNm);
+        tau += sigmaT * (a[c] + f * (b[c] - a[c]));
+    }
+    return std::exp(-tau);
+}
+
+}  // namespace mirage

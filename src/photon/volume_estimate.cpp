@@ -1,0 +1,135 @@
+#include "photon/volume_estimate.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "spectrum/cie.h"
+
+namespace mirage {
+
+VolumePhotons::VolumePhotons(PhotonList photons, const std::vector<const Medium*>& media)
+    : mMap(std::move(photons)) {
+    const size_t n = mMap.size();
+    mFluxXyz.resize(n);
+    for (size_t i = 0; i < n; ++i)
+        mFluxXyz[i] = cieXyz(mMap[i].lambda) * (mMap[i].power / kCieYIntegral);
+
+    // The lobes of every component of every medium, in order. One lobe, or lobes that are all
+    // the same, need no per-photon weights.
+    for (const Medium* m : media)
+        for (const MediumComponent& c : m->shader().components) mLobes.emplace_back(c.g);
+    bool same = true;
+    for (const HGPhase& l : mLobes) same &= l.g() == mLobes.front().g();
+    if (mLobes.empty()) mLobes.emplace_back(0.f);
+    if (same) {
+        mLobes.resize(1);
+        return;
+    }
+
+    // Mixture weights σs,c(x_p, λ_p) / Σ σs at each photon, all 4 path wavelengths set to λ_p.
+    const size_t L = mLobes.size();
+    mLobeWeights.assign(n * L, 0.f);
+    std::vector<Transform> worldToObject;
+    for (const Medium* m : media) worldToObject.push_back(m->objectToWorld().inverse());
+    auto weigh = [&](const tbb::blocked_range<size_t>& r) {
+        std::vector<Medium::Context> contexts;
+        for (const Medium* m : media) contexts.emplace_back(*m);
+        for (size_t i = r.begin(); i < r.end(); ++i) {
+            SampledWavelengths w;
+            w.lambda.fill(mMap[i].lambda);
+            w.pdf.fill(1.f);
+            float* weights = &mLobeWeights[i * L];
+            size_t lobe = 0;
+            float total = 0.f;
+            for (size_t mi = 0; mi < media.size(); ++mi) {
+                const Medium& m = *media[mi];
+                const int components = int(m.shader().components.size());
+                // Outside its box a medium has no particles (its homogeneous components would
+                // still report their constant).
+                Vec3 p = worldToObject[mi].point(mMap[i].p);
+                Bounds3 box = m.objectBounds();
+                if (!(p.x >= box.lo.x && p.y >= box.lo.y && p.z >= box.lo.z && p.x <= box.hi.x &&
+                      p.y <= box.hi.y && p.z <= box.hi.z)) {
+                    lobe += size_t(components);
+                    continue;
+                }
+                contexts[mi].setWavelengths(w);
+                MediumPoint mp;
+                m.eval(p, contexts[mi], &mp);
+                for (int c = 0; c < components; ++c, ++lobe) {
+                    weights[lobe] = mp.sigmaSComponent[size_t(c)][0];
+                    total += weights[lobe];
+                }
+            }
+            // A photon stored where no component scatters can only come from rounding at a
+            // medium's edge: give it the plain average of the lobes.
+            for (size_t l = 0; l < L; ++l)
+                weights[l] = total > 0.f ? weights[l] / total : 1.f / float(L);
+        }
+    };
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), weigh);
+}
+
+float VolumePhotons::phase(size_t slot, const Vec3& wo) const {
+    float cosTheta = dot(mMap[slot].wi, wo);
+    if (mLobeWeights.empty()) return mLobes[0].eval(cosTheta);
+    const size_t L = mLobes.size();
+    const float* weights = &mLobeWeights[slot * L];
+    float p = 0.f;
+    for (size_t l = 0; l < L; ++l)
+        if (weights[l] > 0.f) p += weights[l] * mLobes[l].eval(cosTheta);
+    return p;
+}
+
+namespace {
+
+// Σ_k weight(k) p_k fluxXyz_k / ((4/3) π r³) over the k nearest photons to x.
+template <typename Weight>
+Vec3 gather(const VolumePhotons& photons, const Vec3& x, const Vec3& wo, int k, float maxRadius,
+            PhotonNeighbour* buffer, Weight&& weight) {
+    int found = photons.map().nearest(x, k, maxRadius, buffer);
+    if (found == 0) return Vec3(0.f);
+    // Fewer than k photons: the search sphere was the whole maxRadius ball. k coincident
+    // photons would give r = 0; the density there is not resolvable, so the ball is kept at a
+    // thousandth of maxRadius.
+    float r = found == k ? std::max(std::sqrt(buffer[0].d2), 1e-3f * maxRadius) : maxRadius;
+    Vec3 sum(0.f);
+    for (int i = 0; i < found; ++i) {
+        uint32_t slot = buffer[i].index;
+        sum += photons.fluxXyz(slot) * (weight(slot) * photons.phase(slot, wo));
+    }
+    float unbias = found == k ? float(k - 1) / float(k) : 1.f;  // see volume_estimate.h
+    return sum * (unbias / ((4.f / 3.f) * kPi * r * r * r));
+}
+
+}  // namespace
+
+Vec3 pointEstimate(const VolumePhotons& photons, const Vec3& x, const Vec3& wo, int k,
+                   float maxRadius, PhotonNeighbour* buffer) {
+    MIRAGE_CHECK(k >= 2);
+    return gather(photons, x, wo, k, maxRadius, buffer, [](uint32_t) { return 1.f; });
+}
+
+Vec3 pointEstimateAlongRay(const VolumePhotons& photons, const Ray& ray,
+                           const RayOpticalDepth& depth, int k, float maxRadius, float step,
+                           float u, PhotonNeighbour* buffer) {
+    MIRAGE_CHECK(k >= 2);
+    if (depth.empty() || photons.size() == 0 || !(step > 0.f)) return Vec3(0.f);
+    const Vec3 wo = -ray.d;
+    Vec3 sum(0.f);
+    // Points beyond the last medium's exit are not taken: σs = 0 there, even if photons inside
+    // are within reach of the search.
+    for (int j = 0;; ++j) {
+        float t = depth.tBegin() + (float(j) + u) * step;
+        if (!(t < depth.tEnd())) break;
+        sum += gather(photons, ray.at(t), wo, k, maxRadius, buffer, [&](uint32_t slot) {
+            return depth.transmittance(t, photons.map()[slot].lambda);
+        });
+    }
+    return sum * step;
+}
+
+}  // namespace mirage

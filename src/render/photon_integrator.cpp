@@ -1,0 +1,170 @@
+// Volumetric photon mapping (Jensen & Christensen 1998) with the beam radiance estimate
+// (Jarosz, Zwicker & Jensen 2008).
+//
+// Two passes. preprocess() traces photons from the lights (photon/photon_pass.h), builds the
+// kd-tree, and for the beam estimate the per-photon radii and the disc BVH. Li() then splits
+// the radiance along a camera ray by the number of scattering events the light has undergone:
+//  - emission and single scattering (light → one scattering on the camera ray → camera) come
+//    from the single-scatter integrator, unchanged: delta tracking to a real scattering event
+//    and next-event estimation with ratio-tracked shadow rays. It is spectral (4 hero
+//    wavelengths) and unbiased, and it is where a photon map would be blurriest: direct light
+//    has sharp shadows.
+//  - multiple scattering (light that has scattered at least once before it scatters on the
+//    camera ray) comes from the photons. The pass does not store a photon's first
+//    interaction (storeFirstInteraction = false), so the map holds exactly the light that has
+//    already scattered once, and nothing is counted twice.
+// The photon part is CIE XYZ (volume_estimate.h), returned in RadianceSample::xyz; it is
+// computed for every camera sample, so pixel filtering and the spectral noise of the single-
+// scattered part average together.
+//
+// Transmittance from the camera to each photon is the deterministic march of
+// medium/ray_optical_depth.h at the photon's wavelength, done once per camera ray.
+//
+// Light emitted by the media themselves (fire) reaches the camera directly, through the single-
+// scatter integrator, but its scattered part is missing until the photon pass emits from media.
+#include <tbb/enumerable_thread_specific.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "photon/beam_estimate.h"
+#include "photon/photon_pass.h"
+#include "render/integrator.h"
+
+namespace mirage {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Scratch of one render thread, reused for every camera sample.
+struct PhotonThreadState {
+    explicit PhotonThreadState(const std::vector<const Medium*>& media) : depth(media) {}
+    RayOpticalDepth depth;
+    std::vector<BeamHit> hits;
+    std::vector<PhotonNeighbour> neighbours;
+    double estimateSeconds = 0;
+    uint64_t estimates = 0;
+};
+
+class PhotonMapIntegrator : public Integrator {
+public:
+    explicit PhotonMapIntegrator(const PhotonIntegratorSettings& s)
+        : mSettings(s), mSingle(makeSingleScatterIntegrator()) {}
+    std::string name() const override { return "photon"; }
+
+    void preprocess(const RenderScene& scene) override {
+        std::vector<const Light*> lights;
+        for (const auto& l : scene.lights) lights.push_back(l.get());
+        mMedia = scene.mediaPointers();
+
+        // Photon pass. Its seed is derived from the render seed so that photon i and pixel i
+        // (both keyed (seed, index, 0) in the counter-based sampler) do not share numbers.
+        PhotonPassSettings pass;
+        pass.photons = mSettings.photons;
+        pass.seed = hashCombine(mSettings.seed, 0x70686f746f6eull);  // "photon"
+        pass.maxBounces = mSettings.maxBounces;
+        pass.storeFirstInteraction = false;
+        pass.progress = mSettings.progress;
+        PhotonList list = tracePhotons(lights, mMedia, pass, &mPassStats);
+
+        // The map: kd-tree, per-photon XYZ and phase, then the estimate's own structures.
+        auto t0 = Clock::now();
+        mPhotons = std::make_unique<VolumePhotons>(std::move(list), mMedia);
+        Vec3 diag = scene.bounds().empty() ? Vec3(1.f) : scene.bounds().diagonal();
+        mMaxRadius = mSettings.maxRadius > 0.f ? mSettings.maxRadius : 0.1f * length(diag);
+        // Coincident photons must not get a zero disc (PhotonMap::photonRadii).
+        const float minRadius = 1e-4f * mMaxRadius;
+        const int k = mSettings.kOrDefault();
+        if (mSettings.estimate == PhotonEstimate::Beam) {
+            mBeam = std::make_unique<BeamEstimator>(
+                *mPhotons, mPhotons->map().photonRadii(k, minRadius, mMaxRadius));
+        } else {
+            mStep = mSettings.marchStep;
+            if (!(mStep > 0.f)) {
+                // Half the typical search radius: the estimate is a blur of that radius, so
+                // steps of half of it sample it without aliasing (jittered per camera sample).
+                std::vector<float> r = mPhotons->map().photonRadii(k, minRadius, mMaxRadius);
+                if (r.empty()) {
+                    mStep = mMaxRadius;
+                } else {
+                    std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
+                    mStep = 0.5f * r[r.size() / 2];
+                }
+            }
+        }
+        mBuildSeconds = secondsSince(t0);
+        mThreads = std::make_unique<tbb::enumerable_thread_specific<PhotonThreadState>>(
+            [this] { return PhotonThreadState(mMedia); });
+    }
+
+    RadianceSample Li(const RenderScene& scene, const Ray& ray, const SampledWavelengths& w,
+                      Sampler& sampler, ThreadState& ts) const override {
+        RadianceSample out = mSingle->Li(scene, ray, w, sampler, ts);
+        if (!mPhotons || mPhotons->size() == 0) return out;
+
+        float u = sampler.get1D();  // the march's jitter, drawn whichever estimate is used
+        PhotonThreadState& pt = mThreads->local();
+        auto t0 = Clock::now();
+        pt.depth.march(ray, ray.tMax);
+        if (mBeam) {
+            out.xyz = mBeam->estimate(ray, ray.tMax, pt.depth, &pt.hits);
+        } else {
+            pt.neighbours.resize(size_t(mSettings.kOrDefault()));
+            out.xyz = pointEstimateAlongRay(*mPhotons, ray, pt.depth, mSettings.kOrDefault(),
+                                            mMaxRadius, mStep, u, pt.neighbours.data());
+        }
+        pt.estimateSeconds += secondsSince(t0);
+        ++pt.estimates;
+        return out;
+    }
+
+    std::string summary() const override {
+        double estimateSeconds = 0;
+        uint64_t estimates = 0;
+        if (mThreads)
+            for (const PhotonThreadState& pt : *mThreads) {
+                estimateSeconds += pt.estimateSeconds;
+                estimates += pt.estimates;
+            }
+        const PhotonPassStats& p = mPassStats;
+        char buf[512];
+        std::snprintf(buf, sizeof buf,
+                      "photons: %llu traced, %llu stored in %.2fs (%.2f M photons/s) | map "
+                      "build %.2fs | %s estimate %.2fs thread time (%.1f µs/ray, k %d, max "
+                      "radius %.3g m) | photon paths cut at max_depth %llu",
+                      (unsigned long long)p.emitted, (unsigned long long)p.stored, p.seconds,
+                      p.seconds > 0 ? double(p.emitted) / p.seconds / 1e6 : 0.0, mBuildSeconds,
+                      mBeam ? "beam" : "point", estimateSeconds,
+                      estimates ? estimateSeconds / double(estimates) * 1e6 : 0.0,
+                      mSettings.kOrDefault(), double(mMaxRadius),
+                      (unsigned long long)p.cappedPaths);
+        return buf;
+    }
+
+    uint64_t cappedPaths() const override { return mSingle->cappedPaths(); }
+
+private:
+    PhotonIntegratorSettings mSettings;
+    std::unique_ptr<Integrator> mSingle;
+    std::vector<const Medium*> mMedia;
+    PhotonPassStats mPassStats;
+    std::unique_ptr<VolumePhotons> mPhotons;
+    std::unique_ptr<BeamEstimator> mBeam;
+    float mMaxRadius = 0.f, mStep = 0.f;
+    double mBuildSeconds = 0;
+    std::unique_ptr<tbb::enumerable_thread_specific<PhotonThreadState>> mThreads;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> makePhotonIntegrator(const PhotonIntegratorSettings& settings) {
+    return std::make_unique<PhotonMapIntegrator>(settings);
+}
+
+}  // namespace mirage

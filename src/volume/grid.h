@@ -14,7 +14,7 @@ namespace mirage {
 
 class FloatGrid {
 public:
-    using Accessor = nanovdb::ReadAccessor<float>;
+    using Accessor = nanovdb::FloatGrid::AccessorType;
     using Sampler = nanovdb::SampleFromVoxels<Accessor, 1, false>;  // trilinear
 
     FloatGrid() = default;

@@ -1,6 +1,10 @@
 // Reading OpenVDB files: validation, grid listing, and conversion of the grids a shader uses
 // to NanoVDB. This header does not include OpenVDB (its headers cost ~28 s and ~1 GB per
 // translation unit); only vdb_file.cpp and asset_writer.cpp do.
+//
+// Both OpenVDB (.vdb) and NanoVDB (.nvdb) files are accepted; the format is recognised by the
+// magic number, not the extension. Grids are addressed by name, or as "#N" for the N-th grid in
+// file order (0-based), which is the only way to address an unnamed grid.
 #pragma once
 
 #include <cstdint>
@@ -13,12 +17,12 @@
 namespace mirage {
 
 struct GridInfo {
-    std::string name;          // may be empty: unnamed grids are addressed as "#<index>"
-    std::string valueType;     // "float", "half" (stored as half), "double", "vec3s", "bool", ...
-    std::string gridClass;     // "fog volume", "level set", "staggered", "unknown"
-    Vec3d voxelSize;           // metres (object space)
+    std::string name;       // may be empty: unnamed grids are addressed as "#<index>"
+    std::string valueType;  // "float", "half" (stored as half), "double", "vec3s", "bool", ...
+    std::string gridClass;  // "fog volume", "level set", "staggered", "unknown"
+    Vec3d voxelSize;        // metres (object space)
     int64_t indexMin[3] = {0, 0, 0}, indexMax[3] = {0, 0, 0};  // active index bbox, inclusive
-    Bounds3 objectBounds;      // active bbox in object (VDB world) space, metres
+    Bounds3 objectBounds;  // active voxels' extent in object (VDB world) space, metres
     uint64_t activeVoxels = 0;
     uint64_t memoryBytes = 0;  // in-core size OpenVDB reports (file metadata when present)
     std::string transform;     // human-readable index → object map
@@ -27,14 +31,16 @@ struct GridInfo {
 
 struct VdbFileInfo {
     std::string path;
+    std::string format;  // "OpenVDB" or "NanoVDB"
     std::string fileVersion;
-    std::string libraryVersion;
-    std::vector<GridInfo> grids;
+    std::string libraryVersion;   // of the library that wrote the file
+    std::vector<GridInfo> grids;  // in file order: grids[N] is "#N"
 };
 
 // Checks that `path` exists, is a readable OpenVDB file (magic number, version) and that its
 // grid descriptors and offsets lie within the file size, before OpenVDB itself reads it.
-// Throws MirageError naming the file and what is wrong.
+// NanoVDB files get the same treatment (segment headers, grid sizes). Throws MirageError
+// naming the file and what is wrong.
 void validateVdbFile(const std::string& path);
 
 // Lists the grids (metadata only, cheap). Throws MirageError on a bad file.
@@ -44,7 +50,14 @@ VdbFileInfo inspectVdbFile(const std::string& path);
 // (float, half or double storage; Blosc/zip) or a NanoVDB file (.nvdb) and returns it as a
 // NanoVDB float grid. Voxels that are not finite or are negative are set to 0 and reported by
 // a warning naming the file, grid and count (the documented rule, see README "Input rules").
-// Throws MirageError if the file or grid is missing, or the grid is not a scalar fog volume.
+// Throws MirageError if the file or grid is missing, or the grid is not a scalar fog volume
+// (level set, vector, bool or integer grid, background other than 0, non-affine transform).
 FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName);
+
+// Test support: OpenVDB's own trilinear lookup (tools::BoxSampler) of grid `gridName` of an
+// OpenVDB file at each point, in index space (indexSpace = true) or object space, so that tests
+// can compare NanoVDB against OpenVDB without compiling OpenVDB headers themselves.
+std::vector<double> openvdbSampleForTest(const std::string& path, const std::string& gridName,
+                                         const std::vector<Vec3d>& points, bool indexSpace);
 
 }  // namespace mirage

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 
 #include "film/color.h"
@@ -168,4 +169,29 @@ TEST(EndToEnd, BadInputExitsNonZeroWithOneMessage) {
     EXPECT_NE(log.find("bad.vdb"), std::string::npos) << log;
     EXPECT_LT(log.size(), 600u) << log;
     EXPECT_FALSE(std::ifstream(dir + "/x.exr").good());
+}
+
+TEST(EndToEnd, TurntableAndFrameRangesNumberTheirOutputs) {
+    std::string dir = test::tempDir();
+    std::string vdb = fogAsset(dir);
+    std::string log;
+    ASSERT_EQ(0, test::runMirage("render '" + vdb + "' -o '" + dir + "/tt.exr' --turntable 2 "
+                                 "--resolution 16x16 --spp 1 --quiet", &log)) << log;
+    Image a = readExr(dir + "/tt.0001.exr"), b = readExr(dir + "/tt.0002.exr");
+    ASSERT_EQ(a.rgba.size(), b.rgba.size());
+    EXPECT_NE(a.rgba, b.rgba);  // the camera moved half a turn
+
+    // A frame pattern in the scene's volume path and in the output path.
+    std::filesystem::copy_file(vdb, dir + "/fog.0003.vdb");
+    std::filesystem::copy_file(vdb, dir + "/fog.0004.vdb");
+    std::string scene = std::string(kGoodScene);
+    scene.replace(scene.find("fog.vdb"), 7, "fog.$F4.vdb");
+    std::string p = writeFile(dir, "seq.toml", scene);
+    ASSERT_EQ(0, test::runMirage("render '" + p + "' -o '" + dir + "/seq.####.exr' --frames 3-4 "
+                                 "--quiet", &log)) << log;
+    EXPECT_TRUE(std::filesystem::exists(dir + "/seq.0003.exr"));
+    EXPECT_TRUE(std::filesystem::exists(dir + "/seq.0004.exr"));
+    EXPECT_NE(0, test::runMirage("render '" + p + "' -o '" + dir + "/x.exr' --frames 3-5 --quiet",
+                                 &log));  // frame 5 has no cache: a clear error, exit 1
+    EXPECT_NE(log.find("fog.0005.vdb"), std::string::npos) << log;
 }

@@ -1,0 +1,83 @@
+// Writing OpenVDB files: the procedural assets of `mirage make-asset` (the demo and the unit
+// tests make their own grids instead of shipping data) and small hand-specified grids for the
+// tests of bad input. This header does not include OpenVDB; asset_writer.cpp does.
+//
+// Files are written atomically: to a temporary file in the destination folder, then renamed
+// over the destination, so a failed or interrupted write never leaves a partial .vdb behind.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+
+namespace mirage {
+
+// The kinds writeProceduralAsset knows, in the order messages list them.
+const std::vector<std::string>& proceduralAssetKinds();
+
+// Writes a procedural OpenVDB asset to `path`. All grids are float fog volumes (background 0,
+// only non-zero voxels active), y is up, the asset is 2 m tall and stands on y = 0 centred on
+// the y axis; `resolution` is the number of voxels along the height (8 to 1024), so the voxel
+// size is 2 m / resolution. The content is a pure function of (kind, resolution, seed): the
+// noise is Mirage's own hash-based gradient noise, not a platform random engine, and the grids
+// do not depend on the thread count.
+//   "smoke"      a noise-modulated rising plume, 1.2 m wide. `density` (unitless, ≤ ~1.3; a
+//                shader scales it into σ), `temperature` (K): ~300 K ambient at the plume's
+//                edge rising to ~900 K in its core near the source, 0 outside the plume.
+//   "fire"       flames rising from a 0.6 m wide base into smoke, 1 m wide. `flame` (0..1
+//                reaction intensity), `temperature` (K) up to ~1800 K in the flames, ~300–700 K
+//                in the smoke, `density` (soot, unitless, ≤ ~1).
+//   "fog-sphere" `density` of a soft sphere centred at (0, 1, 0) m: 1 within 0.6 m of the
+//                centre, falling smoothly (smoothstep) to 0 at 1 m. Analytic; the seed is
+//                unused.
+// Throws MirageError for an unknown kind (listing the valid ones), a bad resolution, or a file
+// that cannot be written.
+void writeProceduralAsset(const std::string& kind, const std::string& path, int resolution = 64,
+                          uint64_t seed = 1);
+
+// A small grid given voxel by voxel, for tests: bad values, wrong types and classes, tiles,
+// unnamed grids, several grids per file.
+struct TestGridSpec {
+    struct Voxel {
+        Voxel() = default;
+        Voxel(int32_t i_, int32_t j_, int32_t k_, double value_, Vec3d vector_ = Vec3d())
+            : i(i_), j(j_), k(k_), value(value_), vector(vector_) {}
+        int32_t i = 0, j = 0, k = 0;
+        double value = 0.0;  // scalar value (bool: value != 0)
+        Vec3d vector;        // vec3s grids use this instead of value
+    };
+    // A constant active tile holding the 8³ (level 1), 128³ (level 2) or 4096³ (level 3)
+    // voxels around index (i, j, k).
+    struct Tile {
+        Tile() = default;
+        Tile(int32_t i_, int32_t j_, int32_t k_, int level_, double value_)
+            : i(i_), j(j_), k(k_), level(level_), value(value_) {}
+        int32_t i = 0, j = 0, k = 0;
+        int level = 1;
+        double value = 0.0;
+    };
+
+    std::string name = "density";          // "" writes an unnamed grid
+    std::string valueType = "float";       // "float", "double", "vec3s", "bool"
+    std::string gridClass = "fog volume";  // "fog volume", "level set", "staggered", "unknown"
+    double voxelSize = 0.1;                // metres
+    Vec3d origin;                          // object-space position of index (0,0,0), metres
+    double background = 0.0;
+    bool saveAsHalf = false;    // store float values as 16-bit half
+    std::vector<Voxel> voxels;  // active voxels
+    std::vector<Tile> tiles;
+};
+
+// Writes the grids, in this order, to one OpenVDB file. `compression` is "blosc" (falls back
+// to zip when this OpenVDB lacks Blosc), "zip" or "none"; note that OpenVDB never zips fog
+// volumes and level sets, so a zip test needs gridClass "unknown".
+void writeTestGrids(const std::string& path, const std::vector<TestGridSpec>& specs,
+                    const std::string& compression = "blosc");
+inline void writeTestGrid(const std::string& path, const TestGridSpec& spec,
+                          const std::string& compression = "blosc") {
+    writeTestGrids(path, {spec}, compression);
+}
+
+}  // namespace mirage

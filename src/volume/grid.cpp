@@ -1,0 +1,70 @@
+#include "volume/grid.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "core/error.h"
+
+namespace mirage {
+
+namespace {
+
+// The largest value a trilinear lookup can return. NanoVDB's node statistics cover active
+// values only, but the sampler also reads inactive voxels of a leaf and inactive tiles, so
+// every stored value counts: all leaf values, all tile values of the internal and root nodes,
+// and the background (what lies outside every tile).
+float maxStoredValue(const nanovdb::FloatGrid& grid) {
+    const auto& tree = grid.tree();
+    float m = tree.background();
+    const auto* leaf = tree.getFirstLeaf();
+    for (uint32_t i = 0; i < tree.nodeCount(0); ++i) {
+        const float* v = leaf[i].data()->mValues;
+        for (int k = 0; k < 512; ++k) m = std::max(m, v[k]);
+    }
+    const auto* lower = tree.getFirstLower();
+    for (uint32_t i = 0; i < tree.nodeCount(1); ++i) {
+        const auto* data = lower[i].data();
+        for (uint32_t n = 0; n < 4096; ++n)
+            if (!data->isChild(n)) m = std::max(m, data->mTable[n].value);
+    }
+    const auto* upper = tree.getFirstUpper();
+    for (uint32_t i = 0; i < tree.nodeCount(2); ++i) {
+        const auto* data = upper[i].data();
+        for (uint32_t n = 0; n < 32768; ++n)
+            if (!data->isChild(n)) m = std::max(m, data->mTable[n].value);
+    }
+    const auto* root = tree.root().data();
+    for (uint32_t t = 0; t < root->mTableSize; ++t) {
+        const auto* tile = root->tile(t);
+        if (!tile->isChild()) m = std::max(m, tile->value);
+    }
+    return m;
+}
+
+}  // namespace
+
+FloatGrid::FloatGrid(nanovdb::GridHandle<nanovdb::HostBuffer> handle, std::string name,
+                     uint64_t sanitizedVoxels)
+    : mHandle(std::make_shared<nanovdb::GridHandle<nanovdb::HostBuffer>>(std::move(handle))),
+      mName(std::move(name)),
+      mSanitized(sanitizedVoxels) {
+    mGrid = mHandle->grid<float>();
+    MIRAGE_CHECK(mGrid != nullptr);
+
+    // A voxel at index i contributes to trilinear lookups in the open interval (i-1, i+1) on
+    // each axis, so the medium is non-zero only inside the active index bbox dilated by one
+    // voxel. Its 8 corners through the grid's affine index → object map bound it in object space.
+    const nanovdb::CoordBBox box = mGrid->indexBBox();
+    if (!box.empty()) {
+        for (int c = 0; c < 8; ++c) {
+            nanovdb::Vec3d corner(c & 1 ? box.max()[0] + 1.0 : box.min()[0] - 1.0,
+                                  c & 2 ? box.max()[1] + 1.0 : box.min()[1] - 1.0,
+                                  c & 4 ? box.max()[2] + 1.0 : box.min()[2] - 1.0);
+            nanovdb::Vec3d p = mGrid->indexToWorld(corner);
+            mObjectBounds.expand(Vec3(float(p[0]), float(p[1]), float(p[2])));
+        }
+    }
+    mMaxValue = maxStoredValue(*mGrid);
+}
+
+}  // namespace mirage

@@ -1,0 +1,148 @@
+#include "volume/majorant.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace mirage {
+
+MajorantGrid::MajorantGrid(const Bounds3& bounds, int maxRes) : mBounds(bounds) {
+    MIRAGE_CHECK(maxRes >= 1);
+    if (bounds.empty()) return;
+    // Cells roughly cubic: the longest axis gets maxRes cells of edge h, the others as many
+    // cells of about the same edge as fit (at least one). Each axis is then divided exactly,
+    // so the cells tile the bounds with no remainder.
+    const Vec3 diag = bounds.diagonal();
+    const float longest = std::max(diag.x, std::max(diag.y, diag.z));
+    const float h = longest / float(maxRes);
+    for (int a = 0; a < 3; ++a) {
+        int n = h > 0.f ? int(std::ceil(diag[a] / h - 1e-3f)) : 1;
+        mRes[a] = clamp(n, 1, maxRes);
+        mCellSize[a] = diag[a] / float(mRes[a]);
+    }
+    mValues.assign(size_t(mRes[0]) * mRes[1] * mRes[2], 0.f);
+}
+
+void MajorantGrid::addConstant(float value) {
+    MIRAGE_CHECK(value >= 0.f);
+    for (float& v : mValues) v += value;
+}
+
+float MajorantGrid::maxValue() const {
+    float m = 0.f;
+    for (float v : mValues) m = std::max(m, v);
+    return m;
+}
+
+namespace {
+
+// Splats values onto the cells their trilinear footprint touches. A block of voxels (leaf or
+// tile) covering index coordinates [lo, hi] (inclusive) influences lookups in the open box
+// (lo - 1, hi + 1); that box, mapped to object space by the grid's affine map, bounds the
+// object-space region where any of its values can appear in a lookup.
+class Splatter {
+public:
+    Splatter(const nanovdb::FloatGrid& grid, const Bounds3& bounds, const int res[3],
+             const Vec3& cellSize, std::vector<float>& cells)
+        : mGrid(grid), mBounds(bounds), mCells(cells) {
+        for (int a = 0; a < 3; ++a) {
+            mRes[a] = res[a];
+            mInvCell[a] = cellSize[a] > 0.f ? 1.f / cellSize[a] : 0.f;
+        }
+    }
+
+    void splat(const nanovdb::Coord& origin, int dim, float value) {
+        if (!(value > 0.f)) return;
+        // The footprint, widened by a thousandth of a voxel so that float rounding in the
+        // sampler's world → index map cannot place a lookup just outside it.
+        constexpr double kPad = 1.001;
+        Bounds3 box;
+        for (int c = 0; c < 8; ++c) {
+            nanovdb::Vec3d corner;
+            for (int a = 0; a < 3; ++a)
+                corner[a] =
+                    c & (1 << a) ? double(origin[a]) + (dim - 1) + kPad : double(origin[a]) - kPad;
+            nanovdb::Vec3d p = mGrid.indexToWorld(corner);
+            box.expand(Vec3(float(p[0]), float(p[1]), float(p[2])));
+        }
+        int lo[3], hi[3];
+        for (int a = 0; a < 3; ++a) {
+            if (box.hi[a] < mBounds.lo[a] || box.lo[a] > mBounds.hi[a]) return;
+            lo[a] = cellIndex(a, box.lo[a]);
+            hi[a] = cellIndex(a, box.hi[a]);
+        }
+        for (int z = lo[2]; z <= hi[2]; ++z)
+            for (int y = lo[1]; y <= hi[1]; ++y) {
+                float* row = &mCells[(size_t(z) * mRes[1] + y) * mRes[0]];
+                for (int x = lo[0]; x <= hi[0]; ++x) row[x] = std::max(row[x], value);
+            }
+    }
+
+private:
+    int cellIndex(int a, float x) const {
+        float c = (x - mBounds.lo[a]) * mInvCell[a];
+        if (!(c > 0.f)) return 0;
+        return c >= float(mRes[a]) ? mRes[a] - 1 : int(c);
+    }
+
+    const nanovdb::FloatGrid& mGrid;
+    const Bounds3& mBounds;
+    std::vector<float>& mCells;
+    int mRes[3];
+    float mInvCell[3];
+};
+
+}  // namespace
+
+void MajorantGrid::addGrid(const FloatGrid& grid, float scale) {
+    MIRAGE_CHECK(grid.valid() && scale >= 0.f);
+    if (mValues.empty() || scale == 0.f) return;
+    const nanovdb::FloatGrid& g = *grid.grid();
+    const auto& tree = g.tree();
+
+    // Per-cell maximum of this grid first, then added: a sum of per-component maxima bounds
+    // the maximum of the sum (σt = Σ scale_i · grid_i).
+    std::vector<float> cells(mValues.size(), 0.f);
+    Splatter splatter(g, mBounds, mRes, mCellSize, cells);
+
+    // Leaves: the maximum over all 512 values, inactive ones included (the sampler reads them).
+    const auto* leaf = tree.getFirstLeaf();
+    for (uint32_t i = 0; i < tree.nodeCount(0); ++i) {
+        const float* v = leaf[i].data()->mValues;
+        float m = 0.f;
+        for (int k = 0; k < 512; ++k) m = std::max(m, v[k]);
+        splatter.splat(leaf[i].origin(), 8, m);
+    }
+    // Tiles of the lower (8³-voxel tiles) and upper (128³) internal nodes and of the root
+    // (4096³). Inactive tiles count too: their value is what a lookup there returns.
+    const auto* lower = tree.getFirstLower();
+    for (uint32_t i = 0; i < tree.nodeCount(1); ++i) {
+        const auto& node = lower[i];
+        for (uint32_t n = 0; n < 4096; ++n)
+            if (!node.data()->isChild(n))
+                splatter.splat(node.offsetToGlobalCoord(n), 8, node.data()->mTable[n].value);
+    }
+    const auto* upper = tree.getFirstUpper();
+    for (uint32_t i = 0; i < tree.nodeCount(2); ++i) {
+        const auto& node = upper[i];
+        for (uint32_t n = 0; n < 32768; ++n)
+            if (!node.data()->isChild(n))
+                splatter.splat(node.offsetToGlobalCoord(n), 128, node.data()->mTable[n].value);
+    }
+    const auto* root = tree.root().data();
+    for (uint32_t t = 0; t < root->mTableSize; ++t) {
+        const auto* tile = root->tile(t);
+        if (!tile->isChild()) splatter.splat(tile->origin(), 4096, tile->value);
+    }
+    // Outside every tile a lookup returns the background (0 for a loaded fog volume).
+    const float background = std::max(0.f, tree.background());
+
+    // The relative margin covers float rounding: a trilinear lerp of values ≤ m can come out
+    // an ulp above m.
+    const float margin = scale * (1.f + 1e-6f);
+    for (size_t i = 0; i < mValues.size(); ++i)
+        mValues[i] += margin * std::max(cells[i], background);
+}
+
+}  // namespace mirage

@@ -1,0 +1,432 @@
+// OpenVDB and NanoVDB files → NanoVDB float grids. One of the two translation units allowed to
+// include OpenVDB (with asset_writer.cpp): it costs ~28 s and ~1 GB to compile.
+//
+// Every path goes through vdbformat::scanFile first, which checks the file's own index against
+// its size; OpenVDB is only asked to read files whose offsets are known to be inside the file,
+// and whatever it throws is reported with a bounded message.
+#include "volume/vdb_file.h"
+
+#include <nanovdb/util/GridChecksum.h>
+#include <nanovdb/util/GridStats.h>
+#include <nanovdb/util/GridValidator.h>
+#include <nanovdb/util/OpenToNanoVDB.h>
+#include <openvdb/io/Compression.h>
+#include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/Interpolation.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <mutex>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+#include "volume/vdb_format.h"
+
+namespace mirage {
+
+namespace {
+
+using vdbformat::FileLayout;
+using vdbformat::Format;
+using vdbformat::GridRecord;
+
+[[noreturn]] void fail(const std::string& path, const std::string& msg) {
+    throw MirageError(FileLoc{path}, msg);
+}
+
+void initOpenVdb() {
+    static std::once_flag once;
+    std::call_once(once, [] { openvdb::initialize(); });
+}
+
+std::string fmt(double v) {
+    std::ostringstream s;
+    s.precision(6);
+    s << v;
+    return s.str();
+}
+
+std::string fmt(const openvdb::Vec3d& v) {
+    if (v[0] == v[1] && v[1] == v[2]) return fmt(v[0]);
+    return "(" + fmt(v[0]) + ", " + fmt(v[1]) + ", " + fmt(v[2]) + ")";
+}
+
+// "voxel size 0.476 m, index (0,0,0) at (-34, -13.1, -26.4) m", plus the map's kind when it
+// rotates or shears.
+std::string describeTransform(const openvdb::math::Transform& xform) {
+    const auto map = xform.baseMap();
+    if (!map->isLinear()) return map->type() + " (not affine)";
+    const openvdb::Mat4d m = map->getAffineMap()->getMat4();
+    bool axisAligned = true;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) axisAligned = axisAligned && (r == c || m(r, c) == 0.0);
+    std::string s = axisAligned ? "" : "affine (rotated or sheared), ";
+    s += "voxel size " + fmt(xform.voxelSize()) + " m, index (0,0,0) at (" + fmt(m(3, 0)) + ", " +
+         fmt(m(3, 1)) + ", " + fmt(m(3, 2)) + ") m";
+    return s;
+}
+
+std::string compressionName(uint32_t flags, Format format) {
+    if (format == Format::NanoVdb) return flags == 2 ? "blosc" : (flags == 1 ? "zip" : "none");
+    if (flags & vdbformat::kCompressBlosc) return "blosc";
+    if (flags & vdbformat::kCompressZip) return "zip";
+    return flags & vdbformat::kCompressActiveMask ? "active mask" : "none";
+}
+
+std::string nanoClassName(uint32_t c) {
+    static const char* kNames[] = {"unknown",   "level set",    "fog volume",
+                                   "staggered", "point index",  "point data",
+                                   "topology",  "voxel volume", "index grid"};
+    return c < sizeof(kNames) / sizeof(kNames[0]) ? kNames[c] : "unknown";
+}
+
+// What a value type is, for "expected a scalar fog volume" messages.
+std::string describeValueType(const std::string& t) {
+    if (t == "vec3s" || t == "vec3d" || t == "vec3i" || t == "vec3f") return "3-vector (" + t + ")";
+    if (t == "bool" || t == "mask") return "boolean (" + t + ")";
+    if (t.compare(0, 3, "int") == 0 || t.compare(0, 4, "uint") == 0) return "integer (" + t + ")";
+    if (t.compare(0, 2, "fp") == 0) return "quantized (" + t + ")";
+    if (t.compare(0, 6, "ptdata") == 0) return "point (" + t + ")";
+    return "'" + t + "'";
+}
+
+int requireGrid(const std::string& path, const FileLayout& layout, const std::string& name) {
+    int index = vdbformat::findGrid(layout, name);
+    if (index < 0)
+        fail(path, "no grid '" + boundedMessage(name, 60) +
+                       "' (grids: " + vdbformat::gridList(layout) + ")");
+    return index;
+}
+
+void checkFogClass(const std::string& path, const std::string& label, const std::string& cls) {
+    if (cls == "level set")
+        fail(path, "grid " + label +
+                       " is a level set (signed distance), expected a fog volume "
+                       "(density); convert it to a fog volume first (e.g. vdb_tool or Houdini)");
+    if (cls != "fog volume" && cls != "unknown")
+        fail(path, "grid " + label + " is a " + cls + " grid, expected a fog volume (density)");
+}
+
+openvdb::GridBase::Ptr readOpenVdbGrid(const std::string& path, const GridRecord& record,
+                                       const std::string& label, bool metadataOnly) {
+    initOpenVdb();
+    try {
+        openvdb::io::File file(path);
+        // No delayed loading: it memory-maps the file, which then must not change while in use.
+        file.open(/*delayLoad=*/false);
+        const std::string name = openvdb::io::GridDescriptor::nameAsString(record.uniqueName);
+        openvdb::GridBase::Ptr grid =
+            metadataOnly ? file.readGridMetadata(name) : file.readGrid(name);
+        file.close();
+        return grid;
+    } catch (const std::exception& e) {
+        fail(path, "OpenVDB could not read grid " + label + ": " + boundedMessage(e.what()));
+    }
+}
+
+// Reads a grid and returns it as a float grid (double grids are converted; float grids stored
+// as half come back as float already), after checking that it is a scalar fog volume.
+openvdb::FloatGrid::Ptr readFogVolume(const std::string& path, const GridRecord& record,
+                                      const std::string& label) {
+    const std::string valueType = vdbformat::valueTypeOf(record);
+    if (valueType != "float" && valueType != "half" && valueType != "double")
+        fail(path, "grid " + label + " holds " + describeValueType(valueType) +
+                       " values, expected a scalar float fog volume (density)");
+    openvdb::GridBase::Ptr base = readOpenVdbGrid(path, record, label, false);
+    checkFogClass(path, label, openvdb::GridBase::gridClassToString(base->getGridClass()));
+    if (!base->transform().baseMap()->isLinear())
+        fail(path, "grid " + label + " has a " + base->transform().mapType() +
+                       " transform; only affine index → object maps are supported");
+
+    openvdb::FloatGrid::Ptr grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+    if (!grid) {
+        auto dgrid = openvdb::gridPtrCast<openvdb::DoubleGrid>(base);
+        if (!dgrid) fail(path, "grid " + label + " has an unexpected tree type " + record.type);
+        // Value-converting deep copy: same topology, values rounded to float.
+        grid = openvdb::FloatGrid::create(std::make_shared<openvdb::FloatTree>(dgrid->tree()));
+        grid->setTransform(dgrid->transform().copy());
+        grid->insertMeta(*dgrid);
+    }
+    // A fog volume is 0 outside its active voxels; a non-zero background fills all of space
+    // (level sets store their narrow-band width there).
+    if (grid->background() != 0.f)
+        fail(path, "grid " + label + " has background value " + fmt(grid->background()) +
+                       ", expected 0 for a fog volume (is it a level set?)");
+    return grid;
+}
+
+// Reads a NanoVDB grid's bytes, decompressing with OpenVDB's Blosc/zip readers: their stream
+// format (an int64 byte count, then the compressed bytes) is the one nanovdb::io writes, and it
+// spares Mirage a direct dependency on libblosc.
+nanovdb::GridHandle<nanovdb::HostBuffer> readNanoVdbGrid(const std::string& path,
+                                                         const GridRecord& record,
+                                                         const std::string& label) {
+    constexpr uint64_t kChunkBytes = uint64_t(1) << 30;  // nanovdb::io's Blosc chunk size
+    // Smaller than a grid, a tree and a root header cannot be a grid.
+    constexpr uint64_t kMinGridBytes = sizeof(nanovdb::NanoGrid<float>) +
+                                       sizeof(nanovdb::NanoTree<float>) +
+                                       sizeof(nanovdb::NanoRoot<float>);
+    if (record.nanoGridBytes < kMinGridBytes)
+        fail(path, "corrupt: NanoVDB grid " + label + " claims only " +
+                       std::to_string(record.nanoGridBytes) + " bytes");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) fail(path, "cannot be opened");
+    in.seekg(std::streamoff(record.gridPos));
+    nanovdb::HostBuffer buffer = nanovdb::HostBuffer::create(record.nanoGridBytes);
+    char* data = reinterpret_cast<char*>(buffer.data());
+    try {
+        if (record.compression == 0) {
+            in.read(data, std::streamsize(record.nanoGridBytes));
+        } else {
+            uint64_t pos = record.gridPos, remaining = record.nanoGridBytes;
+            do {
+                // Check the chunk's byte count against the grid's extent before OpenVDB
+                // allocates a buffer of that size.
+                int64_t bytes = 0;
+                in.read(reinterpret_cast<char*>(&bytes), 8);
+                if (!in || bytes <= 0 || pos + 8 + uint64_t(bytes) > record.endPos)
+                    fail(path, "corrupt: compressed NanoVDB grid " + label + " has a chunk of " +
+                                   std::to_string(bytes) + " bytes at byte " + std::to_string(pos) +
+                                   " that does not fit in the grid");
+                in.seekg(std::streamoff(pos));
+                uint64_t chunk =
+                    record.compression == 2 ? std::min(remaining, kChunkBytes) : remaining;
+                if (record.compression == 2)
+                    openvdb::io::bloscFromStream(in, data, chunk);
+                else
+                    openvdb::io::unzipFromStream(in, data, chunk);
+                pos += 8 + uint64_t(bytes);
+                in.seekg(std::streamoff(pos));
+                data += chunk;
+                remaining -= chunk;
+            } while (remaining > 0);
+        }
+    } catch (const MirageError&) {
+        throw;
+    } catch (const std::exception& e) {
+        fail(path, "could not decompress NanoVDB grid " + label + ": " + boundedMessage(e.what()));
+    }
+    if (!in) fail(path, "read error in NanoVDB grid " + label);
+
+    nanovdb::GridHandle<nanovdb::HostBuffer> handle(std::move(buffer));
+    const nanovdb::GridMetaData* meta = handle.gridMetaData();
+    if (!meta || !meta->isValid() || meta->gridSize() != record.nanoGridBytes)
+        fail(path, "corrupt: NanoVDB grid " + label + " does not hold a valid grid");
+    nanovdb::FloatGrid* grid = handle.grid<float>();
+    if (!grid) fail(path, "corrupt: NanoVDB grid " + label + " is not the float grid it claims");
+    // Checksum first, then every node pointer against the buffer's extent.
+    std::string problem = nanovdb::GridValidator<float>::check(*grid, /*detailed=*/true);
+    if (!problem.empty())
+        fail(path, "corrupt: NanoVDB grid " + label + ": " + boundedMessage(problem));
+    return handle;
+}
+
+// Sets values that are negative or not finite to 0, in leaves (active and inactive values: the
+// sampler reads both) and tiles, and returns how many voxels that touched. Fog volumes are
+// densities; a negative σ would make free-flight sampling meaningless and a NaN poisons
+// every pixel it reaches.
+uint64_t sanitize(nanovdb::FloatGrid& grid) {
+    uint64_t count = 0;
+    auto fix = [&count](float& v, uint64_t voxels) {
+        if (!(v >= 0.f) || !std::isfinite(v)) {
+            v = 0.f;
+            count += voxels;
+        }
+    };
+    auto& tree = grid.tree();
+    auto* leaf = tree.getFirstLeaf();
+    for (uint32_t i = 0; i < tree.nodeCount(0); ++i)
+        for (float& v : leaf[i].data()->mValues) fix(v, 1);
+    auto* lower = tree.getFirstLower();
+    for (uint32_t i = 0; i < tree.nodeCount(1); ++i)
+        for (uint32_t n = 0; n < 4096; ++n)
+            if (!lower[i].data()->isChild(n)) fix(lower[i].data()->mTable[n].value, 512);
+    auto* upper = tree.getFirstUpper();
+    for (uint32_t i = 0; i < tree.nodeCount(2); ++i)
+        for (uint32_t n = 0; n < 32768; ++n)
+            if (!upper[i].data()->isChild(n))
+                fix(upper[i].data()->mTable[n].value, uint64_t(128) * 128 * 128);
+    auto* root = tree.root().data();
+    for (uint32_t t = 0; t < root->mTableSize; ++t)
+        if (!root->tile(t)->isChild()) fix(root->tile(t)->value, uint64_t(4096) * 4096 * 4096);
+    if (count > 0) {
+        // The node statistics (min/max) and the checksum describe the old values.
+        nanovdb::gridStats(grid, nanovdb::StatsMode::All);
+        nanovdb::updateChecksum(grid, nanovdb::ChecksumMode::Partial);
+    }
+    return count;
+}
+
+void warnSanitizedOnce(const std::string& path, const std::string& label, uint64_t count) {
+    static std::mutex mutex;
+    static std::set<std::string> warned;
+    std::lock_guard<std::mutex> lock(mutex);
+    if (!warned.insert(path + '\n' + label).second) return;
+    std::fprintf(stderr,
+                 "warning: %s: grid %s: %llu voxels were negative or not finite and were set "
+                 "to 0\n",
+                 path.c_str(), label.c_str(), static_cast<unsigned long long>(count));
+}
+
+GridInfo openVdbGridInfo(const std::string& path, const FileLayout& layout, int index) {
+    const GridRecord& record = layout.grids[size_t(index)];
+    const std::string label = vdbformat::gridLabel(layout, index);
+    openvdb::GridBase::Ptr grid = readOpenVdbGrid(path, record, label, true);
+
+    GridInfo info;
+    info.name = record.name;
+    info.valueType = grid->valueType();
+    auto halfMeta =
+        grid->getMetadata<openvdb::BoolMetadata>(openvdb::GridBase::META_SAVE_HALF_FLOAT);
+    if (info.valueType == "float" &&
+        (record.savedAsHalf || grid->saveFloatAsHalf() || (halfMeta && halfMeta->value())))
+        info.valueType = "half";
+    info.gridClass = openvdb::GridBase::gridClassToString(grid->getGridClass());
+    const openvdb::Vec3d vs = grid->transform().voxelSize();
+    info.voxelSize = Vec3d(vs[0], vs[1], vs[2]);
+    info.transform = describeTransform(grid->transform());
+    info.compression = compressionName(record.compression, Format::OpenVdb);
+
+    // The statistics OpenVDB stores with each grid; files written without them cost a full
+    // read of the grid.
+    auto bmin = grid->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MIN);
+    auto bmax = grid->getMetadata<openvdb::Vec3IMetadata>(openvdb::GridBase::META_FILE_BBOX_MAX);
+    auto voxels =
+        grid->getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_VOXEL_COUNT);
+    auto mem = grid->getMetadata<openvdb::Int64Metadata>(openvdb::GridBase::META_FILE_MEM_BYTES);
+    openvdb::CoordBBox box;
+    if (bmin && bmax && voxels) {
+        box = openvdb::CoordBBox(openvdb::Coord(bmin->value()), openvdb::Coord(bmax->value()));
+        info.activeVoxels = uint64_t(std::max<int64_t>(0, voxels->value()));
+        info.memoryBytes = mem ? uint64_t(std::max<int64_t>(0, mem->value())) : 0;
+    } else {
+        openvdb::GridBase::Ptr full = readOpenVdbGrid(path, record, label, false);
+        box = full->evalActiveVoxelBoundingBox();
+        info.activeVoxels = full->activeVoxelCount();
+        info.memoryBytes = full->memUsage();
+    }
+    if (info.activeVoxels > 0 && !box.empty()) {
+        for (int a = 0; a < 3; ++a) {
+            info.indexMin[a] = box.min()[a];
+            info.indexMax[a] = box.max()[a];
+        }
+        // Voxel centres are at integer index coordinates: the voxels span ±½ around them.
+        for (int c = 0; c < 8; ++c) {
+            openvdb::Vec3d corner(c & 1 ? box.max()[0] + 0.5 : box.min()[0] - 0.5,
+                                  c & 2 ? box.max()[1] + 0.5 : box.min()[1] - 0.5,
+                                  c & 4 ? box.max()[2] + 0.5 : box.min()[2] - 0.5);
+            openvdb::Vec3d p = grid->transform().indexToWorld(corner);
+            info.objectBounds.expand(Vec3(float(p[0]), float(p[1]), float(p[2])));
+        }
+    }
+    return info;
+}
+
+GridInfo nanoVdbGridInfo(const GridRecord& record) {
+    GridInfo info;
+    info.name = record.name;
+    info.valueType = vdbformat::valueTypeOf(record);
+    info.gridClass = nanoClassName(record.nanoGridClass);
+    info.voxelSize =
+        Vec3d(record.nanoVoxelSize[0], record.nanoVoxelSize[1], record.nanoVoxelSize[2]);
+    info.activeVoxels = record.nanoVoxelCount;
+    info.memoryBytes = record.nanoGridBytes;
+    info.compression = compressionName(record.compression, Format::NanoVdb);
+    info.transform = "voxel size " +
+                     fmt(openvdb::Vec3d(info.voxelSize.x, info.voxelSize.y, info.voxelSize.z)) +
+                     " m (NanoVDB file metadata)";
+    const int32_t* b = record.nanoIndexBBox;
+    if (info.activeVoxels > 0 && b[0] <= b[3] && b[1] <= b[4] && b[2] <= b[5]) {
+        for (int a = 0; a < 3; ++a) {
+            info.indexMin[a] = b[a];
+            info.indexMax[a] = b[a + 3];
+        }
+        // NanoVDB's world bbox maps [min, max + 1] (voxel corners at integer coordinates);
+        // shifting by half a voxel gives the ±½ extent around voxel centres used above.
+        for (int a = 0; a < 3; ++a) {
+            double h = 0.5 * record.nanoVoxelSize[a];
+            info.objectBounds.lo[a] = float(record.nanoWorldBBox[a] - h);
+            info.objectBounds.hi[a] = float(record.nanoWorldBBox[a + 3] - h);
+        }
+    }
+    return info;
+}
+
+}  // namespace
+
+void validateVdbFile(const std::string& path) { vdbformat::scanFile(path); }
+
+VdbFileInfo inspectVdbFile(const std::string& path) {
+    const FileLayout layout = vdbformat::scanFile(path);
+    VdbFileInfo info;
+    info.path = path;
+    if (layout.format == Format::NanoVdb) {
+        info.format = "NanoVDB";
+        info.fileVersion = info.libraryVersion = vdbformat::nanoVersionString(layout.fileVersion);
+        for (const GridRecord& record : layout.grids) info.grids.push_back(nanoVdbGridInfo(record));
+        return info;
+    }
+    info.format = "OpenVDB";
+    info.fileVersion = std::to_string(layout.fileVersion);
+    info.libraryVersion =
+        std::to_string(layout.libraryMajor) + "." + std::to_string(layout.libraryMinor);
+    for (size_t i = 0; i < layout.grids.size(); ++i)
+        info.grids.push_back(openVdbGridInfo(path, layout, int(i)));
+    return info;
+}
+
+FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName) {
+    const FileLayout layout = vdbformat::scanFile(path);
+    const int index = requireGrid(path, layout, gridName);
+    const GridRecord& record = layout.grids[size_t(index)];
+    const std::string label = vdbformat::gridLabel(layout, index);
+
+    nanovdb::GridHandle<nanovdb::HostBuffer> handle;
+    if (layout.format == Format::NanoVdb) {
+        const std::string valueType = vdbformat::valueTypeOf(record);
+        if (valueType != "float")
+            fail(path, "NanoVDB grid " + label + " holds " + describeValueType(valueType) +
+                           " values, expected a scalar float fog volume (density)");
+        checkFogClass(path, label, nanoClassName(record.nanoGridClass));
+        handle = readNanoVdbGrid(path, record, label);
+        float background = handle.grid<float>()->tree().background();
+        if (background != 0.f)
+            fail(path, "grid " + label + " has background value " + fmt(background) +
+                           ", expected 0 for a fog volume (is it a level set?)");
+    } else {
+        openvdb::FloatGrid::Ptr grid = readFogVolume(path, record, label);
+        try {
+            handle = nanovdb::openToNanoVDB(*grid, nanovdb::StatsMode::All,
+                                            nanovdb::ChecksumMode::Partial);
+        } catch (const std::exception& e) {
+            fail(path,
+                 "could not convert grid " + label + " to NanoVDB: " + boundedMessage(e.what()));
+        }
+    }
+    uint64_t sanitized = sanitize(*handle.grid<float>());
+    if (sanitized > 0) warnSanitizedOnce(path, label, sanitized);
+    std::string name = record.name.empty() ? "#" + std::to_string(index) : record.name;
+    return FloatGrid(std::move(handle), std::move(name), sanitized);
+}
+
+std::vector<double> openvdbSampleForTest(const std::string& path, const std::string& gridName,
+                                         const std::vector<Vec3d>& points, bool indexSpace) {
+    const FileLayout layout = vdbformat::scanFile(path);
+    if (layout.format != Format::OpenVdb) fail(path, "not an OpenVDB file");
+    const int index = requireGrid(path, layout, gridName);
+    openvdb::FloatGrid::Ptr grid =
+        readFogVolume(path, layout.grids[size_t(index)], vdbformat::gridLabel(layout, index));
+    std::vector<double> values;
+    values.reserve(points.size());
+    openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(*grid);
+    for (const Vec3d& p : points) {
+        openvdb::Vec3d q(p.x, p.y, p.z);
+        values.push_back(indexSpace ? sampler.isSample(q) : sampler.wsSample(q));
+    }
+    return values;
+}
+
+}  // namespace mirage

@@ -1,0 +1,182 @@
+// `mirage make-asset`: procedural OpenVDB assets are deterministic for a seed, have the
+// documented grids and value ranges, and are written atomically.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "core/error.h"
+#include "test_support.h"
+#include "volume/asset_writer.h"
+#include "volume/vdb_file.h"
+
+namespace mirage {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The file's bytes without its header UUID (bytes 21–56 of a version-224 file), which OpenVDB
+// draws at random on every write.
+std::string contentWithoutUuid(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (b.size() > 57) b.replace(21, 36, 36, '-');
+    return b;
+}
+
+struct ValueRange {
+    float lo = kInfinity, hi = -kInfinity;
+    uint64_t active = 0;
+};
+
+// Range of the active voxel values, read straight from the NanoVDB leaves.
+ValueRange activeRange(const FloatGrid& g) {
+    ValueRange r;
+    const auto& tree = g.grid()->tree();
+    const auto* leaf = tree.getFirstLeaf();
+    for (uint32_t i = 0; i < tree.nodeCount(0); ++i)
+        for (uint32_t k = 0; k < 512; ++k)
+            if (leaf[i].isActive(k)) {
+                float v = leaf[i].getValue(k);
+                r.lo = std::min(r.lo, v);
+                r.hi = std::max(r.hi, v);
+                ++r.active;
+            }
+    return r;
+}
+
+TEST(Asset, SameSeedSameFileDifferentSeedDifferentFile) {
+    const std::string dir = test::tempDir();
+    writeProceduralAsset("smoke", dir + "/a.vdb", 32, 7);
+    writeProceduralAsset("smoke", dir + "/b.vdb", 32, 7);
+    writeProceduralAsset("smoke", dir + "/c.vdb", 32, 8);
+    const std::string a = contentWithoutUuid(dir + "/a.vdb");
+    EXPECT_GT(a.size(), 1000u);
+    EXPECT_EQ(a, contentWithoutUuid(dir + "/b.vdb"));
+    EXPECT_NE(a, contentWithoutUuid(dir + "/c.vdb"));
+
+    // The voxel values themselves, through the loader.
+    FloatGrid ga = loadFloatGrid(dir + "/a.vdb", "density");
+    FloatGrid gb = loadFloatGrid(dir + "/b.vdb", "density");
+    FloatGrid gc = loadFloatGrid(dir + "/c.vdb", "density");
+    EXPECT_EQ(ga.activeVoxels(), gb.activeVoxels());
+    int differ = 0;
+    const auto& ta = ga.grid()->tree();
+    for (int k = 0; k < 20; ++k)
+        for (int j = 0; j < 32; ++j)
+            for (int i = 0; i < 20; ++i) {
+                nanovdb::Coord c(i, j, k);
+                ASSERT_EQ(ta.getValue(c), gb.grid()->tree().getValue(c));
+                differ += ta.getValue(c) != gc.grid()->tree().getValue(c);
+            }
+    EXPECT_GT(differ, 100);
+}
+
+TEST(Asset, KindsHaveTheDocumentedGridsAndRanges) {
+    const std::string dir = test::tempDir();
+    const int res = 48;
+    struct Expect {
+        const char* kind;
+        std::vector<std::string> grids;
+    };
+    const Expect expects[] = {{"smoke", {"density", "temperature"}},
+                              {"fire", {"density", "temperature", "flame"}},
+                              {"fog-sphere", {"density"}}};
+    for (const Expect& e : expects) {
+        SCOPED_TRACE(e.kind);
+        const std::string path = dir + "/" + e.kind + ".vdb";
+        writeProceduralAsset(e.kind, path, res, 1);
+        VdbFileInfo info = inspectVdbFile(path);
+        ASSERT_EQ(info.grids.size(), e.grids.size());
+        for (size_t i = 0; i < e.grids.size(); ++i) {
+            const GridInfo& gi = info.grids[i];
+            EXPECT_EQ(gi.name, e.grids[i]);
+            EXPECT_EQ(gi.valueType, "float");
+            EXPECT_EQ(gi.gridClass, "fog volume");
+            EXPECT_NEAR(gi.voxelSize.x, 2.0 / res, 1e-6);
+            // Sparse: far fewer active voxels than the dense domain.
+            EXPECT_GT(gi.activeVoxels, 1000u);
+            EXPECT_LE(gi.indexMax[1] - gi.indexMin[1] + 1, res);
+            // Standing on y = 0, at most 2 m tall; the density about 2 m (flames are lower).
+            EXPECT_GT(gi.objectBounds.lo.y, -0.01f);
+            EXPECT_LT(gi.objectBounds.hi.y, 2.01f);
+            if (i == 0) {
+                EXPECT_GT(gi.objectBounds.hi.y - gi.objectBounds.lo.y, 1.5f);
+            }
+        }
+        EXPECT_EQ(info.grids[0].compression, "blosc");
+
+        FloatGrid density = loadFloatGrid(path, "density");
+        ValueRange d = activeRange(density);
+        EXPECT_GT(d.lo, 0.f);
+        EXPECT_GT(d.hi, 0.5f);
+        EXPECT_LE(d.hi, 1.3f);
+        EXPECT_LT(d.active, uint64_t(res) * res * res);
+        if (e.grids.size() > 1) {
+            ValueRange t = activeRange(loadFloatGrid(path, "temperature"));
+            EXPECT_GE(t.lo, 299.f);
+            if (std::string(e.kind) == "smoke") {
+                EXPECT_LE(t.hi, 900.f);
+                EXPECT_GT(t.hi, 750.f);
+            } else {
+                EXPECT_LE(t.hi, 1800.f);
+                EXPECT_GT(t.hi, 1500.f);
+                ValueRange f = activeRange(loadFloatGrid(path, "flame"));
+                EXPECT_GT(f.lo, 0.f);
+                EXPECT_LE(f.hi, 1.f);
+                EXPECT_GT(f.hi, 0.8f);
+            }
+        }
+    }
+}
+
+TEST(Asset, FogSphereIsTheDocumentedSoftSphere) {
+    const std::string path = test::tempDir() + "/sphere.vdb";
+    writeProceduralAsset("fog-sphere", path, 64, 1);
+    FloatGrid g = loadFloatGrid(path, "density");
+    auto acc = g.accessor();
+    EXPECT_NEAR(g.sample(acc, Vec3(0.f, 1.f, 0.f)), 1.f, 1e-6f);
+    EXPECT_NEAR(g.sample(acc, Vec3(0.3f, 1.2f, -0.2f)), 1.f, 1e-6f);
+    // Halfway through the falloff (r = 0.8 m) smoothstep gives ½.
+    EXPECT_NEAR(g.sample(acc, Vec3(0.8f, 1.f, 0.f)), 0.5f, 0.02f);
+    EXPECT_EQ(g.sample(acc, Vec3(0.f, 2.2f, 0.f)), 0.f);
+    EXPECT_EQ(g.sample(acc, Vec3(0.9f, 1.f, 0.9f)), 0.f);
+}
+
+TEST(Asset, BadKindListsTheValidKinds) {
+    const std::string path = test::tempDir() + "/x.vdb";
+    try {
+        writeProceduralAsset("smokey", path, 32, 1);
+        ADD_FAILURE() << "no error";
+    } catch (const MirageError& e) {
+        EXPECT_NE(std::string(e.what()).find("'smokey' (valid kinds: smoke, fire, fog-sphere)"),
+                  std::string::npos)
+            << e.what();
+    }
+    EXPECT_THROW(writeProceduralAsset("smoke", path, 2, 1), MirageError);
+    EXPECT_FALSE(fs::exists(path));
+}
+
+TEST(Asset, WritesAtomicallyAndLeavesNoTemporaryFiles) {
+    const std::string dir = test::tempDir();
+    const std::string path = dir + "/smoke.vdb";
+    writeProceduralAsset("smoke", path, 16, 1);
+    writeProceduralAsset("smoke", path, 24, 2);  // replaces the first
+    EXPECT_EQ(inspectVdbFile(path).grids.at(0).indexMax[1], 23);
+
+    // A destination that cannot be replaced (a folder) or whose folder is missing: an error,
+    // and nothing left behind.
+    fs::create_directory(dir + "/taken.vdb");
+    EXPECT_THROW(writeProceduralAsset("fog-sphere", dir + "/taken.vdb", 16, 1), MirageError);
+    EXPECT_THROW(writeProceduralAsset("fog-sphere", dir + "/missing/x.vdb", 16, 1), MirageError);
+    int files = 0;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        ++files;
+        EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
+    }
+    EXPECT_EQ(files, 2);
+}
+
+}  // namespace
+}  // namespace mirage

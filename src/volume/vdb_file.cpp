@@ -122,6 +122,10 @@ openvdb::GridBase::Ptr readOpenVdbGrid(const std::string& path, const GridRecord
             metadataOnly ? file.readGridMetadata(name) : file.readGrid(name);
         file.close();
         return grid;
+    } catch (const std::bad_alloc&) {
+        // OpenVDB allocates whatever size the file claims for a compressed block.
+        fail(path,
+             "OpenVDB ran out of memory reading grid " + label + "; its data is probably corrupt");
     } catch (const std::exception& e) {
         fail(path, "OpenVDB could not read grid " + label + ": " + boundedMessage(e.what()));
     }

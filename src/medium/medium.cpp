@@ -135,6 +135,19 @@ void Medium::eval(const Vec3& p, Context& ctx, MediumPoint* out) const {
     }
 }
 
+float Medium::sigmaSAt(const Vec3& p, Context& ctx, float lambdaNm) const {
+    float sigmaS = 0.f;
+    for (size_t i = 0; i < mShader.components.size(); ++i) {
+        const MediumComponent& comp = mShader.components[i];
+        float xs = comp.sigmaS(lambdaNm);
+        if (xs == 0.f) continue;
+        int slot = ctx.mSlot[i];
+        float c = slot < 0 ? 1.f : mGrids[slot].sample(ctx.mAcc[slot], p);
+        sigmaS += c * comp.concentration * mDensityScale * xs;
+    }
+    return sigmaS;
+}
+
 SampledSpectrum Medium::phaseEval(const MediumPoint& mp, const Vec3& wi, const Vec3& wo) const {
     float cosTheta = dot(wi, wo);
     if (mp.components == 1) return SampledSpectrum(mPhases[0].eval(cosTheta));

@@ -77,6 +77,9 @@ public:
 
     // Coefficients at an object-space point.
     void eval(const Vec3& pObject, Context& ctx, MediumPoint* out) const;
+    // Scattering coefficient σs(x, λ) (1/m) at an object-space point for one wavelength —
+    // a photon's — whatever the context's wavelengths: Σ_c c_c(x) σs,c(λ).
+    float sigmaSAt(const Vec3& pObject, Context& ctx, float lambdaNm) const;
 
     // Phase function of the mixture at a point: p(λ) = Σ_c σs,c(λ) p_c / σs(λ).
     SampledSpectrum phaseEval(const MediumPoint& mp, const Vec3& wi, const Vec3& wo) const;

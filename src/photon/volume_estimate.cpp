@@ -10,12 +10,40 @@
 
 namespace mirage {
 
+ScatteringProbe::ScatteringProbe(const std::vector<const Medium*>& media) : mMedia(media) {
+    for (const Medium* m : media) {
+        mWorldToObject.push_back(m->objectToWorld().inverse());
+        mContexts.emplace_back(*m);
+        for (const MediumComponent& c : m->shader().components) mGrey &= c.sigmaS.isConstant();
+    }
+}
+
+float ScatteringProbe::sigmaS(const Vec3& worldP, float lambdaNm) {
+    float sigmaS = 0.f;
+    for (size_t i = 0; i < mMedia.size(); ++i) {
+        Vec3 p = mWorldToObject[i].point(worldP);
+        Bounds3 box = mMedia[i]->objectBounds();
+        if (!(p.x >= box.lo.x && p.y >= box.lo.y && p.z >= box.lo.z && p.x <= box.hi.x &&
+              p.y <= box.hi.y && p.z <= box.hi.z))
+            continue;
+        sigmaS += mMedia[i]->sigmaSAt(p, mContexts[i], lambdaNm);
+    }
+    return sigmaS;
+}
+
 VolumePhotons::VolumePhotons(PhotonList photons, const std::vector<const Medium*>& media)
     : mMap(std::move(photons)) {
     const size_t n = mMap.size();
     mFluxXyz.resize(n);
     for (size_t i = 0; i < n; ++i)
         mFluxXyz[i] = cieXyz(mMap[i].lambda) * (mMap[i].power / kCieYIntegral);
+    mSigmaS.resize(n);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1024),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          ScatteringProbe probe(media);
+                          for (size_t i = r.begin(); i < r.end(); ++i)
+                              mSigmaS[i] = probe.sigmaS(mMap[i].p, mMap[i].lambda);
+                      });
 
     // The lobes of every component of every medium, in order. One lobe, or lobes that are all
     // the same, need no per-photon weights.
@@ -115,7 +143,7 @@ Vec3 pointEstimate(const VolumePhotons& photons, const Vec3& x, const Vec3& wo, 
 
 Vec3 pointEstimateAlongRay(const VolumePhotons& photons, const Ray& ray,
                            const RayOpticalDepth& depth, int k, float maxRadius, float step,
-                           float u, PhotonNeighbour* buffer) {
+                           float u, PhotonNeighbour* buffer, ScatteringProbe& probe) {
     MIRAGE_CHECK(k >= 2);
     if (depth.empty() || photons.size() == 0 || !(step > 0.f)) return Vec3(0.f);
     const Vec3 wo = -ray.d;
@@ -125,8 +153,15 @@ Vec3 pointEstimateAlongRay(const VolumePhotons& photons, const Ray& ray,
     for (int j = 0;; ++j) {
         float t = depth.tBegin() + (float(j) + u) * step;
         if (!(t < depth.tEnd())) break;
-        sum += gather(photons, ray.at(t), wo, k, maxRadius, buffer, [&](uint32_t slot) {
-            return depth.transmittance(t, photons.map()[slot].lambda);
+        Vec3 x = ray.at(t);
+        float greySigmaS = probe.grey() ? probe.sigmaS(x, 550.f) : 0.f;
+        if (probe.grey() && greySigmaS == 0.f) continue;  // nothing in-scatters here
+        sum += gather(photons, x, wo, k, maxRadius, buffer, [&](uint32_t slot) {
+            float lambda = photons.map()[slot].lambda;
+            float atPhoton = photons.sigmaS(slot);
+            if (!(atPhoton > 0.f)) return 0.f;
+            float here = probe.grey() ? greySigmaS : probe.sigmaS(x, lambda);
+            return depth.transmittance(t, lambda) * here / atPhoton;
         });
     }
     return sum * step;

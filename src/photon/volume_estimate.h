@@ -24,8 +24,23 @@
 
 namespace mirage {
 
-// The kd-tree plus, per slot, what every estimate needs of a photon: its flux as XYZ and its
-// phase function.
+// σs(x, λ) summed over the media whose box contains x, for one thread (grid accessors).
+class ScatteringProbe {
+public:
+    explicit ScatteringProbe(const std::vector<const Medium*>& media);
+    float sigmaS(const Vec3& worldP, float lambdaNm);
+    // True when no medium's σs varies with wavelength: σs(x) may then be taken once per point.
+    bool grey() const { return mGrey; }
+
+private:
+    std::vector<const Medium*> mMedia;
+    std::vector<Transform> mWorldToObject;
+    std::vector<Medium::Context> mContexts;
+    bool mGrey = true;
+};
+
+// The kd-tree plus, per slot, what every estimate needs of a photon: its flux as XYZ, its
+// phase function and the scattering coefficient where it was stored.
 class VolumePhotons {
 public:
     VolumePhotons() = default;
@@ -40,9 +55,12 @@ public:
     const Vec3& fluxXyz(size_t slot) const { return mFluxXyz[slot]; }
     // p(wi_p, wo) in 1/sr: the photon arrived along wi_p and leaves towards the camera along wo.
     float phase(size_t slot, const Vec3& wo) const;
+    // σs(x_p, λ_p), 1/m: the density of scattering events that the photon samples.
+    float sigmaS(size_t slot) const { return mSigmaS[slot]; }
 
 private:
     PhotonMap mMap;
+    std::vector<float> mSigmaS;
     std::vector<Vec3> mFluxXyz;
     std::vector<HGPhase> mLobes;
     std::vector<float> mLobeWeights;  // size() × mLobes.size(), empty for a single lobe
@@ -65,9 +83,13 @@ Vec3 pointEstimate(const VolumePhotons& photons, const Vec3& x, const Vec3& wo, 
 // The ray-marched estimate of ∫ T(t) σs L_s(t) dt over the span of `depth` (already marched
 // along `ray`): the midpoint rule with steps of `step` metres shifted by u·step, u ∈ [0, 1) per
 // camera sample, which makes it unbiased for the integral of the point estimate. Each photon is
-// attenuated by T(t, λ_p) at its own wavelength.
+// attenuated by T(t, λ_p) at its own wavelength, and weighted by σs(x, λ_p)/σs(x_p, λ_p): a
+// photon samples the fluence where it was stored as ΔΦ/σs(x_p) per unit volume, and the march
+// point in-scatters it with its own σs(x). In a uniform medium the ratio is 1 (the paper's
+// form); in a heterogeneous one, without it, the kNN ball carries light from dense smoke into
+// thin smoke and empty space (measured +15 % on the mean of smoke1.vdb against volpath).
 Vec3 pointEstimateAlongRay(const VolumePhotons& photons, const Ray& ray,
                            const RayOpticalDepth& depth, int k, float maxRadius, float step,
-                           float u, PhotonNeighbour* buffer);
+                           float u, PhotonNeighbour* buffer, ScatteringProbe& probe);
 
 }  // namespace mirage

@@ -44,8 +44,10 @@ double secondsSince(Clock::time_point t0) {
 
 // Scratch of one render thread, reused for every camera sample.
 struct PhotonThreadState {
-    explicit PhotonThreadState(const std::vector<const Medium*>& media) : depth(media) {}
+    explicit PhotonThreadState(const std::vector<const Medium*>& media)
+        : depth(media), probe(media) {}
     RayOpticalDepth depth;
+    ScatteringProbe probe;
     std::vector<BeamHit> hits;
     std::vector<PhotonNeighbour> neighbours;
     double estimateSeconds = 0;
@@ -117,7 +119,7 @@ public:
         } else {
             pt.neighbours.resize(size_t(mSettings.kOrDefault()));
             out.xyz = pointEstimateAlongRay(*mPhotons, ray, pt.depth, mSettings.kOrDefault(),
-                                            mMaxRadius, mStep, u, pt.neighbours.data());
+                                            mMaxRadius, mStep, u, pt.neighbours.data(), pt.probe);
         }
         pt.estimateSeconds += secondsSince(t0);
         ++pt.estimates;

@@ -252,6 +252,7 @@ TEST(VolumeEstimate, UniformPhotonDensityGivesTheKnownRadiance) {
     BeamEstimator beam(mono, radii);
     RayOpticalDepth depth({m.get()});
     std::vector<BeamHit> hits;
+    ScatteringProbe probe({m.get()});
     double beamY = 0, beamExpected = 0, marchY = 0, marchExpected = 0;
     const int rays = 256;
     for (int i = 0; i < rays; ++i) {
@@ -261,7 +262,7 @@ TEST(VolumeEstimate, UniformPhotonDensityGivesTheKnownRadiance) {
         depth.march(ray, kInfinity);
         beamY += beam.estimate(ray, kInfinity, depth, &hits).y;
         marchY += pointEstimateAlongRay(mono, ray, depth, k, 0.3f, 0.02f, 0.5f,
-                                        buffer.data()).y;
+                                        buffer.data(), probe).y;
         // ∫ T dt by quadrature, over the cloud and over the medium's span.
         const int steps = 2000;
         const double dt = 1.8 / steps;

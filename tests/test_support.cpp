@@ -66,4 +66,24 @@ FloatGrid makeGrid(const std::function<float(int, int, int)>& value, int lo, int
     return FloatGrid(std::move(handle), name);
 }
 
+ShaderDesc greyShader(float sigmaA, float sigmaS, float g) {
+    ShaderDesc s;
+    s.name = "test";
+    MediumComponent c;
+    c.grid = "density";
+    c.sigmaA = Spectrum(sigmaA);
+    c.sigmaS = Spectrum(sigmaS);
+    c.g = g;
+    s.components.push_back(c);
+    return s;
+}
+
+std::unique_ptr<Medium> gridMedium(const std::function<float(int, int, int)>& value, int lo,
+                                   int hi, double h, float sigmaA, float sigmaS, float g,
+                                   const Transform& objectToWorld) {
+    std::vector<FloatGrid> grids{makeGrid(value, lo, hi, h)};
+    return std::make_unique<Medium>(greyShader(sigmaA, sigmaS, g), std::move(grids),
+                                    objectToWorld, 1.f, 16);
+}
+
 }  // namespace mirage::test

@@ -25,6 +25,7 @@ int runCommand(const std::string& cmd, std::string* output = nullptr);
 
 #include <functional>
 
+#include "medium/medium.h"
 #include "volume/grid.h"
 
 namespace mirage::test {
@@ -33,5 +34,15 @@ namespace mirage::test {
 // [lo, hi]³, voxel size h (m), index (0,0,0) at `origin`. Zero values stay inactive.
 FloatGrid makeGrid(const std::function<float(int, int, int)>& value, int lo, int hi, double h,
                    const Vec3d& origin = Vec3d(0.0), const std::string& name = "density");
+
+
+// A ShaderDesc of one grey component reading grid slot "density" (σ in 1/m per unit
+// density, HG asymmetry g).
+ShaderDesc greyShader(float sigmaA, float sigmaS, float g = 0.f);
+
+// A medium of greyShader() over makeGrid(value, lo, hi, h): the test scenes' workhorse.
+std::unique_ptr<Medium> gridMedium(const std::function<float(int, int, int)>& value, int lo,
+                                   int hi, double h, float sigmaA, float sigmaS, float g = 0.f,
+                                   const Transform& objectToWorld = Transform());
 
 }  // namespace mirage::test

@@ -18,14 +18,7 @@ constexpr float kTemperature = 1500.f;  // K
 
 RenderScene furnace(float sigmaA, float sigmaS, float g) {
     RenderScene scene;
-    ShaderDesc s;
-    s.name = "furnace";
-    MediumComponent c;
-    c.grid = "density";
-    c.sigmaA = Spectrum(sigmaA);
-    c.sigmaS = Spectrum(sigmaS);
-    c.g = g;
-    s.components.push_back(c);
+    ShaderDesc s = test::greyShader(sigmaA, sigmaS, g);
     EmissionSpec e;
     e.temperatureGrid = "temperature";
     s.emission = e;

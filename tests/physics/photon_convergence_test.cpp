@@ -27,17 +27,8 @@ namespace {
 
 RenderScene fogBox() {
     RenderScene scene;
-    ShaderDesc s;
-    s.name = "fog";
-    MediumComponent c;
-    c.grid = "density";
-    c.sigmaA = Spectrum(0.4f);
-    c.sigmaS = Spectrum(4.f);
-    c.g = 0.3f;
-    s.components.push_back(c);
-    std::vector<FloatGrid> grids{
-        test::makeGrid([](int, int, int) { return 1.f; }, 0, 31, 1.0 / 32)};
-    scene.media.push_back(std::make_unique<Medium>(s, std::move(grids), Transform(), 1.f, 16));
+    scene.media.push_back(
+        test::gridMedium([](int, int, int) { return 1.f; }, 0, 31, 1.0 / 32, 0.4f, 4.f, 0.3f));
     scene.lights.push_back(
         makeDistantLight(normalize(Vec3(0.3f, -1.f, -0.2f)), 1000.f, Spectrum(1.f)));
     scene.camera.position = Vec3(0.5f, 0.6f, 3.f);
@@ -191,20 +182,11 @@ TEST(PhotonConvergence, BothEstimatesUnbiasedOnTheMeanInAHeterogeneousMedium) {
     // corners. The point estimate must weight photons by σs(x)/σs(x_p), or its kNN ball
     // carries core light into the rim and the empty corners (it measured +15 % on smoke1.vdb).
     RenderScene scene;
-    ShaderDesc s;
-    s.name = "ball";
-    MediumComponent c;
-    c.grid = "density";
-    c.sigmaA = Spectrum(0.5f);
-    c.sigmaS = Spectrum(8.f);
-    c.g = 0.2f;
-    s.components.push_back(c);
     auto ball = [](int i, int j, int k) {
         float x = (i - 15.5f) / 16.f, y = (j - 15.5f) / 16.f, z = (k - 15.5f) / 16.f;
         return std::max(0.f, 1.f - (x * x + y * y + z * z));
     };
-    std::vector<FloatGrid> grids{test::makeGrid(ball, 0, 31, 1.0 / 32)};
-    scene.media.push_back(std::make_unique<Medium>(s, std::move(grids), Transform(), 1.f, 16));
+    scene.media.push_back(test::gridMedium(ball, 0, 31, 1.0 / 32, 0.5f, 8.f, 0.2f));
     scene.lights.push_back(
         makeDistantLight(normalize(Vec3(0.3f, -1.f, -0.2f)), 1000.f, Spectrum(1.f)));
     scene.camera.position = Vec3(0.5f, 0.55f, 3.f);

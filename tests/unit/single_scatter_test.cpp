@@ -18,16 +18,8 @@ constexpr double kH = 1.0 / 32;
 
 RenderScene boxScene(float sigmaA, float sigmaS, float g, float irradiance) {
     RenderScene scene;
-    ShaderDesc s;
-    s.name = "box";
-    MediumComponent c;
-    c.grid = "density";
-    c.sigmaA = Spectrum(sigmaA);
-    c.sigmaS = Spectrum(sigmaS);
-    c.g = g;
-    s.components.push_back(c);
-    std::vector<FloatGrid> grids{test::makeGrid([](int, int, int) { return 1.f; }, 0, 31, kH)};
-    scene.media.push_back(std::make_unique<Medium>(s, std::move(grids), Transform(), 1.f, 16));
+    scene.media.push_back(
+        test::gridMedium([](int, int, int) { return 1.f; }, 0, 31, kH, sigmaA, sigmaS, g));
     // Light travels straight down (−y).
     scene.lights.push_back(makeDistantLight(Vec3(0, -1, 0), irradiance, Spectrum(1.f)));
     scene.camera.position = Vec3(0.5f, 0.5f, 3.f);

@@ -19,15 +19,7 @@ constexpr double kH = 1.0 / 32;  // voxel size, m
 
 std::unique_ptr<Medium> makeMedium(const std::function<float(int, int, int)>& f, float sigmaA,
                                    float sigmaS, const Transform& xf = Transform()) {
-    ShaderDesc s;
-    s.name = "test";
-    MediumComponent c;
-    c.grid = "density";
-    c.sigmaA = Spectrum(sigmaA);
-    c.sigmaS = Spectrum(sigmaS);
-    s.components.push_back(c);
-    std::vector<FloatGrid> grids{test::makeGrid(f, 0, kN - 1, kH)};
-    return std::make_unique<Medium>(s, std::move(grids), xf, 1.f, 16);
+    return test::gridMedium(f, 0, kN - 1, kH, sigmaA, sigmaS, 0.f, xf);
 }
 
 struct Estimate {

@@ -26,16 +26,7 @@ constexpr double kH = 1.0 / 32;
 
 // A box of 32³ voxels of density 1 (≈ [0, 1]³ m) with the given grey σa, σs and HG g.
 std::unique_ptr<Medium> boxMedium(float sigmaA, float sigmaS, float g) {
-    ShaderDesc s;
-    s.name = "box";
-    MediumComponent c;
-    c.grid = "density";
-    c.sigmaA = Spectrum(sigmaA);
-    c.sigmaS = Spectrum(sigmaS);
-    c.g = g;
-    s.components.push_back(c);
-    std::vector<FloatGrid> grids{test::makeGrid([](int, int, int) { return 1.f; }, 0, 31, kH)};
-    return std::make_unique<Medium>(s, std::move(grids), Transform(), 1.f, 16);
+    return test::gridMedium([](int, int, int) { return 1.f; }, 0, 31, kH, sigmaA, sigmaS, g);
 }
 
 // ∫ σt along the ray from 0 to t by a fine midpoint rule on the grid's trilinear field, clipped
@@ -242,11 +233,20 @@ TEST(VolumeEstimate, UniformPhotonDensityGivesTheKnownRadiance) {
     EXPECT_NEAR(sumX / sumY, 1.0, 0.05);
     EXPECT_NEAR(sumZ / sumY, 1.0, 0.05);
 
-    // Along rays through the box: the beam estimate integrates ρΦ/(4π) T(t) over the whole
-    // cloud (T = 1 before the box and T(exit) after it); the marched point estimate covers the
-    // box only. One wavelength here: the test is of the kernels and the transmittance, and
-    // the wavelength noise would need many more rays to average out.
-    VolumePhotons mono(uniformPhotons(n, cloud, power, 29, 555.f), {m.get()});
+    // Along rays through the box. Photons are stored where scattering happens, so their density
+    // follows σs: the cloud is thinned to ρ·σs(x)/σs,max (rejection on the grid value, whose
+    // maximum is 1), and both estimates must then integrate ρΦ/(4π) · σs(t)/σs,max · T(t)
+    // along the ray — the marched point estimate through its σs(x)/σs(x_p) weights, the beam
+    // estimate through where its discs are. One wavelength here: the test is of the kernels and
+    // the transmittance, and the wavelength noise would need many more rays to average out.
+    PhotonList thinned;
+    {
+        auto acc = m->grids()[0].accessor();
+        Sampler keep(31, 0, 0);
+        for (const Photon& p : uniformPhotons(n, cloud, power, 29, 555.f))
+            if (keep.get1D() < m->grids()[0].sample(acc, p.p)) thinned.push_back(p);
+    }
+    VolumePhotons mono(std::move(thinned), {m.get()});
     const double monoDensity = rho * power / (4 * M_PI) * cieXyz(555.f).y / kCieYIntegral;
     std::vector<float> radii = mono.map().photonRadii(16, 1e-4f, 0.3f);
     BeamEstimator beam(mono, radii);
@@ -263,7 +263,7 @@ TEST(VolumeEstimate, UniformPhotonDensityGivesTheKnownRadiance) {
         beamY += beam.estimate(ray, kInfinity, depth, &hits).y;
         marchY += pointEstimateAlongRay(mono, ray, depth, k, 0.3f, 0.02f, 0.5f,
                                         buffer.data(), probe).y;
-        // ∫ T dt by quadrature, over the cloud and over the medium's span.
+        // ∫ (σs/σs,max) T dt by quadrature, over the cloud and over the medium's span.
         const int steps = 2000;
         const double dt = 1.8 / steps;
         double tau = referenceOpticalDepth(*m, ray, 0.6, sigmaT);
@@ -274,9 +274,10 @@ TEST(VolumeEstimate, UniformPhotonDensityGivesTheKnownRadiance) {
             double sigma = sigmaT * m->grids()[0].sample(acc, ray.at(t));
             double T = std::exp(-(tau + 0.5 * sigma * dt));
             tau += sigma * dt;
-            beamExpected += monoDensity * T * dt;
+            double stored = sigma / sigmaT;  // σs(t)/σs,max: the thinning of the cloud
+            beamExpected += monoDensity * stored * T * dt;
             if (t > depth.tBegin() && t < depth.tEnd())
-                marchExpected += monoDensity * T * dt;
+                marchExpected += monoDensity * stored * T * dt;
         }
     }
     std::printf("point %.4f beam %.4f march %.4f (ratios to the expected values)\n",

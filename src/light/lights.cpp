@@ -36,6 +36,17 @@ Vec3 sampleCosineHemisphere(const Vec3& n, float u1, float u2) {
     return Frame(n).toWorld(Vec3(r * std::cos(phi), r * std::sin(phi), safeSqrt(1.f - u1)));
 }
 
+// Direction and distance from a shaded point p to a point emitter at q; false when they
+// coincide (the inverse-square law has no finite value there).
+bool towardsPoint(const Vec3& q, const Vec3& p, LightSample* out, float* d2) {
+    Vec3 d = q - p;
+    *d2 = dot(d, d);
+    if (!(*d2 > 0.f)) return false;
+    out->distance = std::sqrt(*d2);
+    out->wi = d / out->distance;
+    return true;
+}
+
 class PointLight : public Light {
 public:
     PointLight(const Vec3& p, float power, const Spectrum& c)
@@ -45,11 +56,8 @@ public:
           mLambda(normalizedPowerSpectrum(c)) {}
     bool sampleLi(const Vec3& p, float, float, const SampledWavelengths& w,
                   LightSample* out) const override {
-        Vec3 d = mP - p;
-        float d2 = dot(d, d);
-        if (d2 <= 0.f) return false;
-        out->distance = std::sqrt(d2);
-        out->wi = d / out->distance;
+        float d2;
+        if (!towardsPoint(mP, p, out, &d2)) return false;
         out->Li = mI.sample(w) / d2;  // I/r²: inverse-square law
         return true;
     }
@@ -95,11 +103,8 @@ public:
     }
     bool sampleLi(const Vec3& p, float, float, const SampledWavelengths& w,
                   LightSample* out) const override {
-        Vec3 d = mP - p;
-        float d2 = dot(d, d);
-        if (d2 <= 0.f) return false;
-        out->distance = std::sqrt(d2);
-        out->wi = d / out->distance;
+        float d2;
+        if (!towardsPoint(mP, p, out, &d2)) return false;
         float cosT = dot(-out->wi, mDir);
         float f = falloff(cosT);
         if (f <= 0.f) return false;

@@ -26,7 +26,7 @@ for i in $(seq "$RUNS"); do
   t0=$(now)
   vdb_render "$SMOKE" "$TMP/vdb_render.exr" -res 512x512 -translate -7.4,60,190 \
     -lookat -7.4,40.5,0.5 -fov 40 -absorb 0.1,0.1,0.1 -scatter 1.5,1.5,1.5 \
-    -light 0.3,0.3,0 -step 1 -shadowstep 3 -cpus 0 >/dev/null
+    -light 0.3,0.3,0,1,1,1 -step 1 -shadowstep 3 -cpus 0 >/dev/null
   t1=$(now)
   ./build/mirage render tests/bench/smoke1_single.toml --set "volume.0.file=$SMOKE" \
     --spp "$SPP" -o "$TMP/mirage.exr" --quiet >/dev/null
@@ -42,24 +42,34 @@ printf '  ratio mirage / vdb_render: %.2f\n' "$(awk -v a="$m" -v b="$v" 'BEGIN {
 ./build/bench_lookups "$SMOKE"
 
 # Peer check against Blender Cycles (when installed): same cache, camera, medium and sun,
-# single scattering, 64 spp at 256×256. Prints both times and the ratio of mean luminance.
+# 64 spp at 256×256, single scattering (single vs Cycles with 0 volume bounces) and multiple
+# scattering (volpath with max_depth 17 vs Cycles with 16 volume bounces). Prints both times,
+# their ratio and the mean luminance and alpha of both images.
 if command -v blender >/dev/null; then
-  CYC=$(blender -b --factory-startup --python-exit-code 1 --python "$(dirname "$DATA")/tools/cycles_vdb.py" -- \
-    "$SMOKE" "$TMP/cycles.exr" 256 256 64 --density-scale 1 --albedo 0.9 --anisotropy 0 \
-    --volume-bounces 0 --sun-strength 5 --threads "$(nproc)" 2>&1 | grep RENDER_SECONDS | awk '{print $2}')
-  t0=$(now)
-  ./build/mirage render tests/bench/smoke1_cycles.toml --set "volume.0.file=$SMOKE" \
-    -o "$TMP/mirage_cycles.exr" --quiet >/dev/null
-  t1=$(now)
-  mt=$(awk -v a="$t0" -v b="$t1" 'BEGIN {print b - a}')
+  CYCLES_PY="$(dirname "$DATA")/tools/cycles_vdb.py"
   mean() { oiiotool --stats "$1" | awk '/Stats Avg/ {print 0.2126*$3 + 0.7152*$4 + 0.0722*$5; exit}'; }
   alpha() { oiiotool --stats "$1" | awk '/Stats Avg/ {print $6; exit}'; }
-  printf 'smoke1.vdb 256x256, 64 spp, single scattering, against Cycles (ray marching, step 1 voxel)\n'
-  printf '  cycles render %.2f s, mirage %.2f s, ratio mirage / cycles %.2f\n' "$CYC" "$mt" \
-    "$(awk -v a="$mt" -v b="$CYC" 'BEGIN {print a / b}')"
-  printf '  mean luminance: cycles %s, mirage %s; mean alpha: cycles %s, mirage %s\n' \
-    "$(mean "$TMP/cycles.exr")" "$(mean "$TMP/mirage_cycles.exr")" \
-    "$(alpha "$TMP/cycles.exr")" "$(alpha "$TMP/mirage_cycles.exr")"
+  for bounces in 0 16; do
+    CYC=$(blender -b --factory-startup --python-exit-code 1 --python "$CYCLES_PY" -- \
+      "$SMOKE" "$TMP/cycles.exr" 256 256 64 --density-scale 1 --albedo 0.9 --anisotropy 0 \
+      --volume-bounces "$bounces" --sun-strength 5 --threads "$(nproc)" 2>&1 |
+      awk '/RENDER_SECONDS/ {print $2}')
+    integrator=single
+    [ "$bounces" -gt 0 ] && integrator=volpath
+    t0=$(now)
+    ./build/mirage render tests/bench/smoke1_cycles.toml --set "volume.0.file=$SMOKE" \
+      --set "render.integrator=$integrator" --set "render.max_depth=$((bounces + 1))" \
+      -o "$TMP/mirage_cycles.exr" --quiet >/dev/null
+    t1=$(now)
+    mt=$(awk -v a="$t0" -v b="$t1" 'BEGIN {print b - a}')
+    printf 'smoke1.vdb 256x256, 64 spp, %d volume bounces: Cycles against mirage --integrator %s\n' \
+      "$bounces" "$integrator"
+    printf '  cycles render %.2f s, mirage %.2f s, ratio mirage / cycles %.2f\n' "$CYC" "$mt" \
+      "$(awk -v a="$mt" -v b="$CYC" 'BEGIN {print a / b}')"
+    printf '  mean luminance: cycles %s, mirage %s; mean alpha: cycles %s, mirage %s\n' \
+      "$(mean "$TMP/cycles.exr")" "$(mean "$TMP/mirage_cycles.exr")" \
+      "$(alpha "$TMP/cycles.exr")" "$(alpha "$TMP/mirage_cycles.exr")"
+  done
 else
   echo "blender not installed: skipping the Cycles comparison (apt-get install blender)"
 fi

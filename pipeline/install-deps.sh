@@ -5,7 +5,7 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libopenvdb-dev libnanovdb-dev libboost-iostreams-dev libblosc-dev libopenvdb-tools
-  libembree-dev
+  libembree-dev libtinyobjloader-dev
   libopenimageio-dev openimageio-tools
   libopencolorio-dev opencolorio-tools
   libopenexr-dev libimath-dev openexr

@@ -4,6 +4,19 @@
 //
 //   mirage slab --albedo A --tau T [--g G] [--n N] [--n-outside M] [--incidence normal|diffuse]
 //               [--photons P] [--seed S] [--max-events E] [--threads K] [--json] [-q]
+//   mirage slab --shader FILE [--set NAME=C …] [--thickness METRES] [--spectral] [same options]
+//
+// With --shader the slab is that shader made homogeneous: every component's grid is dropped
+// and its concentration is the constant C (`--set chlorophyll=5` sets the component named
+// chlorophyll to 5 mg/m³; `--set NAME.quantum_efficiency=Γ` its fluorescence). --thickness is in
+// metres; without it the slab is a deep water column (1e5 m: optically infinite for every
+// sea water at every visible wavelength). --spectral draws each photon's wavelength uniformly
+// over 380–780 nm (a spectrally flat, normally incident source) and adds, per 5 nm bin of the
+// wavelength the light *leaves* with, `reflectance` and `transmittance` (power out in the bin
+// over power in the bin; fluorescence moves power from the blue into its band), next to the
+// `wavelength_nm` bin centres, and `fluorescence`: `absorbed` and `reemitted` (events per
+// incident photon) and `mean_shift_nm` (mean λo − λi of the re-emissions). Without --spectral a
+// shader slab is measured at 550 nm.
 //
 // The slab: a homogeneous medium of single-scattering albedo A and optical thickness T with a
 // Henyey–Greenstein phase function (g = G) and refractive index N, between two smooth
@@ -45,6 +58,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <string>
 #include <vector>
@@ -54,6 +68,7 @@
 #include "core/progress.h"
 #include "core/rng.h"
 #include "photon/photon_walk.h"
+#include "scene/shader_loader.h"
 
 namespace mirage {
 
@@ -63,7 +78,11 @@ constexpr double kInfiniteTau = 1e6;  // T ≥ this is "semi-infinite" (see the 
 constexpr float kThickness = 1.f;     // m
 constexpr float kHalfWidth = 1e6f;    // m, lateral half-size of the medium box
 constexpr uint64_t kBlockPhotons = 4096;
-constexpr float kLambdaNm = 550.f;  // any: the slab is grey
+constexpr float kLambdaNm = 550.f;  // any for a grey slab; a shader slab's single wavelength
+constexpr double kDeepColumn = 1e5;  // m: the default thickness of a shader slab
+// --spectral: 80 bins of 5 nm over 380–780 nm.
+constexpr float kSpectralMinNm = 380.f, kBinNm = 5.f;
+constexpr int kSpectralBins = 80;
 
 // Unpolarised Fresnel reflectance of a smooth interface from index n1 to n2 at incidence
 // cosine cosI (Born & Wolf §1.5): R = (r_s² + r_p²)/2 with
@@ -99,18 +118,36 @@ const char* const kOutcomeNames[kOutcomes] = {"reflectance_specular",
                                               "capped"};
 
 // Σw and Σw² of each outcome, w the photon's final power relative to its initial power (1
-// for a single HG lobe: kept for generality, it costs nothing).
+// for a single HG lobe and no fluorescence; λi/λo per re-emission). With --spectral, Σw per
+// bin of the leaving wavelength, for the reflected and the transmitted light.
 struct Tally {
     double sum[kOutcomes] = {}, sum2[kOutcomes] = {};
+    std::vector<double> reflected, transmitted;
+    uint64_t absorptions = 0, reemissions = 0;  // absorption events, Γ re-emissions among them
+    double shiftSum = 0;                        // Σ (λo − λi) over re-emissions, nm
     void add(Outcome o, double w) {
         sum[o] += w;
         sum2[o] += w * w;
+    }
+    void addSpectral(Outcome o, double w, float lambdaNm) {
+        if (reflected.empty()) return;
+        int b = int(std::floor((lambdaNm - kSpectralMinNm) / kBinNm));
+        if (b < 0 || b >= kSpectralBins) return;
+        if (o == kReflSpecular || o == kReflDiffuse) reflected[size_t(b)] += w;
+        if (o == kTransUnscattered || o == kTransDiffuse) transmitted[size_t(b)] += w;
     }
     void add(const Tally& t) {
         for (int i = 0; i < kOutcomes; ++i) {
             sum[i] += t.sum[i];
             sum2[i] += t.sum2[i];
         }
+        for (size_t b = 0; b < reflected.size() && b < t.reflected.size(); ++b) {
+            reflected[b] += t.reflected[b];
+            transmitted[b] += t.transmitted[b];
+        }
+        absorptions += t.absorptions;
+        reemissions += t.reemissions;
+        shiftSum += t.shiftSum;
     }
 };
 
@@ -118,11 +155,25 @@ struct Slab {
     double nIn, nOut;
     bool diffuse;
     int64_t maxEvents;
+    float thickness;  // m
+    bool spectral;
 };
 
 // One photon, from the top face to its outcome.
 void tracePhoton(const Slab& slab, uint64_t index, uint64_t seed, PhotonWalk& walk, Tally* t) {
     Sampler s(seed, index, 0);
+    // The photon's wavelength: uniform over the spectral range (a flat source), else fixed.
+    // Drawn from its own stream so that the grey slab's numbers are those it always had.
+    float lambda = kLambdaNm;
+    if (slab.spectral) {
+        Sampler ls(seed, index, 1);
+        lambda = kSpectralMinNm + kBinNm * kSpectralBins * ls.get1D();
+    }
+    if (walk.wavelength() != lambda) walk.setWavelength(lambda);
+    auto score = [&](Outcome o, double w) {
+        t->add(o, w);
+        t->addSpectral(o, w, walk.wavelength());
+    };
     // Incident direction (travelling +z into the slab, whose top face is z = 0).
     Vec3 d(0.f, 0.f, 1.f);
     if (slab.diffuse) {
@@ -131,7 +182,7 @@ void tracePhoton(const Slab& slab, uint64_t index, uint64_t seed, PhotonWalk& wa
     }
     double cosT;
     if (s.get1D() < fresnel(d.z, slab.nOut, slab.nIn, &cosT)) {
-        t->add(kReflSpecular, 1.0);
+        score(kReflSpecular, 1.0);
         return;
     }
     // Snell: the tangential component scales by n_out/n_in, the normal one becomes cosT.
@@ -144,44 +195,105 @@ void tracePhoton(const Slab& slab, uint64_t index, uint64_t seed, PhotonWalk& wa
     for (int64_t events = 0;;) {
         FlightEvent ev = walk.fly(Ray{p, d, kInfinity}, kInfinity, s);
         if (ev.end == FlightEnd::Absorbed) {
-            t->add(kAbsorbed, w);
+            ++t->absorptions;
+            score(kAbsorbed, w);
             return;
         }
-        if (ev.end == FlightEnd::Scattered) {
+        if (ev.end == FlightEnd::Reemitted) {
+            // Absorbed, then re-emitted at the walk's new wavelength (λi/λo of the power).
+            ++t->absorptions;
+            ++t->reemissions;
+            t->shiftSum += double(ev.lambdaOut) - double(ev.lambdaIn);
+        }
+        if (ev.end == FlightEnd::Scattered || ev.end == FlightEnd::Reemitted) {
             scattered = true;
             w *= ev.weight;
-            p = Vec3(0.f, 0.f, clamp(ev.p.z, 0.f, kThickness));
+            p = Vec3(0.f, 0.f, clamp(ev.p.z, 0.f, slab.thickness));
             d = ev.wo;
         } else {
             // Left the box: through a face, or (grazing) through a side, whichever is nearer.
-            float tFace =
-                d.z > 0.f ? (kThickness - p.z) / d.z : (d.z < 0.f ? -p.z / d.z : kInfinity);
+            float tFace = d.z > 0.f ? (slab.thickness - p.z) / d.z
+                                    : (d.z < 0.f ? -p.z / d.z : kInfinity);
             float tSide = std::min(std::abs(d.x) > 0.f ? kHalfWidth / std::abs(d.x) : kInfinity,
                                    std::abs(d.y) > 0.f ? kHalfWidth / std::abs(d.y) : kInfinity);
             if (tSide < tFace) {
-                p = Vec3(0.f, 0.f, clamp(p.z + d.z * tSide, 0.f, kThickness));
+                p = Vec3(0.f, 0.f, clamp(p.z + d.z * tSide, 0.f, slab.thickness));
                 continue;  // memoryless: the flight goes on from the same height
             }
             bool bottom = d.z > 0.f;
             if (s.get1D() >= fresnel(std::abs(d.z), slab.nIn, slab.nOut, &cosT)) {
                 if (bottom)
-                    t->add(scattered ? kTransDiffuse : kTransUnscattered, w);
+                    score(scattered ? kTransDiffuse : kTransUnscattered, w);
                 else
-                    t->add(scattered ? kReflDiffuse : kReflSpecular, w);
+                    score(scattered ? kReflDiffuse : kReflSpecular, w);
                 return;
             }
             // Specular (or total internal) reflection back into the slab.
-            p = Vec3(0.f, 0.f, bottom ? kThickness : 0.f);
+            p = Vec3(0.f, 0.f, bottom ? slab.thickness : 0.f);
             d.z = -d.z;
         }
         if (++events >= slab.maxEvents) {
-            t->add(kCapped, w);
+            score(kCapped, w);
             return;
         }
     }
 }
 
+// The medium of a --shader slab: the shader with every grid dropped (a slab is homogeneous),
+// concentrations and quantum efficiencies set by --set NAME=C, NAME.concentration=C or
+// NAME.quantum_efficiency=Γ.
+ShaderDesc slabShader(const SlabOptions& o) {
+    ShaderDesc shader = loadShader(o.shader, "");
+    if (shader.emission)
+        throw MirageError("slab: shader '" + shader.name +
+                          "' emits (an [emission] table needs a temperature grid)");
+    for (auto& c : shader.components) c.grid.clear();
+    for (const std::string& kv : o.sets) {
+        size_t eq = kv.find('=');
+        if (eq == std::string::npos)
+            throw MirageError("slab: --set expects NAME=value, got '" + kv + "'");
+        std::string key = kv.substr(0, eq), field = "concentration";
+        if (size_t dot = key.find('.'); dot != std::string::npos) {
+            field = key.substr(dot + 1);
+            key = key.substr(0, dot);
+        }
+        char* end = nullptr;
+        double v = std::strtod(kv.c_str() + eq + 1, &end);
+        if (end == kv.c_str() + eq + 1 || *end != '\0' || !std::isfinite(v) || v < 0.0)
+            throw MirageError("slab: --set " + kv + ": expected a number ≥ 0");
+        MediumComponent* c = nullptr;
+        std::string names;
+        for (auto& comp : shader.components) {
+            if (comp.name == key) c = &comp;
+            names += (names.empty() ? "" : ", ") + comp.name;
+        }
+        if (!c)
+            throw MirageError("slab: --set " + kv + ": shader '" + shader.name +
+                              "' has no component '" + key + "' (it has " + names + ")");
+        if (field == "concentration") {
+            c->concentration = float(v);
+        } else if (field == "quantum_efficiency" && v <= 1.0) {
+            c->quantumEfficiency = float(v);
+        } else {
+            throw MirageError("slab: --set " + kv +
+                              ": expected NAME=C, NAME.concentration=C or "
+                              "NAME.quantum_efficiency=Γ (0 to 1)");
+        }
+    }
+    return shader;
+}
+
 void validate(const SlabOptions& o) {
+    if (!o.shader.empty()) {
+        if (o.thickness < 0.0 || !std::isfinite(o.thickness))
+            throw MirageError("slab: --thickness must be a positive number of metres");
+        if (o.photons == 0) throw MirageError("slab: --photons must be at least 1");
+        return;
+    }
+    if (!o.sets.empty() || o.thickness > 0.0)
+        throw MirageError("slab: --set and --thickness need --shader");
+    if (o.albedo < 0.0 || o.tau == 0.0)
+        throw MirageError("slab: give --albedo and --tau, or a --shader");
     if (!(o.tau > 0.0))
         throw MirageError("slab: --tau must be a positive optical thickness or inf (got " +
                           std::to_string(o.tau) + ")");
@@ -204,27 +316,41 @@ int runSlab(const SlabOptions& o) {
         threads = std::make_unique<tbb::global_control>(
             tbb::global_control::max_allowed_parallelism, size_t(o.threads));
 
-    const bool infinite = o.tau >= kInfiniteTau;
+    const bool fromShader = !o.shader.empty();
+    const bool infinite = fromShader ? !(o.thickness > 0.0) : o.tau >= kInfiniteTau;
     const float sigmaT = float(infinite ? kInfiniteTau : o.tau) / kThickness;
     ShaderDesc shader;
-    shader.name = "slab";
-    shader.source = "mirage slab";
-    MediumComponent c;
-    c.name = "slab";
-    c.sigmaA = Spectrum(sigmaT * float(1.0 - o.albedo));
-    c.sigmaS = Spectrum(sigmaT * float(o.albedo));
-    c.g = float(o.g);
-    shader.components.push_back(c);
+    if (fromShader) {
+        shader = slabShader(o);
+    } else {
+        shader.name = "slab";
+        shader.source = "mirage slab";
+        MediumComponent c;
+        c.name = "slab";
+        c.sigmaA = Spectrum(sigmaT * float(1.0 - o.albedo));
+        c.sigmaS = Spectrum(sigmaT * float(o.albedo));
+        c.g = float(o.g);
+        shader.components.push_back(c);
+    }
+    const float thickness =
+        fromShader ? float(infinite ? kDeepColumn : o.thickness) : kThickness;
     Bounds3 box;
     box.lo = Vec3(-kHalfWidth, -kHalfWidth, 0.f);
-    box.hi = Vec3(kHalfWidth, kHalfWidth, kThickness);
+    box.hi = Vec3(kHalfWidth, kHalfWidth, thickness);
     Medium medium(shader, box, Transform(), 1.f);
     const std::vector<const Medium*> media{&medium};
-    const Slab slab{o.n, o.nOutside, o.incidence == "diffuse", o.maxEvents};
+    const Slab slab{o.n, o.nOutside, o.incidence == "diffuse", o.maxEvents, thickness,
+                    o.spectral};
 
     auto start = std::chrono::steady_clock::now();
     const uint64_t blocks = (o.photons + kBlockPhotons - 1) / kBlockPhotons;
     std::vector<Tally> blockTally(blocks);
+    if (o.spectral) {
+        for (Tally& t : blockTally) {
+            t.reflected.assign(kSpectralBins, 0.0);
+            t.transmitted.assign(kSpectralBins, 0.0);
+        }
+    }
     {
         Progress progress("slab", o.photons, "photons",
                           o.quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
@@ -242,6 +368,10 @@ int runSlab(const SlabOptions& o) {
                           });
     }
     Tally total;
+    if (o.spectral) {
+        total.reflected.assign(kSpectralBins, 0.0);
+        total.transmitted.assign(kSpectralBins, 0.0);
+    }
     for (const Tally& t : blockTally) total.add(t);  // block order: thread-independent
     double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -266,24 +396,72 @@ int runSlab(const SlabOptions& o) {
                              {"transmittance", stat({kTransUnscattered, kTransDiffuse})}};
     for (int i = 0; i < kOutcomes; ++i) rows.push_back({kOutcomeNames[i], stat({Outcome(i)})});
 
+    // Per bin: the power leaving in it over the power arriving in it (n/80 photons of power 1).
+    auto binned = [&](const std::vector<double>& v) {
+        std::string a;
+        for (size_t b = 0; b < v.size(); ++b) {
+            char buf[32];
+            std::snprintf(buf, sizeof buf, "%s%.6g", b ? ", " : "", v[b] / (n / kSpectralBins));
+            a += buf;
+        }
+        return "[" + a + "]";
+    };
+    const double meanShift =
+        total.reemissions ? total.shiftSum / double(total.reemissions) : 0.0;
+
     if (o.json) {
-        std::printf(
-            "{\n  \"albedo\": %.9g,\n  \"tau\": %.9g,\n  \"tau_infinite\": %s,\n"
-            "  \"g\": %.9g,\n  \"n\": %.9g,\n  \"n_outside\": %.9g,\n"
-            "  \"incidence\": \"%s\",\n",
-            o.albedo, double(sigmaT * kThickness), infinite ? "true" : "false", o.g, o.n,
-            o.nOutside, o.incidence.c_str());
+        std::printf("{\n");
+        if (fromShader)
+            std::printf("  \"shader\": \"%s\",\n  \"thickness_m\": %.9g,\n"
+                        "  \"thickness_infinite\": %s,\n",
+                        shader.name.c_str(), double(thickness), infinite ? "true" : "false");
+        else
+            std::printf("  \"albedo\": %.9g,\n  \"tau\": %.9g,\n  \"tau_infinite\": %s,\n"
+                        "  \"g\": %.9g,\n",
+                        o.albedo, double(sigmaT * kThickness), infinite ? "true" : "false", o.g);
+        std::printf("  \"n\": %.9g,\n  \"n_outside\": %.9g,\n  \"incidence\": \"%s\",\n",
+                    o.n, o.nOutside, o.incidence.c_str());
+        if (o.spectral) {
+            std::string centres;
+            for (int b = 0; b < kSpectralBins; ++b)
+                centres += (b ? ", " : "") + std::to_string(kSpectralMinNm + kBinNm * (b + 0.5f))
+                                                 .substr(0, 5);
+            std::printf("  \"wavelength_nm\": [%s],\n  \"reflectance\": %s,\n"
+                        "  \"transmittance\": %s,\n",
+                        centres.c_str(), binned(total.reflected).c_str(),
+                        binned(total.transmitted).c_str());
+        }
+        std::printf("  \"fluorescence\": {\"absorbed\": %.9g, \"reemitted\": %.9g, "
+                    "\"mean_shift_nm\": %.6g},\n",
+                    double(total.absorptions) / n, double(total.reemissions) / n, meanShift);
         for (const Row& r : rows)
             std::printf("  \"%s\": %.9g,\n  \"%s_stderr\": %.9g,\n", r.name.c_str(), r.v.first,
                         r.name.c_str(), r.v.second);
         std::printf("  \"photons\": %llu,\n  \"seed\": %llu,\n  \"seconds\": %.6g\n}\n",
                     (unsigned long long)o.photons, (unsigned long long)o.seed, seconds);
     } else {
-        std::printf("slab: albedo %g, tau %s, g %g, n %g (outside %g), %s incidence\n", o.albedo,
-                    infinite ? "inf" : std::to_string(o.tau).c_str(), o.g, o.n, o.nOutside,
-                    o.incidence.c_str());
+        if (fromShader)
+            std::printf("slab: shader '%s', thickness %s m, n %g (outside %g), %s incidence%s\n",
+                        shader.name.c_str(),
+                        infinite ? "inf" : std::to_string(thickness).c_str(), o.n, o.nOutside,
+                        o.incidence.c_str(), o.spectral ? ", flat 380-780 nm source" : ", 550 nm");
+        else
+            std::printf("slab: albedo %g, tau %s, g %g, n %g (outside %g), %s incidence\n",
+                        o.albedo, infinite ? "inf" : std::to_string(o.tau).c_str(), o.g, o.n,
+                        o.nOutside, o.incidence.c_str());
         for (const Row& r : rows)
             std::printf("  %-26s %.6f ± %.6f\n", r.name.c_str(), r.v.first, r.v.second);
+        if (total.absorptions > 0 && medium.fluorescent())
+            std::printf("  fluorescence: %.6f absorbed, %.6f re-emitted per photon, mean shift "
+                        "%.2f nm\n",
+                        double(total.absorptions) / n, double(total.reemissions) / n, meanShift);
+        if (o.spectral) {
+            std::printf("  %-8s %-12s %-12s\n", "nm", "reflectance", "transmittance");
+            for (int b = 0; b < kSpectralBins; ++b)
+                std::printf("  %-8.1f %-12.6f %-12.6f\n", kSpectralMinNm + kBinNm * (b + 0.5f),
+                            total.reflected[size_t(b)] / (n / kSpectralBins),
+                            total.transmitted[size_t(b)] / (n / kSpectralBins));
+        }
         std::printf("  %llu photons in %s (%.3g M photons/s)\n", (unsigned long long)o.photons,
                     formatSeconds(seconds).c_str(), n / seconds * 1e-6);
     }

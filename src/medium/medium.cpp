@@ -1,6 +1,7 @@
 #include "medium/medium.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/error.h"
 
@@ -14,6 +15,70 @@ void checkComponentCount(const ShaderDesc& shader) {
                           std::to_string(kMaxComponents) + " components, found " +
                           std::to_string(shader.components.size()));
 }
+
+// Upper bound over all wavelengths of σt of a chlorophyll component at concentration C:
+// σa(λ) = A(λ) C^e(λ) and σs(λ) = b(λ) C^s with A, e, b linear between whole nanometres (the
+// dense form of Spectrum). Within one such interval C^e is monotone in λ, so its maximum is at
+// an end, and the product is bounded by the larger A times the larger C^e of the two ends.
+class PowerLawBound {
+public:
+    explicit PowerLawBound(const MediumComponent& c)
+        : mSigmaSMax(c.sigmaS.maxValue()), mExponentS(c.sigmaSExponent) {
+        for (int i = 0; i + 1 < Spectrum::kDenseSamples; ++i) {
+            float l0 = kLambdaMin + float(i), l1 = l0 + 1.f;
+            float e0 = c.sigmaAExponent(l0), e1 = c.sigmaAExponent(l1);
+            mIntervals.push_back({std::max(c.sigmaA(l0), c.sigmaA(l1)), std::min(e0, e1),
+                                  std::max(e0, e1)});
+        }
+    }
+    // Non-decreasing in C (every exponent is ≥ 0). The relative margin covers float exp/log.
+    float operator()(float C) const {
+        if (!(C > 0.f)) return 0.f;
+        double lc = std::log(double(C)), m = 0.0;
+        for (const Interval& iv : mIntervals)
+            m = std::max(m, iv.aMax * std::exp((lc >= 0.0 ? iv.eMax : iv.eMin) * lc));
+        return float((m + mSigmaSMax * std::exp(mExponentS * lc)) * (1.0 + 1e-4));
+    }
+
+private:
+    struct Interval {
+        double aMax, eMin, eMax;
+    };
+    std::vector<Interval> mIntervals;
+    double mSigmaSMax, mExponentS;
+};
+
+// PowerLawBound on the grid values of a majorant's cells, through a table at geometrically
+// spaced concentrations (ratio 10^(4/255) ≈ 1.037) from 1e-4 × the largest to the largest: a
+// cell gets the bound at the next tabulated C above its own, which is ≥ its bound because the
+// bound grows with C. 256 × 470 exponentials instead of one PowerLawBound per cell.
+class TabulatedBound {
+public:
+    TabulatedBound(const PowerLawBound& f, float cMax) : mF(f) {
+        mC0 = cMax * 1e-4f;
+        mLogStep = std::log(1e4) / (kSize - 1);
+        for (int k = 0; k < kSize; ++k) {
+            mC[k] = float(mC0 * std::exp(k * mLogStep));
+            mValue[k] = f(mC[k]);
+        }
+        mC[kSize - 1] = cMax;
+        mValue[kSize - 1] = f(cMax);
+    }
+    float operator()(float C) const {
+        if (!(C > 0.f)) return 0.f;
+        if (!(mC0 > 0.0)) return mF(C);  // an empty grid: no table
+        int k = C <= mC0 ? 0 : int(std::ceil(std::log(double(C) / mC0) / mLogStep));
+        k = std::max(k - 1, 0);
+        while (k < kSize && mC[k] < C) ++k;  // the first tabulated C ≥ C, despite rounding
+        return k < kSize ? mValue[k] : mF(C);
+    }
+
+private:
+    static constexpr int kSize = 256;
+    const PowerLawBound& mF;
+    double mC0, mLogStep;
+    std::array<float, kSize> mC, mValue;
+};
 
 }  // namespace
 
@@ -73,15 +138,30 @@ void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantRes
     auto slots = mShader.gridSlots();
     mMajorant = MajorantGrid(objectBounds, majorantResolution);
     for (const auto& c : mShader.components) {
-        float sigmaT = c.sigmaA.maxValue() + c.sigmaS.maxValue();
-        float scale = c.concentration * mDensityScale * sigmaT;
-        if (c.grid.empty()) {
-            mMajorant.addConstant(scale);
+        const float k = c.concentration * mDensityScale;
+        const FloatGrid* grid = nullptr;
+        if (!c.grid.empty())
+            grid = &mGrids[std::find(slots.begin(), slots.end(), c.grid) - slots.begin()];
+        if (c.kind == ComponentKind::Chlorophyll) {
+            // σ is non-linear in C: bound it at each cell's largest C = k × grid max.
+            PowerLawBound bound(c);
+            if (!grid) {
+                mMajorant.addConstant(bound(k));
+            } else {
+                TabulatedBound table(bound, k * grid->maxValue());
+                mMajorant.addGridMonotone(*grid, [&](float v) { return table(k * v); });
+            }
         } else {
-            size_t slot = std::find(slots.begin(), slots.end(), c.grid) - slots.begin();
-            mMajorant.addGrid(mGrids[slot], scale);
+            float scale = k * (c.sigmaA.maxValue() + c.sigmaS.maxValue());
+            if (!grid) mMajorant.addConstant(scale);
+            else mMajorant.addGrid(*grid, scale);
         }
-        mPhases.emplace_back(c.g);
+        mPhases.emplace_back(c.phase, c.g);
+        mFluorescent |= c.fluorescent();
+        mFluorescence.push_back(c.fluorescent() ? FluorescenceEmission(c.emissionPeakNm,
+                                                                       c.emissionFwhmNm,
+                                                                       c.antiStokes)
+                                                : FluorescenceEmission());
     }
 }
 
@@ -105,8 +185,13 @@ void Medium::Context::setWavelengths(const SampledWavelengths& w) {
     const auto& comps = mMedium->mShader.components;
     for (size_t i = 0; i < comps.size(); ++i) {
         float k = comps[i].concentration * mMedium->mDensityScale;
-        mSigmaA[i] = comps[i].sigmaA.sample(w) * k;
-        mSigmaS[i] = comps[i].sigmaS.sample(w) * k;
+        mPowerLaw[i] = comps[i].kind == ComponentKind::Chlorophyll;
+        mScale[i] = k;
+        // What depends only on λ is evaluated here, once per path, not per lookup.
+        float linear = mPowerLaw[i] ? 1.f : k;
+        mSigmaA[i] = comps[i].sigmaA.sample(w) * linear;
+        mSigmaS[i] = comps[i].sigmaS.sample(w) * linear;
+        if (mPowerLaw[i]) mExponentA[i] = comps[i].sigmaAExponent.sample(w);
     }
 }
 
@@ -117,8 +202,12 @@ void Medium::eval(const Vec3& p, Context& ctx, MediumPoint* out) const {
     for (int i = 0; i < out->components; ++i) {
         int slot = ctx.mSlot[i];
         float c = slot < 0 ? 1.f : mGrids[slot].sample(ctx.mAcc[slot], p);
-        out->sigmaA += ctx.mSigmaA[i] * c;
-        out->sigmaSComponent[i] = ctx.mSigmaS[i] * c;
+        if (ctx.mPowerLaw[i]) {
+            powerLawAt(ctx, i, c, &out->sigmaA, &out->sigmaSComponent[i]);
+        } else {
+            out->sigmaA += ctx.mSigmaA[i] * c;
+            out->sigmaSComponent[i] = ctx.mSigmaS[i] * c;
+        }
         out->sigmaS += out->sigmaSComponent[i];
     }
     out->Le = SampledSpectrum(0.f);
@@ -135,6 +224,20 @@ void Medium::eval(const Vec3& p, Context& ctx, MediumPoint* out) const {
     }
 }
 
+void Medium::powerLawAt(const Context& ctx, int i, float gridValue, SampledSpectrum* sigmaA,
+                        SampledSpectrum* sigmaS) const {
+    // C^e = exp(e ln C): one logarithm for the four wavelengths and both coefficients.
+    float C = ctx.mScale[i] * gridValue;
+    if (!(C > 0.f)) {
+        *sigmaS = SampledSpectrum(0.f);
+        return;
+    }
+    float lc = std::log(C);
+    for (int j = 0; j < kSpectrumSamples; ++j)
+        (*sigmaA)[j] += ctx.mSigmaA[i][j] * std::exp(ctx.mExponentA[i][j] * lc);
+    *sigmaS = ctx.mSigmaS[i] * std::exp(mShader.components[i].sigmaSExponent * lc);
+}
+
 float Medium::sigmaSAt(const Vec3& p, Context& ctx, float lambdaNm) const {
     float sigmaS = 0.f;
     for (size_t i = 0; i < mShader.components.size(); ++i) {
@@ -143,9 +246,29 @@ float Medium::sigmaSAt(const Vec3& p, Context& ctx, float lambdaNm) const {
         if (xs == 0.f) continue;
         int slot = ctx.mSlot[i];
         float c = slot < 0 ? 1.f : mGrids[slot].sample(ctx.mAcc[slot], p);
-        sigmaS += c * comp.concentration * mDensityScale * xs;
+        float C = c * comp.concentration * mDensityScale;
+        if (comp.kind == ComponentKind::Chlorophyll)
+            sigmaS += C > 0.f ? xs * std::pow(C, comp.sigmaSExponent) : 0.f;
+        else
+            sigmaS += C * xs;
     }
     return sigmaS;
+}
+
+void Medium::sigmaAComponentsAt(const Vec3& p, Context& ctx, float lambdaNm,
+                                float* sigmaA) const {
+    for (size_t i = 0; i < mShader.components.size(); ++i) {
+        const MediumComponent& comp = mShader.components[i];
+        int slot = ctx.mSlot[i];
+        float c = slot < 0 ? 1.f : mGrids[slot].sample(ctx.mAcc[slot], p);
+        float C = c * comp.concentration * mDensityScale;
+        if (comp.kind == ComponentKind::Chlorophyll)
+            sigmaA[i] = C > 0.f ? comp.sigmaA(lambdaNm) *
+                                      std::pow(C, comp.sigmaAExponent(lambdaNm))
+                                : 0.f;
+        else
+            sigmaA[i] = C * comp.sigmaA(lambdaNm);
+    }
 }
 
 SampledSpectrum Medium::phaseEval(const MediumPoint& mp, const Vec3& wi, const Vec3& wo) const {

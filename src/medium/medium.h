@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/transform.h"
+#include "medium/fluorescence.h"
 #include "medium/phase.h"
 #include "medium/shader.h"
 #include "volume/grid.h"
@@ -46,6 +47,8 @@ public:
     Bounds3 objectBounds() const { return mMajorant.bounds(); }
     const MajorantGrid& majorant() const { return mMajorant; }
     bool emissive() const { return mShader.emission.has_value(); }
+    // Some component re-emits absorbed light (Γ > 0): the Γ roulette applies (reemission.h).
+    bool fluorescent() const { return mFluorescent; }
     // The scale the constructor applied to every component's concentration.
     float densityScale() const { return mDensityScale; }
     // Constant coefficients over objectBounds(): transmittance has the closed form
@@ -70,7 +73,11 @@ public:
         const Medium* mMedium;
         SampledWavelengths mLambda;
         std::vector<FloatGrid::Accessor> mAcc;
-        std::array<SampledSpectrum, kMaxComponents> mSigmaA, mSigmaS;
+        // Linear components: σ per unit grid value (concentration × density scale folded in).
+        // Chlorophyll: σa = mSigmaA · C^mExponentA, σs = mSigmaS · C^exponent, C = mScale × grid.
+        std::array<SampledSpectrum, kMaxComponents> mSigmaA, mSigmaS, mExponentA;
+        std::array<float, kMaxComponents> mScale;
+        std::array<bool, kMaxComponents> mPowerLaw;
         std::array<int, kMaxComponents> mSlot;  // grid index per component, -1 homogeneous
         int mTemperatureSlot = -1;
     };
@@ -81,15 +88,26 @@ public:
     // a photon's — whatever the context's wavelengths: Σ_c c_c(x) σs,c(λ).
     float sigmaSAt(const Vec3& pObject, Context& ctx, float lambdaNm) const;
 
+    // Absorption coefficient of each component (1/m) at an object-space point for one
+    // wavelength: which component absorbed a photon decides whether it fluoresces. Writes
+    // shader().components.size() values.
+    void sigmaAComponentsAt(const Vec3& pObject, Context& ctx, float lambdaNm,
+                            float* sigmaA) const;
+    // The emission band of component i (valid when it is fluorescent).
+    const FluorescenceEmission& fluorescence(int i) const { return mFluorescence[size_t(i)]; }
+
     // Phase function of the mixture at a point: p(λ) = Σ_c σs,c(λ) p_c / σs(λ).
     SampledSpectrum phaseEval(const MediumPoint& mp, const Vec3& wi, const Vec3& wo) const;
-    // Samples wo by choosing a component ∝ its mean σs, then its HG lobe; returns the
+    // Samples wo by choosing a component ∝ its mean σs, then its lobe; returns the
     // per-wavelength weight p(λ)/pdf.
     Vec3 phaseSample(const MediumPoint& mp, const Vec3& wi, float uc, float u1, float u2,
                      SampledSpectrum* weight, float* pdf) const;
 
 private:
     void buildMajorantAndPhases(const Bounds3& objectBounds, int majorantResolution);
+    // A chlorophyll component's σa (added to *sigmaA) and σs (written) at grid value c.
+    void powerLawAt(const Context& ctx, int i, float gridValue, SampledSpectrum* sigmaA,
+                    SampledSpectrum* sigmaS) const;
 
     ShaderDesc mShader;
     std::vector<FloatGrid> mGrids;
@@ -97,7 +115,9 @@ private:
     float mDensityScale;
     Bounds3 mWorldBounds;
     MajorantGrid mMajorant;
-    std::vector<HGPhase> mPhases;
+    std::vector<ComponentPhase> mPhases;
+    std::vector<FluorescenceEmission> mFluorescence;  // per component (empty when Γ = 0)
+    bool mFluorescent = false;
 };
 
 }  // namespace mirage

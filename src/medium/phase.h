@@ -42,6 +42,65 @@ private:
     float mG;
 };
 
+// Molecular scattering by sea water (Morel 1974; the "Rayleigh-like" lobe of Gutierrez et al.
+// 2005): p_w(θ) = k (1 + b cos²θ), b = 0.835 (depolarisation ratio 0.09). Normalising
+// ∫ p dω = 2πk (2 + 2b/3) = 1 gives k = 3 / (4π (3 + b)) = 0.0622498, published rounded to
+// 0.06225. Sampled exactly by inverting its CDF in μ = cosθ, a cubic:
+//   F(μ) = [(μ + 1) + b (μ³ + 1)/3] / (2 + 2b/3) = u  ⇔  μ³ + (3/b) μ − 3k'/b = 0,
+// k' = u (2 + 2b/3) − 1 − b/3. With p = 3/b > 0 the cubic has one real root (Cardano), taken
+// in double precision where the two cube roots nearly cancel (μ ≈ 0).
+class WaterPhase {
+public:
+    static constexpr float kB = 0.835f;
+    static constexpr float kNorm = 3.f / (4.f * kPi * (3.f + kB));
+
+    float eval(float cosTheta) const { return kNorm * (1.f + kB * cosTheta * cosTheta); }
+    float eval(const Vec3& wi, const Vec3& wo) const { return eval(dot(wi, wo)); }
+
+    static float sampleCosTheta(float u) {
+        const double b = kB;
+        double k = double(u) * (2.0 + 2.0 * b / 3.0) - 1.0 - b / 3.0;
+        double p = 3.0 / b, q = -3.0 * k / b;
+        double disc = std::sqrt(q * q / 4.0 + p * p * p / 27.0);
+        double mu = std::cbrt(-q / 2.0 + disc) + std::cbrt(-q / 2.0 - disc);
+        return clamp(float(mu), -1.f, 1.f);
+    }
+
+    Vec3 sample(const Vec3& wi, float u1, float u2, float* pdf) const {
+        float cosTheta = sampleCosTheta(u1);
+        float sinTheta = safeSqrt(1.f - cosTheta * cosTheta);
+        float phi = 2.f * kPi * u2;
+        Frame f(wi);
+        Vec3 wo = f.toWorld(Vec3(sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta));
+        if (pdf) *pdf = eval(cosTheta);
+        return wo;
+    }
+};
+
+// The lobe of one medium component: Henyey–Greenstein or the sea-water lobe.
+enum class PhaseKind { HenyeyGreenstein, Water };
+
+class ComponentPhase {
+public:
+    explicit ComponentPhase(PhaseKind kind = PhaseKind::HenyeyGreenstein, float g = 0.f)
+        : mKind(kind), mHG(g) {}
+    float eval(float cosTheta) const {
+        return mKind == PhaseKind::Water ? mWater.eval(cosTheta) : mHG.eval(cosTheta);
+    }
+    Vec3 sample(const Vec3& wi, float u1, float u2, float* pdf) const {
+        return mKind == PhaseKind::Water ? mWater.sample(wi, u1, u2, pdf)
+                                         : mHG.sample(wi, u1, u2, pdf);
+    }
+    PhaseKind kind() const { return mKind; }
+    float g() const { return mKind == PhaseKind::Water ? 0.f : mHG.g(); }
+    bool operator==(const ComponentPhase& o) const { return mKind == o.mKind && g() == o.g(); }
+
+private:
+    PhaseKind mKind;
+    HGPhase mHG;
+    WaterPhase mWater;
+};
+
 // Uniform direction on the sphere (isotropic re-emission, light emission).
 inline Vec3 sampleUniformSphere(float u1, float u2) {
     float z = 1.f - 2.f * u1;

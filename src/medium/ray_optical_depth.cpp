@@ -32,6 +32,10 @@ RayOpticalDepth::RayOpticalDepth(const std::vector<const Medium*>& media, float 
                             ? -1
                             : int(std::find(slots.begin(), slots.end(), c.grid) - slots.begin());
             float k = c.concentration * m->densityScale();
+            if (c.kind == ComponentKind::Chlorophyll) {
+                addPowerLaw(c, term, k, &info);
+                continue;
+            }
             if (c.sigmaA.isConstant() && c.sigmaS.isConstant()) {
                 float sigmaT = c.sigmaA.constantValue() + c.sigmaS.constantValue();
                 if (!(sigmaT * k > 0.f)) continue;  // a component that neither absorbs nor scatters
@@ -40,13 +44,44 @@ RayOpticalDepth::RayOpticalDepth(const std::vector<const Medium*>& media, float 
             } else {
                 term.scale = k;
                 term.channel = mChannels++;
-                mSpectral.push_back({&c.sigmaA, &c.sigmaS});
+                mSpectral.push_back({&c.sigmaA, &c.sigmaS, term.channel});
             }
             info.terms.push_back(term);
         }
         mMedia.push_back(std::move(info));
     }
     mIntegrand.resize(size_t(mChannels));
+}
+
+void RayOpticalDepth::addPowerLaw(const MediumComponent& c, const Term& base, float k,
+                                  MediumInfo* info) {
+    float eLo = kInfinity, eHi = -kInfinity;
+    for (int i = 0; i < Spectrum::kDenseSamples; ++i) {
+        float e = c.sigmaAExponent(kLambdaMin + float(i));
+        eLo = std::min(eLo, e);
+        eHi = std::max(eHi, e);
+    }
+    constexpr float kExponentStep = 0.02f;
+    PowerLawChannels pl;
+    pl.component = &c;
+    pl.eLo = eLo;
+    pl.count = std::max(2, int(std::ceil((eHi - eLo) / kExponentStep)) + 1);
+    pl.de = (eHi - eLo) / float(pl.count - 1);
+    if (!(pl.de > 0.f)) pl.de = 1.f;  // a constant exponent: both channels hold the same
+    pl.first = mChannels;
+    for (int m = 0; m < pl.count; ++m) {
+        Term t = base;
+        t.scale = k;
+        t.channel = mChannels++;
+        t.exponent = eLo + float(m) * pl.de;
+        info->terms.push_back(t);
+    }
+    Term t = base;
+    t.scale = k;
+    t.channel = pl.sChannel = mChannels++;
+    t.exponent = c.sigmaSExponent;
+    info->terms.push_back(t);
+    mPowerLaw.push_back(pl);
 }
 
 void RayOpticalDepth::march(const Ray& ray, float tMax) {
@@ -93,7 +128,9 @@ void RayOpticalDepth::march(const Ray& ray, float tMax) {
             for (const Term& term : info.terms) {
                 size_t g = size_t(term.grid);
                 float v = term.grid < 0 ? 1.f : grids[g].sample(info.accessors[g], p);
-                mIntegrand[size_t(term.channel)] += (hi - lo) * term.scale * v;
+                float x = term.scale * v;
+                if (term.exponent != 1.f) x = x > 0.f ? std::pow(x, term.exponent) : 0.f;
+                mIntegrand[size_t(term.channel)] += (hi - lo) * x;
             }
         }
         const float* prev = &mTau[size_t(j) * C];
@@ -110,11 +147,17 @@ float RayOpticalDepth::transmittance(float t, float lambdaNm) const {
     const size_t C = size_t(mChannels);
     const float* a = &mTau[size_t(j) * C];
     const float* b = a + C;
-    float tau = a[0] + f * (b[0] - a[0]);
-    for (size_t c = 1; c < C; ++c) {
-        const SpectralChannel& s = mSpectral[c - 1];
-        float sigmaT = (*s.sigmaA)(lambdaNm) + (*s.sigmaS)(lambdaNm);
-        tau += sigmaT * (a[c] + f * (b[c] - a[c]));
+    auto at = [&](int c) { return a[c] + f * (b[c] - a[c]); };
+    float tau = at(0);
+    for (const SpectralChannel& s : mSpectral)
+        tau += ((*s.sigmaA)(lambdaNm) + (*s.sigmaS)(lambdaNm)) * at(s.channel);
+    for (const PowerLawChannels& pl : mPowerLaw) {
+        const MediumComponent& c = *pl.component;
+        float x = clamp((c.sigmaAExponent(lambdaNm) - pl.eLo) / pl.de, 0.f, float(pl.count - 1));
+        int m = std::min(int(x), pl.count - 2);
+        float w = x - float(m);
+        float integral = (1.f - w) * at(pl.first + m) + w * at(pl.first + m + 1);
+        tau += c.sigmaA(lambdaNm) * integral + c.sigmaS(lambdaNm) * at(pl.sChannel);
     }
     return std::exp(-tau);
 }

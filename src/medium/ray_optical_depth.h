@@ -11,6 +11,12 @@
 // Components whose cross-sections do not depend on λ are folded into one grey channel that
 // holds σt,c·τ_c directly, so a grey scene costs one channel whatever its component count.
 //
+// Chlorophyll components are not linear in their concentration C: σa = A(λ) C^e(λ),
+// σs = b(λ) C^s. Their channels integrate C^e_m for exponents e_m spaced 0.02 apart over the
+// range of e(λ), plus C^s; at a wavelength, ∫ C^e(λ) is interpolated linearly in e between the
+// two nearest e_m. ∫ C^e ds is smooth in e (d²/de² = ∫ C^e ln²C ds), so the relative error is
+// ≤ (0.02)²/8 · max ln²C: below 0.05 % for C within 0.05–20 mg/m³ of the grid's unit.
+//
 // Quadrature: the midpoint rule on intervals of h = stepVoxels × the finest voxel of the media
 // the ray crosses (a majorant cell for a homogeneous medium), clipped to each medium's box so
 // that the entry and exit of a constant medium are exact. The trilinear field is smooth within
@@ -43,7 +49,7 @@ public:
     bool empty() const { return !(mT0 < mT1); }
     float step() const { return mH; }
     // True when every component is grey: T does not depend on λ.
-    bool grey() const { return mSpectral.empty(); }
+    bool grey() const { return mSpectral.empty() && mPowerLaw.empty(); }
 
     // Transmittance from the ray origin to t at wavelength lambdaNm (nm).
     float transmittance(float t, float lambdaNm) const;
@@ -53,12 +59,21 @@ private:
     struct SpectralChannel {
         const Spectrum* sigmaA;
         const Spectrum* sigmaS;
+        int channel;
+    };
+    // A chlorophyll component: channels first … first + count − 1 hold ∫ C^(eLo + m·de),
+    // channel sChannel ∫ C^s.
+    struct PowerLawChannels {
+        const MediumComponent* component;
+        int first, count, sChannel;
+        float eLo, de;
     };
     // What one medium contributes to the channels at a point.
     struct Term {
         int grid;      // index into the medium's grids, -1 for a constant component
         float scale;   // concentration · densityScale, times σt for the grey channel
         int channel;   // 0 = grey
+        float exponent = 1.f;  // the channel integrates (scale · grid)^exponent
     };
     struct MediumInfo {
         const Medium* medium;
@@ -66,9 +81,12 @@ private:
         std::vector<FloatGrid::Accessor> accessors;
         float voxel;  // finest object-space voxel (a majorant cell when it has no grid)
     };
+    // The channels of a chlorophyll component (k = concentration · densityScale).
+    void addPowerLaw(const MediumComponent& c, const Term& base, float k, MediumInfo* info);
 
     std::vector<MediumInfo> mMedia;
     std::vector<SpectralChannel> mSpectral;
+    std::vector<PowerLawChannels> mPowerLaw;
     int mChannels = 1;
     float mStepVoxels;
 

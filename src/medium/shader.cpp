@@ -17,7 +17,14 @@ std::vector<std::string> ShaderDesc::gridSlots() const {
 
 bool ShaderDesc::spectralCoefficients() const {
     for (const auto& c : components)
-        if (!c.sigmaA.isConstant() || !c.sigmaS.isConstant()) return true;
+        if (!c.sigmaA.isConstant() || !c.sigmaS.isConstant() || !c.sigmaAExponent.isConstant())
+            return true;
+    return false;
+}
+
+bool ShaderDesc::fluorescent() const {
+    for (const auto& c : components)
+        if (c.fluorescent()) return true;
     return false;
 }
 

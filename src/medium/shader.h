@@ -1,6 +1,7 @@
 // A volume shader: the description of a medium as a sum of components. Each component is a
 // concentration field (a grid, scaled, or a constant) times cross-sections σa(λ), σs(λ)
-// (1/m per unit concentration) with a Henyey–Greenstein phase function; a shader may also emit
+// (1/m per unit concentration) with a phase lobe (Henyey–Greenstein or the sea-water lobe;
+// non-linear sea-water kinds: ComponentKind); a shader may also emit
 // as a blackbody at the temperature of a grid (Kirchhoff: a medium at temperature T emits
 // σa·B(λ,T)). Shaders are written in TOML (shaders/*.toml) and parsed by scene/.
 #pragma once
@@ -9,16 +10,44 @@
 #include <string>
 #include <vector>
 
+#include "medium/phase.h"
 #include "spectrum/spectrum.h"
 
 namespace mirage {
+
+// What a component is, as written in the shader (`kind = …`). The scene loader turns every
+// kind into spectra below; the medium only distinguishes linear from chlorophyll.
+//  - Linear: σ = C · σ_c(λ), the cross-section model of smoke and fog.
+//  - Water: pure sea water, σa = a_w(λ) (Pope & Fry 1997), σs = b_w(λ) (Morel 1974), water lobe.
+//  - Cdom: dissolved organic matter, σa = a_y(440) · exp(−S(λ − 440)), C = a_y(440) in 1/m.
+//  - Chlorophyll: phytoplankton at C mg/m³, σa = A(λ) C^(1−B(λ)) (Bricaud et al. 1995) and
+//    σs = b_p(λ) = 0.30 C^0.62 (550/λ) (Gordon & Morel 1983, Morel 1988), HG g = 0.924.
+enum class ComponentKind { Linear, Water, Cdom, Chlorophyll };
 
 struct MediumComponent {
     std::string name;
     std::string grid;          // grid slot the component reads; "" = homogeneous
     float concentration = 1;   // scale applied to grid values, or the constant value
-    Spectrum sigmaA, sigmaS;   // 1/m per unit concentration
+    Spectrum sigmaA, sigmaS;   // 1/m per unit concentration (Chlorophyll: per unit C^exponent)
     float g = 0;               // HG asymmetry
+    ComponentKind kind = ComponentKind::Linear;
+    PhaseKind phase = PhaseKind::HenyeyGreenstein;
+    // Chlorophyll only: σa = sigmaA(λ) · C^sigmaAExponent(λ), σs = sigmaS(λ) · C^sigmaSExponent,
+    // with C = concentration × density scale × grid value. Both exponents are ≥ 0 (1 − B ∈
+    // [0.62, 1.02] for Bricaud's B), so σ grows with C and the majorant bounds it at the
+    // largest C of a cell.
+    Spectrum sigmaAExponent{1.f};
+    float sigmaSExponent = 1;
+
+    // Fluorescence (Gutierrez et al. 2005): a photon absorbed by this component is re-emitted
+    // with probability Γ (a quantum yield: photons out per photon absorbed), isotropically, at a
+    // wavelength drawn from the Gaussian η(λ) of the given peak and FWHM, restricted to
+    // λ ≥ λ_absorbed (Stokes shift) unless antiStokes.
+    float quantumEfficiency = 0;  // Γ, 0..1
+    float emissionPeakNm = 685;   // chlorophyll a (seed paper; field data 683–687 nm)
+    float emissionFwhmNm = 25;
+    bool antiStokes = false;
+    bool fluorescent() const { return quantumEfficiency > 0.f; }
 };
 
 struct EmissionSpec {
@@ -42,6 +71,8 @@ struct ShaderDesc {
     std::vector<std::string> gridSlots() const;
     // True when some σ varies with wavelength.
     bool spectralCoefficients() const;
+    // True when some component re-emits absorbed light at another wavelength.
+    bool fluorescent() const;
 };
 
 }  // namespace mirage

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 
 #include "photon/photon_walk.h"
 
@@ -57,7 +58,8 @@ struct PhotonPath {
 // scattered maxBounces times. Appends its stored photons to *out.
 PhotonPath tracePhoton(uint64_t index, const std::vector<const Light*>& lights,
                        const LightChooser& chooser, const Bounds3& bounds, float photonPower,
-                       const PhotonPassSettings& settings, PhotonWalk& walk, PhotonList* out) {
+                       const PhotonPassSettings& settings, const GeometryScene* geometry,
+                       PhotonWalk& walk, PhotonMapLists* out) {
     PhotonPath path;
     Sampler sampler(settings.seed, index, 0);
     const Light& light = *lights[chooser.choose(sampler.get1D())];
@@ -68,12 +70,54 @@ PhotonPath tracePhoton(uint64_t index, const std::vector<const Light*>& lights,
     walk.setWavelength(em.lambda);
 
     Ray ray{em.origin, em.direction, kInfinity};
+    bool direct = true;        // no interaction yet: light straight from the light
+    bool specularOnly = true;  // every interaction so far was a mirror or glass
     for (int bounces = 0;;) {
-        FlightEvent ev = walk.fly(ray, kInfinity, sampler);
-        if (ev.end != FlightEnd::Scattered) return path;
+        std::optional<SurfaceHit> hit;
+        if (geometry) hit = geometry->intersect(ray);
+        FlightEvent ev = walk.fly(ray, hit ? hit->t : kInfinity, sampler);
+        if (ev.end == FlightEnd::Escaped && hit) {
+            // A surface: reflect, refract or store and bounce.
+            const Material& mat = geometry->materialAt(*hit);
+            Frame frame(hit->ns);
+            Vec3 woL = frame.toLocal(-ray.d);
+            Vec3 wiL;
+            if (mat.specular()) {
+                BsdfSample bs;
+                float uc = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
+                if (!mat.sample(woL, uc, u1, u2, walk.tracking().wavelengths(),
+                                TransportMode::Importance, &bs))
+                    return path;
+                power *= bs.weight[0];
+                wiL = bs.wi;
+            } else {
+                if (!direct)
+                    (specularOnly ? out->surfaceCaustic : out->surfaceGlobal)
+                        .push_back(Photon{hit->p, ray.d, walk.wavelength(), power});
+                // Albedo roulette: bounce with probability ρ(λ), power unchanged (f cos/pdf = ρ).
+                if (sampler.get1D() >= mat.albedo(walk.wavelength())) return path;
+                wiL = sampleCosineHemisphere(sampler.get1D(), sampler.get1D());
+                if (woL.z < 0.f) wiL.z = -wiL.z;
+                specularOnly = false;
+            }
+            direct = false;
+            if (!(power > 0.f)) return path;
+            if (++bounces >= settings.maxBounces) {
+                path.capped = true;
+                return path;
+            }
+            ray = spawnRay(*hit, frame.toWorld(wiL));
+            continue;
+        }
+        if (ev.end != FlightEnd::Scattered && ev.end != FlightEnd::Reemitted) return path;
         // The first interaction is direct light; the render pass may compute it itself.
-        if (bounces > 0 || settings.storeFirstInteraction)
-            out->push_back(Photon{ev.p, ev.wi, em.lambda, power});
+        // A fluorescent re-emission is not stored: its light leaves isotropically at a new
+        // wavelength, which the estimates' elastic phase lobes do not describe. The photon goes
+        // on at walk.wavelength() with power × λi/λo (photon_walk.h), and its later events are.
+        if (ev.end == FlightEnd::Scattered && (!direct || settings.storeFirstInteraction))
+            out->volume.push_back(Photon{ev.p, ev.wi, walk.wavelength(), power});
+        direct = false;
+        specularOnly = false;
         ++bounces;
         power *= ev.weight;
         if (!(power > 0.f)) return path;
@@ -90,19 +134,29 @@ PhotonPath tracePhoton(uint64_t index, const std::vector<const Light*>& lights,
 PhotonList tracePhotons(const std::vector<const Light*>& lights,
                         const std::vector<const Medium*>& media, const PhotonPassSettings& settings,
                         PhotonPassStats* stats) {
+    return tracePhotonMaps(lights, media, nullptr, settings, stats).volume;
+}
+
+PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
+                               const std::vector<const Medium*>& media,
+                               const GeometryScene* geometry, const PhotonPassSettings& settings,
+                               PhotonPassStats* stats) {
     auto start = std::chrono::steady_clock::now();
     PhotonPassStats local;
-    PhotonList photons;
+    PhotonMapLists maps;
+    if (geometry && geometry->empty()) geometry = nullptr;
 
     Bounds3 bounds;
     for (const Medium* m : media) bounds.expand(m->worldBounds());
+    if (geometry) bounds.expand(geometry->bounds());
     LightChooser chooser(lights, bounds);
     const uint64_t n = settings.photons;
-    // Nothing to do without photons, light or media: photons that meet no medium store nothing.
-    if (n > 0 && !media.empty() && chooser.totalPower() > 0.0) {
+    // Nothing to do without photons, light, media or surfaces: a photon that meets nothing
+    // stores nothing.
+    if (n > 0 && (!media.empty() || geometry) && chooser.totalPower() > 0.0) {
         const float photonPower = float(chooser.totalPower() / double(n));
         const uint64_t blocks = (n + kBlockPhotons - 1) / kBlockPhotons;
-        std::vector<PhotonList> blockPhotons(blocks);
+        std::vector<PhotonMapLists> blockPhotons(blocks);
         std::vector<uint64_t> blockCapped(blocks, 0);
         Progress progress("photons", n, "photons", settings.progress);
 
@@ -113,7 +167,7 @@ PhotonList tracePhotons(const std::vector<const Light*>& lights,
                     uint64_t first = b * kBlockPhotons, last = std::min(n, first + kBlockPhotons);
                     for (uint64_t i = first; i < last; ++i) {
                         PhotonPath path = tracePhoton(i, lights, chooser, bounds, photonPower,
-                                                      settings, walk, &blockPhotons[b]);
+                                                      settings, geometry, walk, &blockPhotons[b]);
                         blockCapped[b] += path.capped;
                     }
                     progress.advance(last - first);
@@ -121,21 +175,27 @@ PhotonList tracePhotons(const std::vector<const Light*>& lights,
             });
         progress.finish();
 
-        // Concatenated in block order: the list is the same for any thread count.
-        size_t total = 0;
-        for (const auto& bp : blockPhotons) total += bp.size();
-        photons.reserve(total);
-        for (uint64_t b = 0; b < blocks; ++b) {
-            photons.insert(photons.end(), blockPhotons[b].begin(), blockPhotons[b].end());
-            PhotonList().swap(blockPhotons[b]);
-            local.cappedPaths += blockCapped[b];
-        }
+        // Concatenated in block order: the lists are the same for any thread count.
+        auto concatenate = [&](PhotonList PhotonMapLists::*member) {
+            size_t total = 0;
+            for (const auto& bp : blockPhotons) total += (bp.*member).size();
+            PhotonList& all = maps.*member;
+            all.reserve(total);
+            for (auto& bp : blockPhotons) {
+                all.insert(all.end(), (bp.*member).begin(), (bp.*member).end());
+                PhotonList().swap(bp.*member);
+            }
+        };
+        concatenate(&PhotonMapLists::volume);
+        concatenate(&PhotonMapLists::surfaceGlobal);
+        concatenate(&PhotonMapLists::surfaceCaustic);
+        for (uint64_t b = 0; b < blocks; ++b) local.cappedPaths += blockCapped[b];
         local.emitted = n;
     }
-    local.stored = photons.size();
+    local.stored = maps.volume.size() + maps.surfaceGlobal.size() + maps.surfaceCaustic.size();
     local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (stats) *stats = local;
-    return photons;
+    return maps;
 }
 
 }  // namespace mirage

@@ -4,12 +4,24 @@
 // (new direction from the phase function, power unchanged) and absorption. Scattering events
 // are stored as volume photons. Parallel and deterministic: photon i's random numbers depend
 // only on (seed, i), and the stored list is ordered by photon index.
+//
+// Surfaces (tracePhotonMaps): a flight ends at the nearest surface. Mirrors and glass reflect or
+// refract the photon (glass by Fresnel roulette, at the photon's own wavelength, so dispersion
+// needs no special case); a diffuse surface stores a surface photon, then an albedo roulette
+// decides between absorption and a cosine-distributed bounce (power unchanged). Surface photons
+// go to the caustic map when the photon's path so far is L S+ D (only specular bounces), to the
+// global map when it has met a diffuse surface or scattered in a medium; a photon arriving
+// straight from the light is direct light, which the render pass computes by NEE, and is not
+// stored. The volume-photon rule is the same: a medium event is stored unless it is the first
+// interaction of the photon (NEE computes that one) — light → glass → fog (a volume caustic) is
+// stored, since no shadow ray passes through glass.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "core/progress.h"
+#include "geometry/geometry_scene.h"
 #include "light/light.h"
 #include "medium/medium.h"
 #include "photon/photon.h"
@@ -30,6 +42,18 @@ struct PhotonPassStats {
     uint64_t emitted = 0, stored = 0, cappedPaths = 0;
     double seconds = 0;
 };
+
+struct PhotonMapLists {
+    PhotonList volume;          // medium scattering events
+    PhotonList surfaceGlobal;   // diffuse surfaces, after a diffuse bounce or a medium event
+    PhotonList surfaceCaustic;  // diffuse surfaces, after specular bounces only (L S+ D)
+};
+
+// The photon pass with surfaces (geometry may be null: then the same photons as tracePhotons).
+PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
+                               const std::vector<const Medium*>& media,
+                               const GeometryScene* geometry, const PhotonPassSettings& settings,
+                               PhotonPassStats* stats);
 
 PhotonList tracePhotons(const std::vector<const Light*>& lights,
                         const std::vector<const Medium*>& media, const PhotonPassSettings& settings,

@@ -1,5 +1,7 @@
 #include "photon/photon_walk.h"
 
+#include "transport/reemission.h"
+
 namespace mirage {
 
 PhotonWalk::PhotonWalk(const std::vector<const Medium*>& media) : mTracking(media) {}
@@ -27,6 +29,18 @@ FlightEvent PhotonWalk::fly(const Ray& ray, float tMax, Sampler& sampler) {
         if (u < e.pAbsorb) {
             ev.end = FlightEnd::Absorbed;
             ev.p = c.p;
+            // The second roulette (Gutierrez et al. 2005): re-emission with the quantum
+            // efficiency of the absorbing component. It draws nothing in media without one.
+            const Medium& m = mTracking.medium(size_t(c.medium));
+            Reemission r;
+            if (sampleReemission(m, mTracking.context(size_t(c.medium)), c.p, mLambda, sampler,
+                                 &r)) {
+                ev.end = FlightEnd::Reemitted;
+                ev.wo = r.wo;
+                ev.weight = r.powerScale;
+                ev.lambdaIn = mLambda;
+                ev.lambdaOut = r.lambdaNm;
+            }
             return Track::Stop;
         }
         if (u < e.pAbsorb + e.pScatter) {
@@ -42,6 +56,8 @@ FlightEvent PhotonWalk::fly(const Ray& ray, float tMax, Sampler& sampler) {
         }
         return Track::Continue;
     });
+    // The new wavelength, once tracking no longer uses the contexts' old one.
+    if (ev.end == FlightEnd::Reemitted) setWavelength(ev.lambdaOut);
     return ev;
 }
 

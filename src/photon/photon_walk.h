@@ -23,6 +23,10 @@ enum class FlightEnd {
     Escaped,  // no real collision before tMax: the photon left every medium (tMax = ∞)
     Absorbed,
     Scattered,
+    // Absorbed by a fluorescent component and re-emitted (the Γ roulette, transport/
+    // reemission.h): the photon goes on along wo at the walk's new wavelength() with its power
+    // times `weight` = λi/λo. A caller that does not handle it may treat it as Absorbed.
+    Reemitted,
 };
 
 struct FlightEvent {
@@ -31,7 +35,8 @@ struct FlightEvent {
     Vec3 wi;             // direction of the flight
     Vec3 wo;             // Scattered: new direction, sampled from the phase function
     float weight = 1.f;  // Scattered: phase weight p/pdf at the photon's wavelength; 1 for a
-                         // single lobe, which is sampled exactly
+                         // single lobe, which is sampled exactly. Reemitted: λi/λo
+    float lambdaIn = 0.f, lambdaOut = 0.f;  // Reemitted: absorbed and re-emitted λ (nm)
 };
 
 class PhotonWalk {

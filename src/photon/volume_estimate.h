@@ -62,7 +62,7 @@ private:
     PhotonMap mMap;
     std::vector<float> mSigmaS;
     std::vector<Vec3> mFluxXyz;
-    std::vector<HGPhase> mLobes;
+    std::vector<ComponentPhase> mLobes;
     std::vector<float> mLobeWeights;  // size() × mLobes.size(), empty for a single lobe
 };
 

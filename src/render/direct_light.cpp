@@ -2,6 +2,16 @@
 
 namespace mirage {
 
+namespace {
+
+// The shadow ray's length short of the light: a quad light may lie on a surface (the ceiling
+// of a Cornell box), which must not occlude its own light.
+float shadowLength(const Vec3& target, float distance) {
+    return std::isfinite(distance) ? distance - 4.f * surfaceEpsilon(target) : distance;
+}
+
+}  // namespace
+
 SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, const Vec3& wo,
                                   Sampler& sampler, ThreadState& ts) {
     SampledSpectrum L(0.f);
@@ -13,9 +23,37 @@ SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, 
         // The light travels along −wi into the point and leaves along wo.
         SampledSpectrum phase = m.phaseEval(c.mp, -ls.wi, wo);
         if (phase.isZero()) continue;
+        if (scene.hasSurfaces() &&
+            scene.geometry->occluded(c.p, ls.wi, shadowLength(c.p + ls.wi * ls.distance, ls.distance)))
+            continue;
         Ray shadow{c.p, ls.wi, ls.distance};
         SampledSpectrum T = transmittance(ts.tracking, shadow, ls.distance, sampler);
         L += T * phase * ls.Li;
+    }
+    return L;
+}
+
+SampledSpectrum directLightSurface(const RenderScene& scene, const SurfaceHit& hit,
+                                   const Material& material, const Vec3& wo, Sampler& sampler,
+                                   ThreadState& ts) {
+    SampledSpectrum L(0.f);
+    Frame frame(hit.ns);
+    Vec3 woL = frame.toLocal(wo);
+    const float side = dot(wo, hit.ng);
+    for (const auto& light : scene.lights) {
+        float u1 = sampler.get1D(), u2 = sampler.get1D();
+        LightSample ls;
+        if (!light->sampleLi(hit.p, u1, u2, ts.tracking.wavelengths(), &ls)) continue;
+        // Light from behind the geometric surface cannot reach the viewer's side.
+        if (dot(ls.wi, hit.ng) * side <= 0.f) continue;
+        Vec3 wiL = frame.toLocal(ls.wi);
+        SampledSpectrum f = material.eval(woL, wiL, ts.tracking.wavelengths());
+        if (f.isZero()) continue;
+        Ray shadow = spawnRay(hit, ls.wi, ls.distance);
+        float len = shadowLength(hit.p + ls.wi * ls.distance, ls.distance);
+        if (scene.geometry->occluded(shadow.o, ls.wi, len)) continue;
+        SampledSpectrum T = transmittance(ts.tracking, shadow, ls.distance, sampler);
+        L += T * f * std::abs(wiL.z) * ls.Li;
     }
     return L;
 }

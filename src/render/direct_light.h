@@ -1,5 +1,7 @@
-// Next-event estimation at a medium scattering point, shared by every integrator: each light
-// is sampled once and its contribution is attenuated by a ratio-tracked shadow ray.
+// Next-event estimation shared by every integrator: each light is sampled once and its
+// contribution is attenuated by a ratio-tracked shadow ray. Surfaces block shadow rays (an
+// Embree occlusion test first, which is far cheaper than tracking); glass blocks them too, since
+// light through specular surfaces is not reachable by a shadow ray (photons carry caustics).
 #pragma once
 
 #include "render/integrator.h"
@@ -10,5 +12,12 @@ namespace mirage {
 // viewer (the reverse of the incoming path direction).
 SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, const Vec3& wo,
                                   Sampler& sampler, ThreadState& ts);
+
+// Σ_lights f(wo, wi) |cos θi| · Li · T(shadow ray) at a diffuse surface point; wo (world, unit)
+// points towards the viewer. Light arriving from the other side of the surface than wo is not
+// counted (Lambertian surfaces here are two-sided but opaque).
+SampledSpectrum directLightSurface(const RenderScene& scene, const SurfaceHit& hit,
+                                   const Material& material, const Vec3& wo, Sampler& sampler,
+                                   ThreadState& ts);
 
 }  // namespace mirage

@@ -22,14 +22,27 @@
 //
 // Light emitted by the media themselves (fire) reaches the camera directly, through the single-
 // scatter integrator, but its scattered part is missing until the photon pass emits from media.
+//
+// Surfaces. The single-scatter part follows mirrors and glass to the first diffuse surface or
+// medium event and adds direct light there (NEE). The photon part walks the same kind of
+// specular chain: along each segment the volume estimate (beam or point) up to the surface,
+// and at the first diffuse surface the surface estimates of photon/surface_estimate.h —
+// caustics from the caustic map (L S+ D) and indirect light straight from the global map (no
+// final gather: a direct global-map estimate, blurrier but cheap; its radius is the same
+// k-nearest disc). Specular weights are grey (Fresnel roulette, white mirrors); for
+// segments behind the first, the media's transmittance is taken at 550 nm (exact for grey
+// media), and a dispersive glass bends the whole photon estimate along the hero wavelength's
+// direction. Emissive surfaces are seen (single-scatter part) but emit no photons.
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <optional>
 
 #include "photon/beam_estimate.h"
 #include "photon/photon_pass.h"
+#include "photon/surface_estimate.h"
 #include "render/integrator.h"
 
 namespace mirage {
@@ -73,7 +86,12 @@ public:
         pass.maxBounces = mSettings.maxBounces;
         pass.storeFirstInteraction = false;
         pass.progress = mSettings.progress;
-        PhotonList list = tracePhotons(lights, mMedia, pass, &mPassStats);
+        PhotonMapLists lists = tracePhotonMaps(
+            lights, mMedia, scene.hasSurfaces() ? scene.geometry.get() : nullptr, pass,
+            &mPassStats);
+        PhotonList list = std::move(lists.volume);
+        mGlobal = std::make_unique<SurfacePhotons>(std::move(lists.surfaceGlobal));
+        mCaustic = std::make_unique<SurfacePhotons>(std::move(lists.surfaceCaustic));
 
         // The map: kd-tree, per-photon XYZ and phase, then the estimate's own structures.
         auto t0 = Clock::now();
@@ -108,6 +126,10 @@ public:
     RadianceSample Li(const RenderScene& scene, const Ray& ray, const SampledWavelengths& w,
                       Sampler& sampler, ThreadState& ts) const override {
         RadianceSample out = mSingle->Li(scene, ray, w, sampler, ts);
+        if (scene.hasSurfaces()) {
+            out.xyz = photonsAlongSpecularChain(scene, ray, w, sampler);
+            return out;
+        }
         if (!mPhotons || mPhotons->size() == 0) return out;
 
         float u = sampler.get1D();  // the march's jitter, drawn whichever estimate is used
@@ -146,18 +168,79 @@ public:
                       estimates ? estimateSeconds / double(estimates) * 1e6 : 0.0,
                       mSettings.kOrDefault(), double(mMaxRadius),
                       (unsigned long long)p.cappedPaths);
-        return buf;
+        std::string line = buf;
+        if (mGlobal && mCaustic && (mGlobal->size() + mCaustic->size()) > 0)
+            line += " | surface photons: " + std::to_string(mGlobal->size()) + " global, " +
+                    std::to_string(mCaustic->size()) + " caustic";
+        return line;
     }
 
     uint64_t cappedPaths() const override { return mSingle->cappedPaths(); }
 
 private:
+    static constexpr int kMaxSpecularBounces = 16;
+
+    // The photon part with surfaces (see the top of the file), XYZ.
+    Vec3 photonsAlongSpecularChain(const RenderScene& scene, const Ray& cameraRay,
+                                   const SampledWavelengths& w, Sampler& sampler) const {
+        float u = sampler.get1D();  // the point estimate's march jitter
+        PhotonThreadState& pt = mThreads->local();
+        auto t0 = Clock::now();
+        const bool volume = mPhotons && mPhotons->size() > 0;
+        const int kSurface = mSettings.k > 0 ? mSettings.k : 32;
+        Vec3 xyz(0.f);
+        float weight = 1.f;  // grey throughput of the specular vertices and earlier segments
+        Ray ray = cameraRay;
+        for (int bounce = 0; bounce <= kMaxSpecularBounces; ++bounce) {
+            std::optional<SurfaceHit> hit = scene.geometry->intersect(ray);
+            const float tEnd = hit ? hit->t : ray.tMax;
+            pt.depth.march(ray, tEnd);
+            if (volume) {
+                if (mBeam) {
+                    xyz += mBeam->estimate(ray, tEnd, pt.depth, &pt.hits) * weight;
+                } else {
+                    pt.neighbours.resize(size_t(mSettings.kOrDefault()));
+                    xyz += pointEstimateAlongRay(*mPhotons, ray, pt.depth, mSettings.kOrDefault(),
+                                                 mMaxRadius, mStep, u, pt.neighbours.data(),
+                                                 pt.probe) *
+                           weight;
+                }
+            }
+            if (!hit) break;
+            const Material& mat = scene.geometry->materialAt(*hit);
+            if (!mat.specular()) {
+                pt.neighbours.resize(size_t(kSurface));
+                auto T = [&](float lambda) { return pt.depth.transmittance(hit->t, lambda); };
+                Vec3 wo = -ray.d;
+                xyz += (mCaustic->estimate(hit->p, hit->ng, wo, mat, kSurface, mMaxRadius,
+                                           pt.neighbours.data(), T) +
+                        mGlobal->estimate(hit->p, hit->ng, wo, mat, kSurface, mMaxRadius,
+                                          pt.neighbours.data(), T)) *
+                       weight;
+                break;
+            }
+            weight *= pt.depth.transmittance(tEnd, 550.f);
+            Frame frame(hit->ns);
+            float uc = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
+            BsdfSample bs;
+            if (!mat.sample(frame.toLocal(-ray.d), uc, u1, u2, w, TransportMode::Radiance, &bs))
+                break;
+            weight *= bs.weight.average();
+            if (!(weight > 0.f)) break;
+            ray = spawnRay(*hit, frame.toWorld(bs.wi));
+        }
+        pt.estimateSeconds += secondsSince(t0);
+        ++pt.estimates;
+        return xyz;
+    }
+
     PhotonIntegratorSettings mSettings;
     std::unique_ptr<Integrator> mSingle;
     std::vector<const Medium*> mMedia;
     PhotonPassStats mPassStats;
     std::unique_ptr<VolumePhotons> mPhotons;
     std::unique_ptr<BeamEstimator> mBeam;
+    std::unique_ptr<SurfacePhotons> mGlobal, mCaustic;  // surface photon maps
     float mMaxRadius = 0.f, mStep = 0.f;
     double mBuildSeconds = 0;
     std::unique_ptr<tbb::enumerable_thread_specific<PhotonThreadState>> mThreads;

@@ -1,10 +1,13 @@
 // Scene files (TOML) → Scene. The schema is documented in README.md ("Scene files"); every
 // table is read through TableReader, so unknown keys, wrong types and out-of-range values are
 // errors naming the file, line and column.
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 
 #include "film/color.h"
+#include "medium/ocean_components.h"
+#include "scene/geometry_loader.h"
 #include "scene/scene.h"
 #include "scene/shader_loader.h"
 #include "scene/toml_reader.h"
@@ -109,6 +112,8 @@ std::unique_ptr<Light> readLight(const TableReader& t, const ColorPipeline& colo
     return light;
 }
 
+}  // namespace
+
 Transform readTransform(const TableReader& t) {
     Transform xf;
     if (t.has("scale")) {
@@ -127,6 +132,8 @@ Transform readTransform(const TableReader& t) {
     t.finish();
     return xf;
 }
+
+namespace {
 
 // Resolves the grid each shader slot binds to, checking it exists in the file.
 std::vector<std::pair<std::string, std::string>> bindGrids(
@@ -282,6 +289,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
     }
 
     for (const auto& l : top.tables("light")) scene.render.lights.push_back(readLight(l, color));
+    scene.render.geometry = readGeometry(top, resolve, scene.render.media.size(), color);
 
     float aspect = float(scene.settings.width) / float(scene.settings.height);
     if (auto c = top.optionalTable("camera")) {
@@ -296,7 +304,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
             c->fail("up", "'up' is parallel to the viewing direction");
         c->finish();
         scene.render.camera = cam;
-    } else if (!scene.render.media.empty()) {
+    } else if (!scene.render.media.empty() || scene.render.hasSurfaces()) {
         scene.render.camera = frameBounds(scene.render.bounds(), 40.f, aspect);
     }
     top.finish();
@@ -328,13 +336,32 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
 std::vector<PhysicsTerm> Scene::physics() const {
     std::vector<PhysicsTerm> terms;
     bool scatter = false, spectral = false, emission = false;
-    std::string emitWhy, spectralWhy;
+    std::string emitWhy, spectralWhy, fluorescenceWhy;
     for (size_t i = 0; i < render.media.size(); ++i) {
         const ShaderDesc& s = render.media[i]->shader();
         for (const auto& c : s.components) scatter |= c.sigmaS.maxValue() > 0;
-        if (s.spectralCoefficients() && spectralWhy.empty())
+        if (s.spectralCoefficients() && spectralWhy.empty()) {
             spectralWhy = "shader '" + s.name + "' has wavelength-dependent σ";
+            for (const auto& c : s.components)
+                if (c.kind != ComponentKind::Linear) {
+                    spectralWhy += " (component '" + c.name + "' is of kind " +
+                                   componentKindName(c.kind) + ")";
+                    break;
+                }
+        }
         spectral |= s.spectralCoefficients();
+        for (const auto& c : s.components) {
+            if (!c.fluorescent() || !fluorescenceWhy.empty()) continue;
+            char buf[160];
+            std::snprintf(buf, sizeof buf, "' re-emits with Γ = %g at %g nm (FWHM %g nm%s)",
+                          c.quantumEfficiency, c.emissionPeakNm, c.emissionFwhmNm,
+                          c.antiStokes ? ", anti-Stokes allowed" : "");
+            fluorescenceWhy = "shader '" + s.name + "' component '" + c.name + buf +
+                              ": Γ roulette after absorption, spectral transport";
+        }
+        if (!fluorescenceWhy.empty() && spectralWhy.empty())
+            spectralWhy = "fluorescence changes wavelengths (" + s.name + ")";
+        spectral |= s.fluorescent();
         if (s.emission) {
             emission = true;
             emitWhy = "shader '" + s.name + "' emits as a blackbody at grid slot '" +
@@ -358,7 +385,20 @@ std::vector<PhysicsTerm> Scene::physics() const {
                      spectral ? spectralWhy
                               : "every σ is wavelength-independent: one grid lookup and one "
                                 "coefficient per component serve all 4 wavelengths"});
-    terms.push_back({"fluorescence", false, "no shader declares a quantum efficiency"});
+    if (render.hasSurfaces()) {
+        const GeometryScene& g = *render.geometry;
+        size_t triangles = 0;
+        for (size_t i = 0; i < g.shapeCount(); ++i) triangles += g.shape(int(i)).triangles;
+        terms.push_back({"surfaces", true,
+                         std::to_string(g.shapeCount()) + " shape(s), " +
+                             std::to_string(triangles) + " triangle(s), " +
+                             std::to_string(g.materialCount()) + " material(s): Embree BVH"});
+    } else {
+        terms.push_back({"surfaces", false, "no [[shape]]"});
+    }
+    terms.push_back({"fluorescence", !fluorescenceWhy.empty(),
+                     fluorescenceWhy.empty() ? "no shader declares a quantum efficiency"
+                                             : fluorescenceWhy});
     terms.push_back({"curved paths", false, "no refractive-index field: straight-line tracking"});
     return terms;
 }

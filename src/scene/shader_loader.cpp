@@ -3,6 +3,9 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "medium/ocean_components.h"
+#include "spectrum/ocean_spectra.h"
+
 namespace mirage {
 
 namespace fs = std::filesystem;
@@ -48,6 +51,43 @@ Spectrum readCoefficientSpectrum(const TableReader& t, const std::string& key, f
     t.fail(key, "expected a number, an [r, g, b] array or a {wavelengths, values} table");
 }
 
+namespace {
+
+// One [[component]]. Its kind (shader.h) decides which keys it takes: a linear component
+// gives its cross-sections, the sea-water kinds take theirs from the published laws
+// (medium/ocean_components.h), so sigma_a / sigma_s there are reported as unexpected keys.
+MediumComponent readComponent(const TableReader& c, size_t index) {
+    MediumComponent mc;
+    mc.name = c.getString("name", "component" + std::to_string(index));
+    mc.grid = c.getString("grid", "");
+    mc.concentration = float(c.getNumber("concentration", 1.0, 0.0, 1e12));
+    std::string kind = c.getString("kind", "linear");
+    if (kind == "linear") {
+        mc.sigmaA = readCoefficientSpectrum(c, "sigma_a", 0.f);
+        mc.sigmaS = readCoefficientSpectrum(c, "sigma_s", 0.f);
+        mc.g = float(c.getNumber("g", 0.0, -1.0, 1.0));
+        std::string phase = c.getString("phase", "hg");
+        if (phase == "water") mc.phase = PhaseKind::Water;
+        else if (phase != "hg") c.fail("phase", "expected \"hg\" or \"water\"");
+    } else if (kind == "water") {
+        makeWater(&mc);
+    } else if (kind == "cdom") {
+        makeCdom(&mc, float(c.getNumber("slope", ocean::kCdomSlope, 0.0, 0.1)));
+    } else if (kind == "chlorophyll") {
+        makeChlorophyll(&mc, float(c.getNumber("g", kParticleG, -1.0, 1.0)));
+    } else {
+        c.fail("kind", "expected \"linear\", \"water\", \"cdom\" or \"chlorophyll\"");
+    }
+    mc.quantumEfficiency = float(c.getNumber("quantum_efficiency", 0.0, 0.0, 1.0));
+    mc.emissionPeakNm = float(c.getNumber("emission_peak_nm", 685.0, kLambdaMin, kLambdaMax));
+    mc.emissionFwhmNm = float(c.getNumber("emission_fwhm_nm", 25.0, 1.0, 500.0));
+    mc.antiStokes = c.getBool("anti_stokes", false);
+    c.finish();
+    return mc;
+}
+
+}  // namespace
+
 ShaderDesc parseShader(const toml::table& doc, const std::string& file) {
     TableReader top(doc, file, "");
     ShaderDesc s;
@@ -58,17 +98,7 @@ ShaderDesc parseShader(const toml::table& doc, const std::string& file) {
     if (comps.empty())
         throw MirageError(top.tableLoc(), "shader '" + s.name +
                                               "': expected at least one [[component]] table");
-    for (const auto& c : comps) {
-        MediumComponent mc;
-        mc.name = c.getString("name", "component" + std::to_string(s.components.size()));
-        mc.grid = c.getString("grid", "");
-        mc.concentration = float(c.getNumber("concentration", 1.0, 0.0, 1e12));
-        mc.sigmaA = readCoefficientSpectrum(c, "sigma_a", 0.f);
-        mc.sigmaS = readCoefficientSpectrum(c, "sigma_s", 0.f);
-        mc.g = float(c.getNumber("g", 0.0, -1.0, 1.0));
-        c.finish();
-        s.components.push_back(std::move(mc));
-    }
+    for (const auto& c : comps) s.components.push_back(readComponent(c, s.components.size()));
     if (auto e = top.optionalTable("emission")) {
         EmissionSpec es;
         es.temperatureGrid = e->getString("temperature");

@@ -49,6 +49,16 @@ float SpectrumSampler::pdf(float lambdaNm) const {
     return float(lerp(double(t) - i, double(mValue[i]), double(mValue[i + 1])) / mIntegral);
 }
 
+double SpectrumSampler::cdf(float lambdaNm) const {
+    if (!valid() || !(lambdaNm > kLambdaMin)) return 0.0;
+    if (lambdaNm >= kLambdaMax) return 1.0;
+    // The partial interval is the same quadratic area as in sample(): a x + (b − a) x²/2.
+    float t = lambdaNm - kLambdaMin;
+    int i = std::min(int(t), int(mValue.size()) - 2);
+    double x = double(t) - i, a = mValue[i], b = mValue[i + 1];
+    return (mCdf[i] + a * x + 0.5 * (b - a) * x * x) / mIntegral;
+}
+
 float sampleWavelength(const Spectrum& s, float u, float* pdf) {
     return SpectrumSampler(s).sample(u, pdf);
 }

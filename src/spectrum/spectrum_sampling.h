@@ -21,6 +21,9 @@ public:
     // λ (nm) for u in [0, 1); *pdf = p(λ) in 1/nm when pdf is not null.
     float sample(float u, float* pdf = nullptr) const;
     float pdf(float lambdaNm) const;
+    // ∫ S from 360 nm to λ, divided by ∫ S: the CDF of the sampled density (0 below 360 nm,
+    // 1 above 830 nm). sample(cdf(λ)) = λ.
+    double cdf(float lambdaNm) const;
     // ∫ S dλ over [360, 830] nm (units of S × nm).
     double integral() const { return mIntegral; }
 

@@ -98,6 +98,24 @@ private:
 void MajorantGrid::addGrid(const FloatGrid& grid, float scale) {
     MIRAGE_CHECK(grid.valid() && scale >= 0.f);
     if (mValues.empty() || scale == 0.f) return;
+    std::vector<float> cells = cellMaxima(grid);
+    // The relative margin covers float rounding: a trilinear lerp of values ≤ m can come out
+    // an ulp above m.
+    const float margin = scale * (1.f + 1e-6f);
+    for (size_t i = 0; i < mValues.size(); ++i) mValues[i] += margin * cells[i];
+}
+
+void MajorantGrid::addGridMonotone(const FloatGrid& grid, const std::function<float(float)>& f) {
+    MIRAGE_CHECK(grid.valid());
+    if (mValues.empty()) return;
+    std::vector<float> cells = cellMaxima(grid);
+    // f is non-decreasing, so f(max of the grid over a cell) bounds f over the cell; the margin
+    // is on the argument, for the same trilinear rounding as above.
+    for (size_t i = 0; i < mValues.size(); ++i)
+        mValues[i] += std::max(0.f, f(cells[i] * (1.f + 1e-6f)));
+}
+
+std::vector<float> MajorantGrid::cellMaxima(const FloatGrid& grid) const {
     const nanovdb::FloatGrid& g = *grid.grid();
     const auto& tree = g.tree();
 
@@ -137,12 +155,8 @@ void MajorantGrid::addGrid(const FloatGrid& grid, float scale) {
     }
     // Outside every tile a lookup returns the background (0 for a loaded fog volume).
     const float background = std::max(0.f, tree.background());
-
-    // The relative margin covers float rounding: a trilinear lerp of values ≤ m can come out
-    // an ulp above m.
-    const float margin = scale * (1.f + 1e-6f);
-    for (size_t i = 0; i < mValues.size(); ++i)
-        mValues[i] += margin * std::max(cells[i], background);
+    for (float& c : cells) c = std::max(c, background);
+    return cells;
 }
 
 }  // namespace mirage

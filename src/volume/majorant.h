@@ -4,6 +4,7 @@
 // as pbrt-v4's MajorantGrid).
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "core/math.h"
@@ -20,6 +21,9 @@ public:
     // Adds scale × (max of `grid` over each cell, including the trilinear footprint of the
     // voxels that touch it) to every cell. Call once per medium component.
     void addGrid(const FloatGrid& grid, float scale);
+    // Adds f(max of `grid` over each cell) for a non-decreasing f: a component whose σ is a
+    // monotone but non-linear function of its grid value (chlorophyll's A·C^(1−B)).
+    void addGridMonotone(const FloatGrid& grid, const std::function<float(float)>& f);
     // Adds a constant (homogeneous component) over the whole bounds.
     void addConstant(float value);
 
@@ -35,6 +39,9 @@ public:
     bool traverse(const Vec3& o, const Vec3& d, float tMin, float tMax, F&& f) const;
 
 private:
+    // Per cell: the max of `grid` over the cell and the trilinear footprint of its voxels.
+    std::vector<float> cellMaxima(const FloatGrid& grid) const;
+
     Bounds3 mBounds;
     int mRes[3] = {0, 0, 0};
     Vec3 mCellSize;

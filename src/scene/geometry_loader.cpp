@@ -1,0 +1,139 @@
+// [[material]] and [[shape]] tables. Keys (README.md, "Surfaces"):
+//   material: name, type = diffuse | mirror | dielectric; diffuse: reflectance (number or RGB,
+//             default 0.8), emission (radiance W·m⁻²·sr⁻¹·nm⁻¹, number or working-space RGB);
+//             mirror: reflectance (default 1); dielectric: ior (A, default 1.5), cauchy_b (B in
+//             µm², default 0: n(λ) = A + B/λ²).
+//   shape:    type = mesh (file = OBJ) | sphere (center, radius) | quad (corner, edge_u,
+//             edge_v); material (a [[material]] name); transform (as for volumes);
+//             interior_medium (index of a [[volume]] placed inside the shape).
+// Keys a type does not read are reported as unknown by TableReader::finish.
+#include "scene/geometry_loader.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "film/color.h"
+
+namespace mirage {
+
+namespace {
+
+// A number (grey) or an RGB triple: reflectance-like values by the smooth RGB basis, so that
+// values in [0, 1] stay in [0, 1] at every wavelength.
+Spectrum readReflectance(const TableReader& t, const std::string& key, float def) {
+    if (!t.has(key)) {
+        t.node(key);
+        return Spectrum(def);
+    }
+    if (t.node(key)->is_number()) return Spectrum(float(t.getNumber(key, def, 0.0, 1.0)));
+    Vec3 rgb = t.getVec3(key);
+    if (!(rgb.x >= 0 && rgb.y >= 0 && rgb.z >= 0 && rgb.x <= 1 && rgb.y <= 1 && rgb.z <= 1))
+        t.fail(key, "expected reflectances in [0, 1]");
+    return rgbReflectanceSpectrum(rgb);
+}
+
+Spectrum readEmission(const TableReader& t, const ColorPipeline& color) {
+    if (!t.has("emission")) return Spectrum(0.f);
+    if (t.node("emission")->is_number())
+        return Spectrum(float(t.getNumber("emission", 0.0, 0.0, 1e12)));
+    Vec3 rgb = t.getVec3("emission");
+    if (!(rgb.x >= 0 && rgb.y >= 0 && rgb.z >= 0))
+        t.fail("emission", "expected non-negative RGB radiance");
+    if (rgb.x + rgb.y + rgb.z == 0.f) return Spectrum(0.f);
+    return rgbIlluminantSpectrum(rgb, color.xyzToWorking());
+}
+
+Material readMaterial(const TableReader& t, const ColorPipeline& color) {
+    std::string name = t.getString("name");
+    std::string type = t.getString("type");
+    Material m;
+    if (type == "diffuse") {
+        m = Material::diffuse(name, readReflectance(t, "reflectance", 0.8f), readEmission(t, color));
+    } else if (type == "mirror") {
+        m = Material::mirror(name, readReflectance(t, "reflectance", 1.f));
+    } else if (type == "dielectric") {
+        float a = float(t.getNumber("ior", 1.5, 1.0, 4.0));
+        float b = float(t.getNumber("cauchy_b", 0.0, 0.0, 1.0));
+        m = Material::dielectric(name, a, b);
+    } else {
+        t.fail("type", "unknown material type '" + type + "'; expected diffuse, mirror or dielectric");
+    }
+    t.finish();
+    return m;
+}
+
+}  // namespace
+
+std::unique_ptr<GeometryScene> readGeometry(
+    const TableReader& top, const std::function<std::string(const std::string&)>& resolve,
+    size_t volumeCount, const ColorPipeline& color) {
+    const std::vector<TableReader> materials = top.tables("material"), shapes = top.tables("shape");
+    if (materials.empty() && shapes.empty()) return nullptr;  // no Embree device for media alone
+    auto geometry = std::make_unique<GeometryScene>();
+    std::vector<std::string> names;
+    for (const auto& t : materials) {
+        Material m = readMaterial(t, color);
+        if (std::find(names.begin(), names.end(), m.name()) != names.end())
+            t.fail("name", "a material named '" + m.name() + "' is already defined");
+        names.push_back(m.name());
+        geometry->addMaterial(std::move(m));
+    }
+
+    for (const auto& t : shapes) {
+        std::string type = t.getString("type");
+        std::string matName = t.getString("material");
+        auto it = std::find(names.begin(), names.end(), matName);
+        if (it == names.end()) {
+            std::string list;
+            for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+            t.fail("material", "no [[material]] is named '" + matName + "'" +
+                                   (list.empty() ? " (none is defined)" : "; defined: " + list));
+        }
+        int material = int(it - names.begin());
+        int interior = -1;
+        if (t.has("interior_medium")) {
+            if (volumeCount == 0)
+                t.fail("interior_medium", "the scene has no [[volume]] to place inside the shape");
+            interior = int(t.getInt("interior_medium", 0, 0, int64_t(volumeCount) - 1));
+        }
+        Transform xf;
+        if (auto x = t.optionalTable("transform")) xf = readTransform(*x);
+
+        if (type == "sphere") {
+            Vec3 c = t.getVec3("center", Vec3(0.f));
+            float r = float(t.getNumber("radius", 1.0, 1e-9, 1e9));
+            // A sphere stays a sphere only under a similarity: equal column lengths.
+            float s[3];
+            for (int j = 0; j < 3; ++j)
+                s[j] = float(std::sqrt(xf.linear(0, j) * xf.linear(0, j) +
+                                       xf.linear(1, j) * xf.linear(1, j) +
+                                       xf.linear(2, j) * xf.linear(2, j)));
+            if (std::abs(s[0] - s[1]) > 1e-4f * s[0] || std::abs(s[0] - s[2]) > 1e-4f * s[0])
+                t.fail("transform", "a sphere takes a uniform scale only");
+            geometry->addSphere(xf.point(c), r * s[0], material, interior);
+        } else if (type == "quad") {
+            Vec3 corner = t.getVec3("corner"), u = t.getVec3("edge_u"), v = t.getVec3("edge_v");
+            if (!(length(cross(u, v)) > 0.f))
+                t.fail("edge_v", "the quad's edges are parallel or zero");
+            geometry->addQuad(xf.point(corner), xf.vector(u), xf.vector(v), material, interior);
+        } else if (type == "mesh") {
+            std::string file = resolve(t.getString("file"));
+            if (!std::filesystem::exists(file)) t.fail("file", "mesh file not found: " + file);
+            TriangleMesh mesh;
+            try {
+                mesh = loadObjMesh(file);
+            } catch (const MirageError& e) {
+                t.fail("file", e.what());
+            }
+            geometry->addMesh(mesh, xf, material, interior);
+        } else {
+            t.fail("type", "unknown shape type '" + type + "'; expected mesh, sphere or quad");
+        }
+        t.finish();
+    }
+    if (geometry->empty()) return nullptr;
+    geometry->commit();
+    return geometry;
+}
+
+}  // namespace mirage

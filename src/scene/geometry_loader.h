@@ -1,0 +1,26 @@
+// Scene-file surfaces: [[material]] and [[shape]] tables → GeometryScene (README.md, "Surfaces").
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "core/transform.h"
+#include "geometry/geometry_scene.h"
+#include "scene/toml_reader.h"
+
+namespace mirage {
+
+class ColorPipeline;
+
+// Reads every [[material]] and [[shape]] of the top-level table. `resolve` turns a path in the
+// file into one relative to the scene's folder; `volumeCount` bounds interior_medium. Returns
+// null when the scene has no shape (then a [[material]] table is still checked).
+std::unique_ptr<GeometryScene> readGeometry(
+    const TableReader& top, const std::function<std::string(const std::string&)>& resolve,
+    size_t volumeCount, const ColorPipeline& color);
+
+// { scale, rotate, translate } as for volumes (scene_loader.cpp).
+Transform readTransform(const TableReader& t);
+
+}  // namespace mirage

@@ -1,0 +1,108 @@
+// `mirage slab --shader … --spectral`: the water-column instrument. A grey shader slab gives
+// flat spectra equal to the grey slab's scalar answer; in the ocean slab, photons that are not
+// re-emitted walk identically whatever Γ (the Γ roulette ends them either way), so switching
+// chlorophyll fluorescence on can only add light, and only inside its band (the 685 nm bump
+// of sun-induced chlorophyll fluorescence).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "test_support.h"
+
+namespace {
+
+std::string runSlab(const std::string& args) {
+    std::string out;
+    int code = mirage::test::runMirage("slab --json -q " + args, &out);
+    EXPECT_EQ(code, 0) << out;
+    return out;
+}
+
+std::vector<double> array(const std::string& json, const std::string& key) {
+    std::vector<double> v;
+    size_t at = json.find("\"" + key + "\": [");
+    if (at == std::string::npos) {
+        ADD_FAILURE() << "no array " << key << " in\n" << json;
+        return v;
+    }
+    const char* p = json.c_str() + json.find('[', at) + 1;
+    while (*p && *p != ']') {
+        char* end;
+        v.push_back(std::strtod(p, &end));
+        p = end;
+        while (*p == ',' || *p == ' ') ++p;
+    }
+    return v;
+}
+
+// The last value of that key: the scalar rows come after the arrays of the same name.
+double value(const std::string& json, const std::string& key) {
+    size_t at = json.rfind("\"" + key + "\": ");
+    if (at == std::string::npos) {
+        ADD_FAILURE() << "no " << key << " in\n" << json;
+        return NAN;
+    }
+    return std::strtod(json.c_str() + at + key.size() + 4, nullptr);
+}
+
+}  // namespace
+
+TEST(SlabSpectral, GreyShaderSlabIsFlatAndMatchesTheGreySlab) {
+    std::string dir = mirage::test::tempDir();
+    std::ofstream(dir + "/grey.toml") << "[[component]]\nname = \"grey\"\nsigma_a = 0.5\n"
+                                         "sigma_s = 0.5\ng = 0.9\n";
+    // τ = 1 over 1 m, albedo 0.5, g = 0.9: UR1 = 0.00585, UT1 = 0.59232 (Prahl).
+    std::string json =
+        runSlab("--shader '" + dir + "/grey.toml' --thickness 1 --spectral --photons 400000");
+    auto lambda = array(json, "wavelength_nm"), r = array(json, "reflectance"),
+         t = array(json, "transmittance");
+    ASSERT_EQ(lambda.size(), 80u);
+    ASSERT_EQ(r.size(), 80u);
+    EXPECT_DOUBLE_EQ(lambda.front(), 382.5);
+    EXPECT_DOUBLE_EQ(lambda.back(), 777.5);
+    double meanT = 0;
+    for (double x : t) meanT += x / 80;
+    EXPECT_NEAR(meanT, 0.59232, 0.005);
+    EXPECT_NEAR(value(json, "transmittance"), 0.59232, 0.005);
+    EXPECT_NEAR(value(json, "reflectance"), 0.00585, 0.001);
+    // Flat: every bin within 5 binomial σ of the mean (5000 photons a bin).
+    for (size_t b = 0; b < t.size(); ++b)
+        EXPECT_NEAR(t[b], meanT, 5 * std::sqrt(meanT * (1 - meanT) / 5000)) << lambda[b] << " nm";
+    EXPECT_EQ(value(json, "reemitted"), 0.0);
+}
+
+TEST(SlabSpectral, ChlorophyllFluorescenceAddsLightOnlyInItsBand) {
+    const std::string base = "--shader ocean --set chlorophyll=5 --spectral --photons 300000 "
+                             "--n 1.34 --set chlorophyll.quantum_efficiency=";
+    std::string on = runSlab(base + "0.05"), off = runSlab(base + "0");
+    auto lambda = array(on, "wavelength_nm"), rOn = array(on, "reflectance"),
+         rOff = array(off, "reflectance");
+    ASSERT_EQ(rOn.size(), 80u);
+    ASSERT_EQ(rOff.size(), 80u);
+    double band = 0;
+    for (size_t b = 0; b < rOn.size(); ++b) {
+        EXPECT_GE(rOn[b], rOff[b] - 1e-9) << lambda[b] << " nm";
+        if (lambda[b] < 600) {
+            EXPECT_NEAR(rOn[b], rOff[b], 1e-9) << lambda[b] << " nm";
+        }
+        if (lambda[b] > 670 && lambda[b] < 700) band += rOn[b] - rOff[b];
+    }
+    EXPECT_GT(band, 0.005);
+    EXPECT_GT(value(on, "reemitted"), 0.0);
+    EXPECT_EQ(value(off, "reemitted"), 0.0);
+    // Stokes: the light comes out redder than it went in.
+    EXPECT_GT(value(on, "mean_shift_nm"), 0.0);
+}
+
+TEST(SlabSpectral, BadOptionsExitNonZero) {
+    std::string out;
+    EXPECT_NE(mirage::test::runMirage("slab --set chlorophyll=1", &out), 0);
+    EXPECT_NE(mirage::test::runMirage("slab --shader ocean --set plankton=1 -q", &out), 0);
+    EXPECT_NE(out.find("water, chlorophyll, cdom"), std::string::npos) << out;
+    EXPECT_NE(mirage::test::runMirage("slab --shader ocean --set chlorophyll=-1 -q", &out), 0);
+    EXPECT_NE(mirage::test::runMirage("slab --tau 1", &out), 0);
+}

@@ -21,6 +21,7 @@ struct RenderOptions {
     bool quiet = false, floatExr = false;
     std::string ocioConfig;
     std::string integrator;        // --integrator; "" = the scene's
+    std::string quality;           // --quality draft|preview|final; "" = the scene's settings
 };
 int runRender(const RenderOptions& o);
 
@@ -40,7 +41,13 @@ int runMakeAsset(const AssetOptions& o);
 
 // `mirage slab`: photons through a plane-parallel slab (slab_command.cpp documents it).
 struct SlabOptions {
-    double albedo = 0, tau = 1, g = 0;  // single-scattering albedo, optical thickness, HG g
+    double albedo = -1, tau = 0, g = 0;  // single-scattering albedo, optical thickness, HG g
+                                         // (the defaults mean "not given": needed without
+                                         // --shader)
+    std::string shader;                  // --shader: name or .toml; replaces albedo/tau/g
+    std::vector<std::string> sets;       // --set NAME=C (component concentration) …
+    double thickness = 0;                // --thickness, m; 0 = a deep (optically infinite) column
+    bool spectral = false;               // --spectral: flat 380–780 nm source, 5 nm bins
     double n = 1, nOutside = 1;         // refractive index of the slab and of its surroundings
     std::string incidence = "normal";   // normal (collimated) | diffuse (Lambertian)
     uint64_t photons = 1000000, seed = 0;
@@ -49,5 +56,23 @@ struct SlabOptions {
     bool json = false, quiet = false;
 };
 int runSlab(const SlabOptions& o);
+
+// `mirage tradeoff`: error against a reference versus render time over a sweep of scene
+// settings (tradeoff_command.cpp documents it).
+struct TradeoffOptions {
+    std::string input;                   // scene .toml
+    std::string reference;               // --reference EXR; "" = render one with volpath
+    int referenceSpp = 0;                // 0: max(256, 4 × the sweep's highest spp)
+    std::vector<std::string> vary;       // NAME=v1,v2,… (Cartesian product over the options)
+    std::vector<std::string> overrides;  // --set, applied before the varied keys
+    std::string resolution;              // WxH
+    std::string integrator;              // "" = the scene's (or a varied render.integrator)
+    int spp = 0, threads = 0, repeats = 1;
+    int64_t seed = -1;
+    std::string prefix;                  // -o: output files are <prefix>tradeoff.csv, …
+    std::string ocioConfig;
+    bool quiet = false;
+};
+int runTradeoff(const TradeoffOptions& o);
 
 }  // namespace mirage

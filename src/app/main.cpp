@@ -33,6 +33,9 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 100000));
     render->add_option("--integrator", ro.integrator,
                        "single (single scattering + emission) or volpath (reference path tracer)");
+    render->add_option("--quality", ro.quality,
+                       "Preset samples/photons/k measured on the speed-accuracy curves")
+        ->check(CLI::IsMember({"draft", "preview", "final"}));
     render->add_flag("--float", ro.floatExr, "Write 32-bit float EXR instead of half");
     render->add_flag("-q,--quiet", ro.quiet, "No progress output");
     render->add_option("--ocio", ro.ocioConfig, "OCIO config (default: $OCIO, else built-in)");
@@ -54,11 +57,21 @@ int main(int argc, char** argv) {
     SlabOptions so;
     auto* slab = app.add_subcommand(
         "slab", "Reflectance and transmittance of a plane-parallel slab, by photon tracing");
-    slab->add_option("--albedo", so.albedo, "Single-scattering albedo σs/σt")
-        ->required()
+    slab->add_option("--albedo", so.albedo, "Single-scattering albedo σs/σt (without --shader)")
         ->check(CLI::Range(0.0, 1.0));
-    slab->add_option("--tau", so.tau, "Optical thickness σt·d; inf for a semi-infinite slab")
-        ->required();
+    slab->add_option("--tau", so.tau,
+                     "Optical thickness σt·d; inf for a semi-infinite slab (without --shader)");
+    slab->add_option("--shader", so.shader,
+                     "Shader (name or .toml) made homogeneous, instead of --albedo/--tau/--g");
+    slab->add_option("--set", so.sets,
+                     "With --shader: NAME=C sets a component's concentration (e.g. "
+                     "chlorophyll=5), NAME.quantum_efficiency=Γ its fluorescence")
+        ->take_all();
+    slab->add_option("--thickness", so.thickness,
+                     "With --shader: slab thickness in metres (default: a deep column)")
+        ->check(CLI::PositiveNumber);
+    slab->add_flag("--spectral", so.spectral,
+                   "Flat 380–780 nm source: reflectance/transmittance per 5 nm bin");
     slab->add_option("--g", so.g, "Henyey–Greenstein asymmetry")
         ->check(CLI::Range(-0.9999, 0.9999));
     slab->add_option("--n", so.n, "Refractive index of the slab")->check(CLI::PositiveNumber);
@@ -76,12 +89,51 @@ int main(int argc, char** argv) {
     slab->add_flag("--json", so.json, "Print the result as JSON");
     slab->add_flag("-q,--quiet", so.quiet, "No progress output");
 
-    CLI11_PARSE(app, argc, argv);
+    TradeoffOptions to;
+    auto* tradeoff = app.add_subcommand(
+        "tradeoff", "Error against a reference versus render time over a sweep of settings");
+    tradeoff->add_option("input", to.input, "Scene .toml")->required();
+    tradeoff->add_option("--vary", to.vary,
+                         "NAME=v1,v2,…: photons, estimate, k, max_radius, spp, integrator or "
+                         "any dotted scene key; several form the Cartesian product")
+        ->required();
+    tradeoff->add_option("--reference", to.reference,
+                         "Reference EXR (default: render one with volpath, write "
+                         "<prefix>reference.exr)");
+    tradeoff->add_option("--reference-spp", to.referenceSpp,
+                         "Samples per pixel of a rendered reference (default: 4x the sweep's "
+                         "highest, at least 256)")
+        ->check(CLI::Range(1, 1 << 20));
+    tradeoff->add_option("--set", to.overrides, "Override a scene value: key.path=value")
+        ->take_all();
+    tradeoff->add_option("--resolution", to.resolution, "Image size WxH");
+    tradeoff->add_option("--spp", to.spp, "Samples per pixel unless varied")
+        ->check(CLI::Range(1, 1 << 20));
+    tradeoff->add_option("--integrator", to.integrator, "single, volpath or photon unless varied");
+    tradeoff->add_option("--threads", to.threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(1, 4096));
+    tradeoff->add_option("--seed", to.seed, "Random seed")->check(CLI::NonNegativeNumber);
+    tradeoff->add_option("--repeats", to.repeats, "Renders per setting; the median time is kept")
+        ->check(CLI::Range(1, 1000));
+    tradeoff->add_option("-o,--output", to.prefix,
+                         "Prefix of the output files <prefix>tradeoff.csv, .png, reference.exr");
+    tradeoff->add_option("--ocio", to.ocioConfig, "OCIO config (default: $OCIO, else built-in)");
+    tradeoff->add_flag("-q,--quiet", to.quiet, "No progress output");
+
+    // Command-line syntax errors exit 2 (README "Input rules"); CLI11's own codes (105 for a
+    // bad option value, 106 for a missing one, ...) would tell a farm wrapper nothing stable.
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int code = app.exit(e);
+        return code == 0 ? 0 : 2;
+    }
     try {
         if (*render) return runRender(ro);
         if (*info) return runInfo(io);
         if (*asset) return runMakeAsset(ao);
         if (*slab) return runSlab(so);
+        if (*tradeoff) return runTradeoff(to);
     } catch (const MirageError& e) {
         std::fprintf(stderr, "mirage: error: %s\n", e.what());
         return 1;

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "app/commands.h"
+#include "app/render_frame.h"
 #include "core/error.h"
 #include "film/color.h"
 #include "film/image_io.h"
@@ -18,10 +19,6 @@ namespace mirage {
 namespace fs = std::filesystem;
 
 namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 std::vector<int> frameList(const RenderOptions& o) {
     std::vector<int> frames;
@@ -97,39 +94,22 @@ int runRender(const RenderOptions& o) {
         auto tLoad = std::chrono::steady_clock::now();
         Scene scene = loadScene(o.input, LoadOptions{frame, o.overrides}, color);
         RenderSettings& s = scene.settings;
-        if (!o.resolution.empty()) {
-            int w = 0, h = 0;
-            char x = 0;
-            if (std::sscanf(o.resolution.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' ||
-                w < 1 || h < 1 || w > 65536 || h > 65536)
-                throw MirageError("--resolution '" + o.resolution + "': expected WxH, e.g. 640x360");
-            s.width = w;
-            s.height = h;
-            // Keep an automatic camera framed for the new aspect ratio.
-            if (isVolumeFile(o.input))
-                scene.render.camera = frameBounds(scene.render.bounds(), scene.render.camera.fovDeg,
-                                                  float(w) / float(h));
-        }
-        if (o.spp > 0) s.spp = o.spp;
-        if (o.seed >= 0) s.seed = uint64_t(o.seed);
-        s.progress = o.quiet ? Progress::Mode::Quiet : Progress::Mode::Auto;
+        std::string integratorName = o.integrator.empty() ? scene.integrator : o.integrator;
+        if (!o.quality.empty())
+            applyQualityPreset(scene, qualityPreset(o.quality), integratorName, o.overrides);
+        applyFrameSettings(scene, o.input, FrameSettings{o.resolution, o.spp, o.seed, o.quiet});
         if (o.turntable > 0)
             scene.render.camera =
                 orbitCamera(scene.render.camera, 360.f * float(frame - 1) / float(o.turntable));
         checkOutputSettings(scene, color);
         double loadSeconds = secondsSince(tLoad);
 
-        PhotonIntegratorSettings photon = scene.photon;
-        photon.seed = s.seed;
-        photon.progress = s.progress;
-        auto integrator = makeIntegrator(o.integrator.empty() ? scene.integrator : o.integrator,
-                                         scene.maxDepth, photon);
-        integrator->preprocess(scene.render);
-        RenderStats stats;
-        Film film = render(scene.render, *integrator, s, &stats);
+        RenderedFrame rendered = renderFrame(scene, integratorName, color);
+        const RenderStats& stats = rendered.stats;
+        const Integrator* integrator = rendered.integrator.get();
+        Image& image = rendered.image;
 
         auto tWrite = std::chrono::steady_clock::now();
-        Image image = film.develop(color);
         std::string preview = o.preview.empty() ? scene.output.preview : o.preview;
         if (!preview.empty()) {
             preview = framePath(preview, frame, sequence);

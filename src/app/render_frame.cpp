@@ -1,0 +1,87 @@
+#include "app/render_frame.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "core/error.h"
+#include "film/color.h"
+
+namespace mirage {
+
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void applyFrameSettings(Scene& scene, const std::string& input, const FrameSettings& cli) {
+    RenderSettings& s = scene.settings;
+    if (!cli.resolution.empty()) {
+        int w = 0, h = 0;
+        char x = 0;
+        if (std::sscanf(cli.resolution.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x' || w < 1 ||
+            h < 1 || w > 65536 || h > 65536)
+            throw MirageError("--resolution '" + cli.resolution + "': expected WxH, e.g. 640x360");
+        s.width = w;
+        s.height = h;
+        // Keep an automatic camera framed for the new aspect ratio.
+        if (isVolumeFile(input))
+            scene.render.camera =
+                frameBounds(scene.render.bounds(), scene.render.camera.fovDeg, float(w) / float(h));
+    }
+    if (cli.spp > 0) s.spp = cli.spp;
+    if (cli.seed >= 0) s.seed = uint64_t(cli.seed);
+    s.progress = cli.quiet ? Progress::Mode::Quiet : Progress::Mode::Auto;
+}
+
+// Measured on assets/scenes/fog_sphere.toml (README, "Speed and accuracy"): the fastest measured
+// setting within 2.5× of relMSE 1e-1 (draft), 1e-2 (preview), 1e-3 (final); the photon preview
+// and final are the best measured (relMSE 0.036 and 0.011). {name, spp, photons, k, path spp}.
+const std::vector<QualityPreset>& qualityPresets() {
+    static const std::vector<QualityPreset> presets = {
+        {"draft", 16, 100000, 16, 64},
+        {"preview", 64, 1000000, 16, 256},
+        {"final", 256, 4000000, 16, 4096},
+    };
+    return presets;
+}
+
+const QualityPreset& qualityPreset(const std::string& name) {
+    std::string names;
+    for (const auto& p : qualityPresets()) {
+        if (p.name == name) return p;
+        names += (names.empty() ? "" : ", ") + p.name;
+    }
+    throw MirageError("--quality '" + name + "': expected one of " + names);
+}
+
+void applyQualityPreset(Scene& scene, const QualityPreset& preset, const std::string& integrator,
+                        const std::vector<std::string>& overrides) {
+    auto overridden = [&](const std::string& key) {
+        return std::any_of(overrides.begin(), overrides.end(), [&](const std::string& o) {
+            return o.compare(0, key.size() + 1, key + "=") == 0;
+        });
+    };
+    bool photon = integrator == "photon";
+    if (!overridden("film.spp")) scene.settings.spp = photon ? preset.spp : preset.pathSpp;
+    if (photon && !overridden("render.photons")) scene.photon.photons = preset.photons;
+    if (photon && !overridden("render.k")) scene.photon.k = preset.k;
+}
+
+RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
+                          const ColorPipeline& color) {
+    auto t0 = std::chrono::steady_clock::now();
+    RenderedFrame frame;
+    const RenderSettings& s = scene.settings;
+    // The photon pass takes the render's seed and progress mode.
+    PhotonIntegratorSettings photon = scene.photon;
+    photon.seed = s.seed;
+    photon.progress = s.progress;
+    frame.integrator =
+        makeIntegrator(integrator.empty() ? scene.integrator : integrator, scene.maxDepth, photon);
+    frame.integrator->preprocess(scene.render);
+    Film film = render(scene.render, *frame.integrator, s, &frame.stats);
+    frame.image = film.develop(color);
+    frame.seconds = secondsSince(t0);
+    return frame;
+}
+
+}  // namespace mirage

@@ -1,0 +1,62 @@
+// One frame of the render pipeline, shared by `mirage render` and `mirage tradeoff` so that the
+// instrument measures exactly what the renderer does: command-line settings onto a loaded scene,
+// then integrator → photon pass (preprocess) → render → develop.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "film/film.h"
+#include "render/integrator.h"
+#include "render/renderer.h"
+#include "scene/scene.h"
+
+namespace mirage {
+
+class ColorPipeline;
+
+// Command-line settings that override a loaded scene's (zero/empty/negative: keep the scene's).
+struct FrameSettings {
+    std::string resolution;  // WxH
+    int spp = 0;
+    int64_t seed = -1;
+    bool quiet = false;
+};
+
+// Applies `cli` to `scene`; `input` is the scene's path (a bare VDB keeps its automatic camera
+// framed for a new aspect ratio). Throws MirageError for a malformed --resolution.
+void applyFrameSettings(Scene& scene, const std::string& input, const FrameSettings& cli);
+
+// `--quality draft|preview|final`: points on the measured speed↔accuracy curves (README,
+// "Speed and accuracy"). The photon integrator takes spp, photons and k; the others spp only.
+struct QualityPreset {
+    std::string name;
+    int spp = 0;            // photon integrator: samples per pixel
+    uint64_t photons = 0;   // photon integrator: photons emitted
+    int k = 0;              // photon integrator: photons per estimate
+    int pathSpp = 0;        // single / volpath: samples per pixel
+};
+const std::vector<QualityPreset>& qualityPresets();
+// Throws MirageError naming the presets for an unknown name.
+const QualityPreset& qualityPreset(const std::string& name);
+// Sets the preset's values on `scene` for `integrator`, except the keys that an explicit
+// --set in `overrides` names (film.spp, render.photons, render.k): those win.
+void applyQualityPreset(Scene& scene, const QualityPreset& preset, const std::string& integrator,
+                        const std::vector<std::string>& overrides);
+
+struct RenderedFrame {
+    Image image;                              // developed, in the working space
+    RenderStats stats;
+    std::unique_ptr<Integrator> integrator;   // for its name, summary and capped paths
+    double seconds = 0;                       // wall: integrator set-up, photon pass, render, develop
+};
+
+// Renders `scene` with `integrator` ("" = the scene's own) and develops it through `color`.
+RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
+                          const ColorPipeline& color);
+
+double secondsSince(std::chrono::steady_clock::time_point t0);
+
+}  // namespace mirage

@@ -1,0 +1,403 @@
+// `mirage tradeoff`: the speed↔accuracy instrument (DESIGN.md, "Speed against accuracy").
+//
+//   mirage tradeoff SCENE.toml [--reference ref.exr] --vary photons=1e4,1e5,1e6
+//                   [--vary estimate=beam,point] [--vary k=16,64,256] [--set key=value …]
+//                   [--integrator NAME] [--resolution WxH] [--spp N] [--threads N]
+//                   [--repeats R] [--reference-spp N] [-o prefix]
+//
+// Each --vary names a scene key and its values; several --vary form the Cartesian product.
+// Short names: photons, estimate, k, max_radius ([render]), spp (film.spp), integrator
+// (render.integrator); any dotted key is taken as a --set override. Every setting is rendered
+// in-process by the same code as `mirage render` (app/render_frame.h) and compared with the
+// reference in scene-linear RGB (alpha ignored), over all N pixels × 3 channels:
+//
+//   RMSE      = sqrt( Σ (x − r)² / 3N )
+//   relMSE    = Σ (x − r)² / (r² + ε) / 3N,   ε = 1e-3 · mean(r)²
+//   mean bias = (mean x − mean r) / mean r
+//
+// ε keeps black pixels (empty sky) from dividing by zero: a pixel far darker than the image's
+// mean counts as if it were 3 % of the mean. The time is the wall-clock time of integrator
+// set-up, photon pass, render and develop (scene loading excluded: it is the same for every
+// setting), the median over --repeats runs. Without --reference, one is rendered with the
+// reference path tracer (volpath) at max(256, 4 × the sweep's highest spp) samples and a seed
+// of its own, so that its noise is independent of the sweep's, and written as
+// <prefix>reference.exr (32-bit float) for reuse. The noise left in the reference sets a floor
+// under relMSE of about its own relMSE: use more reference samples than the best setting.
+//
+// Output: <prefix>tradeoff.csv (setting, seconds, rmse, relmse, mean_bias, one column per
+// varied key), a table on stdout, and <prefix>tradeoff.png, relMSE against seconds on log-log
+// axes with one polyline per value of the last varied key (in sweep order).
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <unistd.h>
+
+#include "app/commands.h"
+#include "app/render_frame.h"
+#include "core/error.h"
+#include "film/color.h"
+#include "film/image_io.h"
+#include "film/plot.h"
+#include "scene/scene.h"
+
+namespace mirage {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// How the values of a varied key are checked and written into the scene file.
+enum class ValueKind { Count, Number, Estimate, Integrator, Raw };
+
+struct KeyInfo {
+    const char* name;  // short name on the command line
+    const char* key;   // scene key
+    ValueKind kind;
+};
+
+const KeyInfo kKeys[] = {
+    {"photons", "render.photons", ValueKind::Count},
+    {"estimate", "render.estimate", ValueKind::Estimate},
+    {"k", "render.k", ValueKind::Count},
+    {"max_radius", "render.max_radius", ValueKind::Number},
+    {"spp", "film.spp", ValueKind::Count},
+    {"integrator", "render.integrator", ValueKind::Integrator},
+};
+
+struct VariedKey {
+    std::string name;                 // as given (the CSV column)
+    std::string key;                  // scene key
+    std::vector<std::string> values;  // TOML text of each value
+};
+
+std::vector<std::string> split(const std::string& s, char sep) {
+    std::vector<std::string> parts;
+    size_t start = 0;
+    for (;;) {
+        size_t end = s.find(sep, start);
+        parts.push_back(s.substr(start, end - start));
+        if (end == std::string::npos) return parts;
+        start = end + 1;
+    }
+}
+
+// One value of --vary, checked and written as TOML ("1e4" → "10000" for a count, which the
+// scene reader wants as an integer).
+std::string checkedValue(const std::string& option, const KeyInfo& info, const std::string& v) {
+    auto bad = [&](const std::string& why) {
+        return MirageError("--vary '" + option + "': '" + v + "' " + why);
+    };
+    switch (info.kind) {
+        case ValueKind::Count:
+        case ValueKind::Number: {
+            char* end = nullptr;
+            double x = std::strtod(v.c_str(), &end);
+            if (end == v.c_str() || *end != '\0' || !std::isfinite(x))
+                throw bad("is not a number");
+            if (info.kind == ValueKind::Number) {
+                if (x < 0) throw bad("must not be negative");
+                return v;
+            }
+            if (x < 1 || x != std::floor(x) || x > 1e15)
+                throw bad("is not a whole number of at least 1 (e.g. 16 or 1e5)");
+            char buf[32];
+            std::snprintf(buf, sizeof buf, "%lld", (long long)x);
+            return buf;
+        }
+        case ValueKind::Estimate:
+            if (v != "beam" && v != "point") throw bad("is not an estimate; expected beam or point");
+            return "\"" + v + "\"";
+        case ValueKind::Integrator: {
+            auto names = integratorNames();
+            if (std::find(names.begin(), names.end(), v) == names.end()) {
+                std::string list;
+                for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+                throw bad("is not an integrator; expected one of " + list);
+            }
+            return "\"" + v + "\"";
+        }
+        case ValueKind::Raw: break;
+    }
+    return v;
+}
+
+VariedKey parseVary(const std::string& option) {
+    size_t eq = option.find('=');
+    if (eq == std::string::npos || eq == 0)
+        throw MirageError("--vary '" + option + "': expected NAME=v1,v2,…, e.g. photons=1e4,1e5");
+    VariedKey vk;
+    vk.name = option.substr(0, eq);
+    std::string list = option.substr(eq + 1);
+
+    KeyInfo info{"", "", ValueKind::Raw};
+    bool known = false;
+    for (const auto& k : kKeys)
+        if (vk.name == k.name || vk.name == k.key) {
+            info = k;
+            known = true;
+        }
+    if (!known && vk.name.find('.') == std::string::npos) {
+        std::string names;
+        for (const auto& k : kKeys) names += std::string(names.empty() ? "" : ", ") + k.name;
+        throw MirageError("--vary '" + option + "': unknown key '" + vk.name + "'; expected one of " +
+                          names + ", or a dotted scene key such as volume.0.density_scale");
+    }
+    vk.key = known ? info.key : vk.name;
+    if (list.empty()) throw MirageError("--vary '" + option + "': empty list of values");
+    for (const auto& v : split(list, ',')) {
+        if (v.empty())
+            throw MirageError("--vary '" + option + "': empty value in the list");
+        vk.values.push_back(checkedValue(option, info, v));
+    }
+    return vk;
+}
+
+// A value as the CSV and the table show it (strings without their TOML quotes).
+std::string plain(const std::string& toml) {
+    if (toml.size() >= 2 && toml.front() == '"' && toml.back() == '"')
+        return toml.substr(1, toml.size() - 2);
+    return toml;
+}
+
+struct Setting {
+    std::vector<std::string> values;  // one per varied key (TOML text)
+    std::string label;                // "photons=10000 k=16"
+    double seconds = 0;
+    int spp = 0;
+    Image image;
+    double rmse = 0, relMse = 0, meanBias = 0;
+};
+
+// The Cartesian product of the varied keys, the last key varying fastest.
+std::vector<Setting> cartesian(const std::vector<VariedKey>& keys) {
+    std::vector<Setting> out(1);
+    for (const auto& k : keys) {
+        std::vector<Setting> next;
+        for (const auto& s : out)
+            for (const auto& v : k.values) {
+                Setting t = s;
+                t.values.push_back(v);
+                t.label += (t.label.empty() ? "" : " ") + k.name + "=" + plain(v);
+                next.push_back(t);
+            }
+        out = std::move(next);
+    }
+    return out;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// RMSE, relMSE and mean bias of `x` against `r` (RGB, alpha ignored): see the file comment.
+void compare(const Image& x, const Image& r, Setting* s) {
+    const size_t n = size_t(r.width) * r.height;
+    double sumR = 0, sumX = 0;
+    for (size_t i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) {
+            sumR += r.rgba[4 * i + c];
+            sumX += x.rgba[4 * i + c];
+        }
+    const double meanR = sumR / double(3 * n), meanX = sumX / double(3 * n);
+    const double eps = 1e-3 * meanR * meanR;
+    double se = 0, rel = 0;
+    for (size_t i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) {
+            double rv = r.rgba[4 * i + c], d = x.rgba[4 * i + c] - rv;
+            se += d * d;
+            rel += d * d / (rv * rv + eps);
+        }
+    s->rmse = std::sqrt(se / double(3 * n));
+    s->relMse = rel / double(3 * n);
+    s->meanBias = (meanX - meanR) / meanR;
+}
+
+// Writes `text` to `path` through a temporary file and a rename (as the image writers do).
+void writeTextFile(const std::string& path, const std::string& text) {
+    fs::path target(path), dir = target.parent_path();
+    std::error_code ec;
+    if (!dir.empty()) fs::create_directories(dir, ec);
+    fs::path tmp = (dir.empty() ? fs::path(".") : dir) /
+                   ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()));
+    {
+        std::ofstream out(tmp);
+        out << text;
+        if (!out.flush()) throw MirageError(FileLoc{path, 0, 0}, "cannot write the file");
+    }
+    fs::rename(tmp, target, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw MirageError(FileLoc{path, 0, 0}, "cannot write the file: " + ec.message());
+    }
+}
+
+std::string format(const char* fmt, double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, fmt, v);
+    return buf;
+}
+
+}  // namespace
+
+int runTradeoff(const TradeoffOptions& o) {
+    if (isVolumeFile(o.input))
+        throw MirageError(o.input + ": tradeoff needs a scene .toml (--vary sets scene keys); "
+                                    "write a scene that names the .vdb");
+    std::vector<VariedKey> keys;
+    for (const auto& v : o.vary) {
+        keys.push_back(parseVary(v));
+        for (size_t i = 0; i + 1 < keys.size(); ++i)
+            if (keys[i].key == keys.back().key)
+                throw MirageError("--vary '" + v + "': " + keys.back().key + " is varied twice");
+    }
+    if (keys.empty()) throw MirageError("tradeoff: give at least one --vary NAME=v1,v2,…");
+
+    std::unique_ptr<tbb::global_control> threads;
+    if (o.threads > 0)
+        threads = std::make_unique<tbb::global_control>(
+            tbb::global_control::max_allowed_parallelism, size_t(o.threads));
+    ColorPipeline color(o.ocioConfig);
+
+    // Command-line settings become overrides ahead of the varied keys, so a varied key wins.
+    std::vector<std::string> base = o.overrides;
+    if (!o.integrator.empty()) base.push_back("render.integrator=\"" + o.integrator + "\"");
+    if (o.spp > 0) base.push_back("film.spp=" + std::to_string(o.spp));
+    const FrameSettings cli{o.resolution, 0, o.seed, true};
+    auto load = [&](const std::vector<std::string>& overrides) {
+        Scene scene = loadScene(o.input, LoadOptions{1, overrides}, color);
+        applyFrameSettings(scene, o.input, cli);
+        return scene;
+    };
+    auto overridesOf = [&](const Setting& s) {
+        std::vector<std::string> ov = base;
+        for (size_t i = 0; i < keys.size(); ++i) ov.push_back(keys[i].key + "=" + s.values[i]);
+        return ov;
+    };
+
+    std::vector<Setting> settings = cartesian(keys);
+    Image reference;
+    std::string referencePath = o.reference;
+    if (!o.reference.empty()) reference = readExr(o.reference);
+
+    // The sweep.
+    for (size_t i = 0; i < settings.size(); ++i) {
+        Setting& s = settings[i];
+        std::vector<double> seconds;
+        for (int r = 0; r < o.repeats; ++r) {
+            Scene scene = load(overridesOf(s));
+            if (!o.reference.empty() &&
+                (reference.width != scene.settings.width || reference.height != scene.settings.height))
+                throw MirageError(o.reference + ": the reference is " + std::to_string(reference.width) +
+                                  "x" + std::to_string(reference.height) + " but the renders are " +
+                                  std::to_string(scene.settings.width) + "x" +
+                                  std::to_string(scene.settings.height) +
+                                  "; render it at the same resolution or pass --resolution");
+            s.spp = scene.settings.spp;
+            RenderedFrame frame = renderFrame(scene, "", color);
+            seconds.push_back(frame.seconds);
+            if (r == 0) s.image = std::move(frame.image);
+        }
+        s.seconds = median(seconds);
+        if (!o.quiet)
+            std::fprintf(stderr, "tradeoff: [%zu/%zu] %s: %.3f s\n", i + 1, settings.size(),
+                         s.label.c_str(), s.seconds);
+    }
+
+    // The reference: read, or rendered by the path tracer at high samples.
+    if (o.reference.empty()) {
+        int maxSpp = 0;
+        for (const auto& s : settings) maxSpp = std::max(maxSpp, s.spp);
+        int spp = o.referenceSpp > 0 ? o.referenceSpp : std::max(256, 4 * maxSpp);
+        std::vector<std::string> ov = base;
+        ov.push_back("render.integrator=\"volpath\"");
+        ov.push_back("film.spp=" + std::to_string(spp));
+        Scene scene = load(ov);
+        // A seed of its own: the reference's noise must not correlate with the sweep's.
+        scene.settings.seed += 0x9E3779B9u;
+        if (!o.quiet)
+            std::fprintf(stderr, "tradeoff: reference: volpath, %d spp, %dx%d …\n", spp,
+                         scene.settings.width, scene.settings.height);
+        RenderedFrame frame = renderFrame(scene, "", color);
+        reference = std::move(frame.image);
+        referencePath = o.prefix + "reference.exr";
+        ExrOptions exr;
+        exr.halfFloat = false;
+        exr.colorSpace = color.workingSpace();
+        exr.chromaticities = color.workingChromaticities();
+        exr.metadata = {{"scene", scene.source},
+                        {"integrator", "volpath"},
+                        {"spp", std::to_string(spp)},
+                        {"seed", std::to_string(scene.settings.seed)},
+                        {"render_seconds", std::to_string(frame.seconds)},
+                        {"version", MIRAGE_VERSION}};
+        writeExr(referencePath, reference, exr);
+        if (!o.quiet)
+            std::fprintf(stderr, "tradeoff: reference: %.2f s, written to %s\n", frame.seconds,
+                         referencePath.c_str());
+    }
+
+    double sumR = 0;
+    for (size_t i = 0; i < reference.rgba.size(); ++i)
+        if (i % 4 != 3) sumR += reference.rgba[i];
+    if (!(sumR > 0))
+        throw MirageError(referencePath + ": the reference is black (or not finite): relative "
+                                          "errors are undefined");
+    for (auto& s : settings) compare(s.image, reference, &s);
+
+    // CSV and table.
+    std::string csv = "setting,seconds,rmse,relmse,mean_bias";
+    for (const auto& k : keys) csv += "," + k.name;
+    csv += "\n";
+    size_t labelWidth = 7;
+    for (const auto& s : settings) labelWidth = std::max(labelWidth, s.label.size());
+    std::printf("reference: %s\n", referencePath.c_str());
+    std::printf("%-*s %10s %12s %12s %11s\n", int(labelWidth), "setting", "seconds", "rmse",
+                "relmse", "mean_bias");
+    for (const auto& s : settings) {
+        csv += s.label + "," + format("%.4f", s.seconds) + "," + format("%.6g", s.rmse) + "," +
+               format("%.6g", s.relMse) + "," + format("%.6g", s.meanBias);
+        for (const auto& v : s.values) csv += "," + plain(v);
+        csv += "\n";
+        std::printf("%-*s %10.3f %12.5g %12.5g %+11.4f\n", int(labelWidth), s.label.c_str(),
+                    s.seconds, s.rmse, s.relMse, s.meanBias);
+    }
+    const std::string csvPath = o.prefix + "tradeoff.csv", pngPath = o.prefix + "tradeoff.png";
+    writeTextFile(csvPath, csv);
+
+    // The plot: one polyline per value of the last varied key, points in the sweep's order.
+    LogLogPlot plot;
+    plot.title = fs::path(o.input).filename().string();
+    plot.xLabel = "render time (s)";
+    plot.yLabel = "relMSE";
+    auto series = [&](const std::string& label, const std::string* lastValue) {
+        std::vector<const Setting*> points;
+        for (const auto& st : settings)
+            if (!lastValue || st.values.back() == *lastValue) points.push_back(&st);
+        PlotSeries ps;
+        ps.label = label;
+        for (const Setting* st : points) {
+            ps.x.push_back(st->seconds);
+            ps.y.push_back(st->relMse);
+        }
+        return ps;
+    };
+    if (keys.size() == 1) {
+        plot.series.push_back(series("", nullptr));
+    } else {
+        for (const auto& v : keys.back().values)
+            plot.series.push_back(series(keys.back().name + "=" + plain(v), &v));
+    }
+    writePlotPng(pngPath, drawLogLogPlot(plot));
+    std::printf("%s\n%s\n", csvPath.c_str(), pngPath.c_str());
+    return 0;
+}
+
+}  // namespace mirage

@@ -3,7 +3,7 @@
 set -euo pipefail
 
 PACKAGES=(
-  build-essential cmake ninja-build pkg-config
+  build-essential cmake ninja-build pkg-config ccache
   libopenvdb-dev libnanovdb-dev libboost-iostreams-dev libblosc-dev libopenvdb-tools
   libembree-dev libtinyobjloader-dev
   libopenimageio-dev openimageio-tools

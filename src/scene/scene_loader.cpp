@@ -195,7 +195,10 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
     if (isVolumeFile(path)) return sceneFromVdb(path, options, color);
     toml::table doc = parseTomlFile(path);
     for (const auto& o : options.overrides) applyOverride(doc, o);
+    // A scene given as a bare file name lives in the working directory: its relative paths
+    // (shaders, volumes, meshes) resolve from "." like any other scene's from its folder.
     std::string dir = fs::path(path).parent_path().string();
+    if (dir.empty()) dir = ".";
     auto resolve = [&](const std::string& p) {
         return fs::path(p).is_relative() && !dir.empty() ? (fs::path(dir) / p).string() : p;
     };
@@ -312,6 +315,12 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
 }
 
 Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const ColorPipeline& color) {
+    // A bare VDB has no scene document for --set to edit; ignoring the overrides silently would
+    // render something other than what the user asked for.
+    if (!options.overrides.empty())
+        throw MirageError("--set " + options.overrides.front() + ": " + path +
+                          " is a bare volume file with no scene keys to set; write a scene .toml "
+                          "that references it (README, \"Scene files (TOML)\") and use --set on that");
     Scene scene;
     scene.source = path;
     VolumeRecord rec;

@@ -195,3 +195,44 @@ TEST(EndToEnd, TurntableAndFrameRangesNumberTheirOutputs) {
                                  &log));  // frame 5 has no cache: a clear error, exit 1
     EXPECT_NE(log.find("fog.0005.vdb"), std::string::npos) << log;
 }
+
+TEST(SceneLoad, BareFileNameResolvesShadersAndVolumesFromWorkingDirectory) {
+    // `mirage render scene.toml` from the scene's own folder: the scene path has no directory
+    // part, and a shader file beside it must still be found (it once fell through to the
+    // built-in shaders and failed as "unknown shader").
+    std::string dir = test::tempDir();
+    fogAsset(dir);
+    writeFile(dir, "mist.toml",
+              "name = \"mist\"\n[[component]]\nname = \"d\"\ngrid = \"density\"\n"
+              "sigma_a = 0.25\nsigma_s = 0.5\n");
+    std::string scene = kGoodScene;
+    scene.replace(scene.find("\"smoke\""), 7, "\"mist\"");
+    writeFile(dir, "here.toml", scene);
+    auto cwd = std::filesystem::current_path();
+    std::filesystem::current_path(dir);
+    ColorPipeline color;
+    std::string error;
+    Scene s;
+    try {
+        s = loadScene("here.toml", LoadOptions{}, color);
+    } catch (const MirageError& e) {
+        error = e.what();
+    }
+    std::filesystem::current_path(cwd);
+    ASSERT_EQ(error, "");
+    ASSERT_EQ(s.volumes.size(), 1u);
+    EXPECT_EQ(s.volumes[0].shader, "mist");
+}
+
+TEST(SceneLoad, SetOnABareVdbIsAnErrorNotIgnored) {
+    std::string dir = test::tempDir();
+    std::string vdb = fogAsset(dir);
+    ColorPipeline color;
+    try {
+        loadScene(vdb, LoadOptions{1, {"film.spp=7"}}, color);
+        FAIL() << "--set on a bare VDB was ignored";
+    } catch (const MirageError& e) {
+        EXPECT_NE(std::string(e.what()).find("film.spp=7"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("fog.vdb"), std::string::npos) << e.what();
+    }
+}

@@ -73,7 +73,8 @@ std::string partialPathFor(const std::string& outputPath) { return outputPath + 
 
 void writePartialFilm(const std::string& path, const Film& film, int tileSize,
                       const std::vector<uint8_t>& done, const Mat3& toWorking,
-                      const std::map<std::string, std::string>& metadata) {
+                      const std::map<std::string, std::string>& metadata,
+                      const std::string& compression) {
     const int w = film.width(), h = film.height();
     const int tilesX = (w + tileSize - 1) / tileSize;
     MIRAGE_CHECK(tileSize > 0 && done.size() == size_t(tilesX) * ((h + tileSize - 1) / tileSize));
@@ -112,7 +113,7 @@ void writePartialFilm(const std::string& path, const Film& film, int tileSize,
     spec.alpha_channel = 3;
     spec.tile_width = tileSize;
     spec.tile_height = tileSize;
-    spec.attribute("compression", "zip");
+    spec.attribute("compression", compression);
     spec.attribute("mirage:partial", "true");
     spec.attribute("mirage:tile_size", std::to_string(tileSize));
     spec.attribute("mirage:tiles_done", encodeDone(done));

@@ -26,6 +26,8 @@
 
 namespace mirage {
 
+constexpr const char* kPartialCompression = "none";
+
 struct PartialFilm {
     std::unique_ptr<Film> film;
     int tileSize = 0;
@@ -38,9 +40,11 @@ std::string partialPathFor(const std::string& outputPath);
 
 // Writes the finished tiles of `film` (only those: other tiles may be in progress). `toWorking`
 // converts XYZ to the working space for the preview channels. Throws MirageError naming `path`.
+// `compression` is an OpenEXR compression name (tests/bench/bench_partial_write measures them).
 void writePartialFilm(const std::string& path, const Film& film, int tileSize,
                       const std::vector<uint8_t>& done, const Mat3& toWorking,
-                      const std::map<std::string, std::string>& metadata);
+                      const std::map<std::string, std::string>& metadata,
+                      const std::string& compression = kPartialCompression);
 // Reads a partial file back; throws MirageError naming `path` when it is not one.
 PartialFilm readPartialFilm(const std::string& path);
 

@@ -111,7 +111,16 @@ int runRender(const RenderOptions& o) {
             }
         }
         auto tLoad = std::chrono::steady_clock::now();
-        Scene scene = loadScene(o.input, LoadOptions{frame, o.overrides}, color);
+        LoadOptions load{frame, o.overrides, {}};
+        if (memoryBudget > 0)
+            load.beforeGridLoad = [&](const Scene& partial, const std::string& file,
+                                      const std::string& grid, uint64_t bytes) {
+                int w = partial.settings.width, h = partial.settings.height;
+                if (!o.resolution.empty()) std::sscanf(o.resolution.c_str(), "%dx%d", &w, &h);
+                checkMemoryBudget(estimateBeforeGrid(file, grid, bytes, w, h), memoryBudget,
+                                  o.input, "loading grid '" + grid + "' would need");
+            };
+        Scene scene = loadScene(o.input, load, color);
         RenderSettings& s = scene.settings;
         std::string integratorName = o.integrator.empty() ? scene.integrator : o.integrator;
         if (!o.quality.empty())

@@ -110,9 +110,21 @@ MemoryEstimate estimateFrameMemory(const Scene& scene, const std::string& integr
     return e;
 }
 
-void checkMemoryBudget(const MemoryEstimate& estimate, uint64_t budget, const std::string& scene) {
+MemoryEstimate estimateBeforeGrid(const std::string& file, const std::string& grid,
+                                  uint64_t gridBytes, int width, int height) {
+    MemoryEstimate e;
+    e.items.push_back({"grid '" + grid + "' of " + file + " (file metadata)", gridBytes});
+    e.items.push_back({"resident now (program, grids so far)", currentMemoryBytes()});
+    e.items.push_back({"film (" + std::to_string(width) + "x" + std::to_string(height) + ")",
+                       uint64_t(std::max(width, 0)) * uint64_t(std::max(height, 0)) *
+                           kBytesPerPixel});
+    return e;
+}
+
+void checkMemoryBudget(const MemoryEstimate& estimate, uint64_t budget, const std::string& where,
+                       const std::string& what) {
     if (estimate.total() <= budget) return;
-    throw MirageError(scene + ": the frame needs an estimated " + estimate.describe() +
+    throw MirageError(where + ": " + what + " an estimated " + estimate.describe() +
                       ", more than --max-memory " + formatBytes(budget) +
                       "; reduce the largest item (or raise --max-memory)");
 }

@@ -2,8 +2,9 @@
 // (photon pass, render), so a scene that will not fit fails at once with the estimate and what
 // dominates it, instead of being killed by the system halfway through.
 //
-// The estimate is made once the grids are loaded (they are what the process holds so far, read
-// from the resident set) and adds what is still to come: the photon maps (photon integrator:
+// It is checked twice. Before each grid is read, with the grid's size from the file's metadata
+// (a grid that cannot fit is refused before it is loaded). Then once the grids are loaded (they
+// are what the process holds so far, read from the resident set), adding what is still to come: the photon maps (photon integrator:
 // stored photons per emitted photon from a pilot pass of a few thousand photons, times the
 // bytes per stored photon measured on the whole photon pipeline), and the film and its copies.
 #pragma once
@@ -44,8 +45,15 @@ constexpr uint64_t kBytesPerPixel = 168;
 // Runs a pilot photon pass for the photon integrator (a few thousand photons, well under 1 s).
 MemoryEstimate estimateFrameMemory(const Scene& scene, const std::string& integrator);
 
-// Throws MirageError when estimate.total() > budget, with the estimate and what dominates it.
-void checkMemoryBudget(const MemoryEstimate& estimate, uint64_t budget, const std::string& scene);
+// Before a grid is read (LoadOptions::beforeGridLoad): what is resident now, the grid's in-core
+// size from its file's metadata, and a width × height film. The photon maps are not known yet.
+MemoryEstimate estimateBeforeGrid(const std::string& file, const std::string& grid,
+                                  uint64_t gridBytes, int width, int height);
+
+// Throws MirageError when estimate.total() > budget, with the estimate and what dominates it:
+// "<where>: <what> an estimated <total> = <items>, more than --max-memory <budget>; …".
+void checkMemoryBudget(const MemoryEstimate& estimate, uint64_t budget, const std::string& where,
+                       const std::string& what = "the frame needs");
 
 // Resident memory of this process now, bytes (Linux /proc/self/statm; 0 if unavailable).
 uint64_t currentMemoryBytes();

@@ -144,6 +144,12 @@ TEST(KilledRenderCli, MaxMemoryRefusesABillionPhotonsWithin2Seconds) {
     EXPECT_NE(out.find("photon maps"), std::string::npos) << out;
     EXPECT_FALSE(fs::exists(dir + "/m.exr"));
 
+    // A budget smaller than what is resident is refused before the grid is read, naming it.
+    rc = render("'" + scene + "' -q --max-memory 1k -o '" + dir + "/m.exr'", &out);
+    EXPECT_EQ(rc, 1) << out;
+    EXPECT_NE(out.find("loading grid 'density' would need an estimated"), std::string::npos) << out;
+    EXPECT_NE(out.find("fog.vdb (file metadata)"), std::string::npos) << out;
+
     // The same scene within budget renders; a malformed size is one clear error.
     EXPECT_EQ(render("'" + scene + "' -q --max-memory 4G -o '" + dir + "/m.exr'", &out), 0) << out;
     rc = render("'" + scene + "' -q --max-memory 12X -o '" + dir + "/m.exr'", &out);

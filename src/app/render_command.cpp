@@ -159,6 +159,9 @@ int runRender(const RenderOptions& o) {
         } else if (o.resume && !o.quiet) {
             std::fprintf(stderr, "frame %d: no %s to resume from; rendering the whole frame\n",
                          frame, partialPath.c_str());
+        } else if (!o.resume && !o.quiet && fs::exists(partialPath)) {
+            std::fprintf(stderr, "frame %d: %s exists; rendering afresh (--resume continues it)\n",
+                         frame, partialPath.c_str());
         }
         PartialFilmWriter partial(partialPath, s.tileSize, color.xyzToWorking(),
                                   {{"fingerprint", fingerprint.hash},
@@ -187,10 +190,11 @@ int runRender(const RenderOptions& o) {
                 partial.write(*rendered.film, checkpoint.done);
             int signal = interruptSignal();
             std::fprintf(stderr,
-                         "mirage: interrupted (%s): frame %d has %d of %d tiles, saved in %s; "
-                         "continue with --resume\n",
+                         "mirage: interrupted (%s): frame %d has %d of %d tiles, saved in %s "
+                         "(%d partial writes, %.3fs); continue with --resume\n",
                          signal == SIGTERM ? "SIGTERM" : "SIGINT", frame, stats.tilesDone,
-                         stats.tiles, partialPath.c_str());
+                         stats.tiles, partialPath.c_str(), partial.writes(),
+                         partial.writeSeconds());
             return interruptExitCode();
         }
         const Integrator* integrator = rendered.integrator.get();

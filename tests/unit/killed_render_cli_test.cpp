@@ -49,14 +49,17 @@ TEST(KilledRenderCli, InterruptedThenResumedEqualsUninterruptedBitForBit) {
     ASSERT_EQ(render("'" + scene + "' -q --float -o '" + dir + "/ref.exr'", &out), 0) << out;
 
     const std::string target = dir + "/frame.exr";
-    int rc = render("'" + scene + "' -q --float -o '" + target + "'", &out,
+    int rc = render("'" + scene + "' -q --float --threads 2 -o '" + target + "'", &out,
                     "MIRAGE_TEST_STOP_AFTER_TILES=4");
     EXPECT_EQ(rc, 130) << out;
     EXPECT_NE(out.find("--resume"), std::string::npos) << out;
     EXPECT_FALSE(fs::exists(target)) << "an interrupted frame must not leave a final EXR";
     ASSERT_TRUE(fs::exists(target + ".partial")) << out;
 
-    ASSERT_EQ(render("'" + scene + "' -q --float --resume -o '" + target + "'", &out), 0) << out;
+    // Resumed on one thread: neither the photon pass nor the tiles depend on the thread count.
+    ASSERT_EQ(render("'" + scene + "' -q --float --resume --threads 1 -o '" + target + "'", &out),
+              0)
+        << out;
     EXPECT_FALSE(fs::exists(target + ".partial")) << "the partial file is removed once final";
     std::map<std::string, std::string> meta;
     Image a = readExr(dir + "/ref.exr"), b = readExr(target, &meta);
@@ -93,11 +96,12 @@ TEST(KilledRenderCli, SigtermStopsTheRenderWithExit143AndNoFinalFile) {
     const std::string dir = test::tempDir();
     const std::string scene = writeScene(dir, "volpath");
     const std::string target = dir + "/frame.exr";
-    // About a minute uninterrupted on 2 cores; killed after 1.5 s (partial writes every tile).
+    // About 15 s uninterrupted on 2 cores, in 4-pixel tiles so that those in flight end soon;
+    // killed after 1.5 s.
     std::string out;
     int rc = test::runCommand(
         "MIRAGE_PARTIAL_INTERVAL=0 '" MIRAGE_BINARY "' render '" + scene +
-            "' -q --spp 4096 --threads 2 -o '" + target + "' & pid=$!; sleep 1.5; "
+            "' -q --spp 1024 --set film.tile_size=4 --threads 2 -o '" + target + "' & pid=$!; sleep 1.5; "
             "kill -TERM $pid; wait $pid",
         &out);
     EXPECT_EQ(rc, 143) << out;

@@ -59,8 +59,8 @@ FrameFingerprint frameFingerprint(const Scene& scene, const std::string& input,
         std::snprintf(b, sizeof b, "%.9g,%.9g,%.9g", v.x, v.y, v.z);
         return std::string(b);
     };
-    m["camera"] = vec(c.position) + ";" + vec(c.lookAt) + ";" + vec(c.up) + ";" +
-                  std::to_string(c.fovDeg);
+    m["camera"] =
+        vec(c.position) + ";" + vec(c.lookAt) + ";" + vec(c.up) + ";" + std::to_string(c.fovDeg);
     m["frame"] = std::to_string(frame);
     m["integrator"] = integrator;
     m["max_depth"] = std::to_string(scene.maxDepth);
@@ -105,16 +105,19 @@ PartialFilm loadPartialForResume(const std::string& partialPath, const FrameFing
         for (const auto& [k, v] : now) {
             auto it = was.find(k);
             std::string old = it == was.end() ? "(absent)" : it->second;
-            if (old != v) diff += (diff.empty() ? "" : ", ") + k + " was '" + old + "', now '" + v + "'";
+            if (old != v)
+                diff += (diff.empty() ? "" : ", ") + k + " was '" + old + "', now '" + v + "'";
         }
         if (!diff.empty())
-            throw MirageError(FileLoc{partialPath, 0, 0},
-                              refuse + "render: " + diff + ". Render without --resume to start "
-                                       "afresh, or restore the settings.");
+            throw MirageError(FileLoc{partialPath, 0, 0}, refuse + "render: " + diff +
+                                                              ". Render without --resume to start "
+                                                              "afresh, or restore the settings.");
         throw MirageError(FileLoc{partialPath, 0, 0},
-                          refuse + "scene: the scene file or one of its grid files changed since "
-                                   "(fingerprint " + p.metadata["fingerprint"] + ", now " +
-                              expected.hash + "). Render without --resume to start afresh.");
+                          refuse +
+                              "scene: the scene file or one of its grid files changed since "
+                              "(fingerprint " +
+                              p.metadata["fingerprint"] + ", now " + expected.hash +
+                              "). Render without --resume to start afresh.");
     }
     if (p.film->width() != width || p.film->height() != height || p.tileSize != tileSize)
         throw MirageError(FileLoc{partialPath, 0, 0},

@@ -99,19 +99,23 @@ int runRender(const RenderOptions& o) {
     std::vector<int> frames = frameList(o);
     bool sequence = frames.size() > 1;
     int framesSkipped = 0;
+    auto skipped = [&](int frame, const std::string& out) {
+        if (!o.quiet)
+            std::fprintf(stderr, "frame %d: %s is complete, skipped\n", frame, out.c_str());
+        ++framesSkipped;
+    };
     for (int frame : frames) {
         if (interruptRequested()) break;
         // With -o the output is known before loading: a complete frame costs no load at all.
         if (o.skipExisting && !o.output.empty()) {
             std::string out = framePath(o.output, frame, sequence);
             if (isCompleteFrame(out)) {
-                if (!o.quiet) std::fprintf(stderr, "frame %d: %s is complete, skipped\n", frame, out.c_str());
-                ++framesSkipped;
+                skipped(frame, out);
                 continue;
             }
         }
         auto tLoad = std::chrono::steady_clock::now();
-        LoadOptions load{frame, o.overrides, {}};
+        LoadOptions load{frame, o.overrides};
         if (memoryBudget > 0)
             load.beforeGridLoad = [&](const Scene& partial, const std::string& file,
                                       const std::string& grid, uint64_t bytes) {
@@ -130,10 +134,10 @@ int runRender(const RenderOptions& o) {
             scene.render.camera =
                 orbitCamera(scene.render.camera, 360.f * float(frame - 1) / float(o.turntable));
         checkOutputSettings(scene, color);
-        std::string out = framePath(o.output.empty() ? scene.output.path : o.output, frame, sequence);
+        std::string out =
+            framePath(o.output.empty() ? scene.output.path : o.output, frame, sequence);
         if (o.skipExisting && isCompleteFrame(out)) {
-            if (!o.quiet) std::fprintf(stderr, "frame %d: %s is complete, skipped\n", frame, out.c_str());
-            ++framesSkipped;
+            skipped(frame, out);
             continue;
         }
         if (memoryBudget > 0) {
@@ -177,7 +181,8 @@ int runRender(const RenderOptions& o) {
             } catch (const MirageError& e) {
                 // A checkpoint that cannot be written costs the ability to resume, not the frame.
                 partialFailed = true;
-                std::fprintf(stderr, "mirage: warning: %s (checkpointing off for this frame)\n", e.what());
+                std::fprintf(stderr, "mirage: warning: %s (checkpointing off for this frame)\n",
+                             e.what());
             }
         };
         checkpoint.stopAfterTiles = testStopAfterTiles();
@@ -186,8 +191,13 @@ int runRender(const RenderOptions& o) {
         const RenderStats& stats = rendered.stats;
         if (stats.interrupted) {
             // Flush what is finished; the final EXR is not touched.
-            if (stats.tilesDone > stats.tilesResumed && !partialFailed)
-                partial.write(*rendered.film, checkpoint.done);
+            if (stats.tilesDone > stats.tilesResumed && !partialFailed) {
+                try {
+                    partial.write(*rendered.film, checkpoint.done);
+                } catch (const MirageError& e) {
+                    std::fprintf(stderr, "mirage: warning: %s\n", e.what());
+                }
+            }
             int signal = interruptSignal();
             std::fprintf(stderr,
                          "mirage: interrupted (%s): frame %d has %d of %d tiles, saved in %s "
@@ -245,9 +255,10 @@ int runRender(const RenderOptions& o) {
                          (unsigned long long)stats.nonFiniteSamples,
                          (unsigned long long)integrator->cappedPaths(), formatBytes(peakMemoryBytes()).c_str());
             if (partial.writes() > 0)
-                std::fprintf(stderr, "frame %d: partial file: %d writes, %.3fs (%.2f %% of render)\n",
-                             frame, partial.writes(), partial.writeSeconds(),
-                             stats.seconds > 0 ? 100.0 * partial.writeSeconds() / stats.seconds : 0.0);
+                std::fprintf(
+                    stderr, "frame %d: partial file: %d writes, %.3fs (%.2f %% of render)\n",
+                    frame, partial.writes(), partial.writeSeconds(),
+                    stats.seconds > 0 ? 100.0 * partial.writeSeconds() / stats.seconds : 0.0);
             std::string extra = integrator->summary();
             if (!extra.empty()) std::fprintf(stderr, "frame %d: %s\n", frame, extra.c_str());
         }
@@ -258,10 +269,12 @@ int runRender(const RenderOptions& o) {
         std::fprintf(stderr, "mirage: interrupted between frames; finished frames are complete\n");
         return interruptExitCode();
     }
-    if (!o.quiet)
+    if (!o.quiet) {
+        std::string skips =
+            framesSkipped ? ", " + std::to_string(framesSkipped) + " skipped as complete" : "";
         std::fprintf(stderr, "done: %zu frame(s) in %s%s\n", frames.size(),
-                     formatSeconds(secondsSince(t0)).c_str(),
-                     framesSkipped ? (", " + std::to_string(framesSkipped) + " skipped as complete").c_str() : "");
+                     formatSeconds(secondsSince(t0)).c_str(), skips.c_str());
+    }
     return 0;
 }
 

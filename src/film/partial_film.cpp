@@ -176,8 +176,8 @@ PartialFilm readPartialFilm(const std::string& path) {
     for (int c = 0; c < kAcc; ++c) {
         index[c] = spec.channelindex(kAccChannels[c]);
         if (index[c] < 0)
-            fail(path, std::string("partial file lacks the accumulator channel ") +
-                           kAccChannels[c]);
+            fail(path,
+                 std::string("partial file lacks the accumulator channel ") + kAccChannels[c]);
     }
     result.film = std::make_unique<Film>(w, h);
     std::vector<uint32_t> channel(size_t(w) * h);
@@ -208,8 +208,8 @@ PartialFilm readPartialFilm(const std::string& path) {
 }
 
 PartialFilmWriter::PartialFilmWriter(std::string path, int tileSize, const Mat3& toWorking,
-                                     std::map<std::string, std::string> metadata,
-                                     double minSeconds, double costFactor)
+                                     std::map<std::string, std::string> metadata, double minSeconds,
+                                     double costFactor)
     : mPath(std::move(path)),
       mTileSize(tileSize),
       mToWorking(toWorking),

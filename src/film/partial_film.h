@@ -31,7 +31,7 @@ constexpr const char* kPartialCompression = "none";
 struct PartialFilm {
     std::unique_ptr<Film> film;
     int tileSize = 0;
-    std::vector<uint8_t> done;  // per tile, row-major: 1 = finished
+    std::vector<uint8_t> done;                    // per tile, row-major: 1 = finished
     std::map<std::string, std::string> metadata;  // "mirage:" keys without the prefix
 };
 
@@ -71,8 +71,8 @@ private:
     Mat3 mToWorking;
     std::map<std::string, std::string> mMetadata;
     double mMinSeconds, mCostFactor;
-    double mLastWrite = 0;   // seconds since construction, at the end of the last write
-    double mLastCost = 0;    // duration of the last write
+    double mLastWrite = 0;  // seconds since construction, at the end of the last write
+    double mLastCost = 0;   // duration of the last write
     int mWrites = 0;
     double mWriteSeconds = 0;
     double mStart;

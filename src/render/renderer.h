@@ -27,10 +27,10 @@ struct RenderStats {
     uint64_t samples = 0;
     uint64_t mediumLookups = 0;  // medium evaluations (each reads every grid of its shader)
     uint64_t nonFiniteSamples = 0;
-    int tiles = 0;            // tiles in the image
-    int tilesDone = 0;        // finished, including those restored from a partial file
-    int tilesResumed = 0;     // restored from a partial file, not rendered now
-    bool interrupted = false; // stopped by interruptRequested() before every tile was done
+    int tiles = 0;             // tiles in the image
+    int tilesDone = 0;         // finished, including those restored from a partial file
+    int tilesResumed = 0;      // restored from a partial file, not rendered now
+    bool interrupted = false;  // stopped by interruptRequested() before every tile was done
 };
 
 // Tiles are numbered row-major: tile t covers x from (t % tilesX)·tileSize, y from

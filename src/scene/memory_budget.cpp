@@ -16,8 +16,8 @@
 namespace mirage {
 
 uint64_t parseMemorySize(const std::string& text, const std::string& what) {
-    const std::string expected = what + " '" + text +
-                                 "': expected a size such as 4G, 512M, 1.5G or a number of bytes";
+    const std::string expected =
+        what + " '" + text + "': expected a size such as 4G, 512M, 1.5G or a number of bytes";
     if (text.empty()) throw MirageError(expected);
     char* end = nullptr;
     double v = std::strtod(text.c_str(), &end);
@@ -25,14 +25,19 @@ uint64_t parseMemorySize(const std::string& text, const std::string& what) {
     if (!unit.empty() && (unit.back() == 'B' || unit.back() == 'b')) unit.pop_back();
     if (unit.size() == 2 && (unit[1] == 'i' || unit[1] == 'I')) unit.pop_back();  // GiB, MiB
     double scale = 1;
-    if (unit.empty()) scale = 1;
-    else if (unit == "k" || unit == "K") scale = 1024.0;
-    else if (unit == "m" || unit == "M") scale = 1024.0 * 1024;
-    else if (unit == "g" || unit == "G") scale = 1024.0 * 1024 * 1024;
-    else if (unit == "t" || unit == "T") scale = 1024.0 * 1024 * 1024 * 1024;
-    else throw MirageError(expected);
-    if (end == text.c_str() || !std::isfinite(v) || v <= 0 || v * scale > 1.8e19 ||
-        v * scale < 1)
+    if (unit.empty())
+        scale = 1;
+    else if (unit == "k" || unit == "K")
+        scale = 1024.0;
+    else if (unit == "m" || unit == "M")
+        scale = 1024.0 * 1024;
+    else if (unit == "g" || unit == "G")
+        scale = 1024.0 * 1024 * 1024;
+    else if (unit == "t" || unit == "T")
+        scale = 1024.0 * 1024 * 1024 * 1024;
+    else
+        throw MirageError(expected);
+    if (end == text.c_str() || !std::isfinite(v) || v <= 0 || v * scale > 1.8e19 || v * scale < 1)
         throw MirageError(expected);
     return uint64_t(v * scale);
 }
@@ -96,13 +101,12 @@ MemoryEstimate estimateFrameMemory(const Scene& scene, const std::string& integr
         PhotonMapLists lists = tracePhotonMaps(
             lights, scene.render.mediaPointers(),
             scene.render.hasSurfaces() ? scene.render.geometry.get() : nullptr, pilot, &stats);
-        double stored = double(lists.volume.size() + lists.surfaceGlobal.size() +
-                               lists.surfaceCaustic.size());
+        double stored =
+            double(lists.volume.size() + lists.surfaceGlobal.size() + lists.surfaceCaustic.size());
         double perEmitted = stats.emitted > 0 ? stored / double(stats.emitted) : 0;
         double photons = double(scene.photon.photons) * perEmitted;
         char what[160];
-        std::snprintf(what, sizeof what,
-                      "photon maps (%.3g emitted x %.2f stored each x %llu B)",
+        std::snprintf(what, sizeof what, "photon maps (%.3g emitted x %.2f stored each x %llu B)",
                       double(scene.photon.photons), perEmitted,
                       (unsigned long long)kBytesPerStoredPhoton);
         e.items.push_back({what, uint64_t(photons * double(kBytesPerStoredPhoton))});
@@ -115,9 +119,9 @@ MemoryEstimate estimateBeforeGrid(const std::string& file, const std::string& gr
     MemoryEstimate e;
     e.items.push_back({"grid '" + grid + "' of " + file + " (file metadata)", gridBytes});
     e.items.push_back({"resident now (program, grids so far)", currentMemoryBytes()});
-    e.items.push_back({"film (" + std::to_string(width) + "x" + std::to_string(height) + ")",
-                       uint64_t(std::max(width, 0)) * uint64_t(std::max(height, 0)) *
-                           kBytesPerPixel});
+    e.items.push_back(
+        {"film (" + std::to_string(width) + "x" + std::to_string(height) + ")",
+         uint64_t(std::max(width, 0)) * uint64_t(std::max(height, 0)) * kBytesPerPixel});
     return e;
 }
 

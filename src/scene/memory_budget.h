@@ -4,9 +4,10 @@
 //
 // It is checked twice. Before each grid is read, with the grid's size from the file's metadata
 // (a grid that cannot fit is refused before it is loaded). Then once the grids are loaded (they
-// are what the process holds so far, read from the resident set), adding what is still to come: the photon maps (photon integrator:
-// stored photons per emitted photon from a pilot pass of a few thousand photons, times the
-// bytes per stored photon measured on the whole photon pipeline), and the film and its copies.
+// are what the process holds so far, read from the resident set), adding what is still to come: the
+// photon maps (photon integrator: stored photons per emitted photon from a pilot pass of a few
+// thousand photons, times the bytes per stored photon measured on the whole photon pipeline), and
+// the film and its copies.
 #pragma once
 
 #include <cstdint>

@@ -62,7 +62,7 @@ struct LoadOptions {
     // load (--max-memory refuses a grid that will not fit before reading it).
     std::function<void(const Scene&, const std::string& file, const std::string& grid,
                        uint64_t bytes)>
-        beforeGridLoad;
+        beforeGridLoad = nullptr;
 };
 
 Scene loadScene(const std::string& path, const LoadOptions& options, const ColorPipeline& color);

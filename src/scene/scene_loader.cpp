@@ -331,7 +331,8 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
     rec.shader = "smoke";
     ShaderDesc shader = loadShader("smoke", "");
     scene.render.media.push_back(
-        buildMedium(shader, rec, {}, Transform(), scene.majorantResolution, FileLoc{rec.file, 0, 0}, scene, options));
+        buildMedium(shader, rec, {}, Transform(), scene.majorantResolution,
+                    FileLoc{rec.file, 0, 0}, scene, options));
     scene.volumes.push_back(rec);
     float aspect = float(scene.settings.width) / float(scene.settings.height);
     scene.render.camera = frameBounds(scene.render.bounds(), 40.f, aspect);

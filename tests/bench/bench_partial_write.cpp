@@ -34,8 +34,7 @@ int main(int argc, char** argv) {
         auto t0 = std::chrono::steady_clock::now();
         for (int i = 0; i < runs; ++i) writePartialFilm(path, film, tile, done, Mat3(), {}, c);
         double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        std::printf("%s,%.3f,%.1f\n", c, s / runs,
-                    std::filesystem::file_size(path) / 1048576.0);
+        std::printf("%s,%.3f,%.1f\n", c, s / runs, std::filesystem::file_size(path) / 1048576.0);
     }
     std::filesystem::remove(path);
     return 0;

@@ -23,13 +23,14 @@ namespace fs = std::filesystem;
 // photon pass is re-run on resume and must give the same photons.
 std::string writeScene(const std::string& dir, const std::string& integrator = "photon") {
     std::string out;
-    EXPECT_EQ(test::runMirage("make-asset fog-sphere -o '" + dir + "/fog.vdb' --resolution 16",
-                              &out),
-              0)
+    EXPECT_EQ(
+        test::runMirage("make-asset fog-sphere -o '" + dir + "/fog.vdb' --resolution 16", &out), 0)
         << out;
     std::ofstream f(dir + "/scene.toml");
     f << "[film]\nresolution = [40, 24]\ntile_size = 8\nspp = 2\nseed = 7\n"
-         "[render]\nintegrator = \"" << integrator << "\"\nphotons = 20000\n"
+         "[render]\nintegrator = \""
+      << integrator
+      << "\"\nphotons = 20000\n"
          "[camera]\nposition = [0, 1, 4]\nlook_at = [0, 1, 0]\nfov = 35\n"
          "[[volume]]\nfile = \"fog.vdb\"\nshader = \"smoke\"\ndensity_scale = 3\n"
          "[[light]]\ntype = \"sun\"\ndirection = [0.6, -0.7, -0.4]\nirradiance = 1476\n";
@@ -76,8 +77,8 @@ TEST(KilledRenderCli, ResumeRefusesAPartialFileFromOtherSettings) {
     const std::string scene = writeScene(dir, "single");
     const std::string target = dir + "/frame.exr";
     std::string out;
-    int rc = render("'" + scene + "' -q -o '" + target + "'", &out,
-                    "MIRAGE_TEST_STOP_AFTER_TILES=2");
+    int rc =
+        render("'" + scene + "' -q -o '" + target + "'", &out, "MIRAGE_TEST_STOP_AFTER_TILES=2");
     ASSERT_EQ(rc, 130) << out;
     rc = render("'" + scene + "' -q --resume --spp 3 -o '" + target + "'", &out);
     EXPECT_EQ(rc, 1) << out;
@@ -99,11 +100,12 @@ TEST(KilledRenderCli, SigtermStopsTheRenderWithExit143AndNoFinalFile) {
     // About 15 s uninterrupted on 2 cores, in 4-pixel tiles so that those in flight end soon;
     // killed after 1.5 s.
     std::string out;
-    int rc = test::runCommand(
-        "MIRAGE_PARTIAL_INTERVAL=0 '" MIRAGE_BINARY "' render '" + scene +
-            "' -q --spp 1024 --set film.tile_size=4 --threads 2 -o '" + target + "' & pid=$!; sleep 1.5; "
-            "kill -TERM $pid; wait $pid",
-        &out);
+    int rc =
+        test::runCommand("MIRAGE_PARTIAL_INTERVAL=0 '" MIRAGE_BINARY "' render '" + scene +
+                             "' -q --spp 1024 --set film.tile_size=4 --threads 2 -o '" + target +
+                             "' & pid=$!; sleep 1.5; "
+                             "kill -TERM $pid; wait $pid",
+                         &out);
     EXPECT_EQ(rc, 143) << out;
     EXPECT_FALSE(fs::exists(target));
 }
@@ -137,11 +139,10 @@ TEST(KilledRenderCli, MaxMemoryRefusesABillionPhotonsWithin2Seconds) {
     const std::string scene = writeScene(dir);
     std::string out;
     auto t0 = std::chrono::steady_clock::now();
-    int rc = render("'" + scene + "' -q --set render.photons=1000000000 --max-memory 1G -o '" + dir +
-                        "/m.exr'",
-                    &out);
-    double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    int rc = render(
+        "'" + scene + "' -q --set render.photons=1000000000 --max-memory 1G -o '" + dir + "/m.exr'",
+        &out);
+    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     EXPECT_EQ(rc, 1) << out;
     EXPECT_LT(seconds, 2.0);
     EXPECT_NE(out.find("more than --max-memory 1.00 GiB"), std::string::npos) << out;

@@ -93,8 +93,10 @@ TEST(PartialFilm, RoundTripsTheSumsOfFinishedTilesBitForBit) {
         for (int x = 0; x < w; ++x) {
             bool finished = done[size_t(y / tile) * 3 + x / tile];
             const Film::Pixel& b = back.film->pixel(x, y);
-            if (finished) EXPECT_TRUE(samePixel(b, film.pixel(x, y))) << x << "," << y;
-            else EXPECT_EQ(b.samples, 0u) << "an unfinished tile must stay empty";
+            if (finished)
+                EXPECT_TRUE(samePixel(b, film.pixel(x, y))) << x << "," << y;
+            else
+                EXPECT_EQ(b.samples, 0u) << "an unfinished tile must stay empty";
         }
 }
 
@@ -105,7 +107,11 @@ TEST(PartialFilm, AnExrThatIsNotAPartialFileIsRefused) {
     std::filesystem::rename(dir + "/a.partial", dir + "/a.exr");
     // A real partial file under another name still reads; garbage does not.
     EXPECT_NO_THROW(readPartialFilm(dir + "/a.exr"));
-    { FILE* f = std::fopen((dir + "/b.partial").c_str(), "w"); std::fputs("not an exr", f); std::fclose(f); }
+    {
+        FILE* f = std::fopen((dir + "/b.partial").c_str(), "w");
+        std::fputs("not an exr", f);
+        std::fclose(f);
+    }
     EXPECT_THROW(readPartialFilm(dir + "/b.partial"), MirageError);
 }
 

@@ -22,6 +22,9 @@ struct RenderOptions {
     std::string ocioConfig;
     std::string integrator;        // --integrator; "" = the scene's
     std::string quality;           // --quality draft|preview|final; "" = the scene's settings
+    bool resume = false;           // --resume: continue from <out>.partial
+    bool skipExisting = false;     // --skip-existing: skip frames whose EXR is complete
+    std::string maxMemory;         // --max-memory SIZE (4G, 512M); "" = no budget
 };
 int runRender(const RenderOptions& o);
 

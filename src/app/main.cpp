@@ -39,6 +39,12 @@ int main(int argc, char** argv) {
     render->add_flag("--float", ro.floatExr, "Write 32-bit float EXR instead of half");
     render->add_flag("-q,--quiet", ro.quiet, "No progress output");
     render->add_option("--ocio", ro.ocioConfig, "OCIO config (default: $OCIO, else built-in)");
+    render->add_flag("--resume", ro.resume,
+                     "Continue a killed frame from <out>.partial (same scene and settings)");
+    render->add_flag("--skip-existing", ro.skipExisting,
+                     "Skip frames whose output EXR is complete (mirage:complete = true)");
+    render->add_option("--max-memory", ro.maxMemory,
+                       "Fail early when the frame's estimated memory exceeds SIZE (4G, 512M)");
 
     InfoOptions io;
     auto* info = app.add_subcommand("info", "Describe a scene or a VDB file");

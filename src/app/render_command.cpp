@@ -3,15 +3,20 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
 #include "app/commands.h"
+#include "app/render_checkpoint.h"
 #include "app/render_frame.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "film/color.h"
 #include "film/image_io.h"
+#include "film/partial_film.h"
+#include "scene/memory_budget.h"
 #include "scene/scene.h"
 
 namespace mirage {
@@ -87,12 +92,39 @@ int runRender(const RenderOptions& o) {
         threads = std::make_unique<tbb::global_control>(
             tbb::global_control::max_allowed_parallelism, size_t(o.threads));
     ColorPipeline color(o.ocioConfig);
+    const uint64_t memoryBudget = o.maxMemory.empty() ? 0 : parseMemorySize(o.maxMemory);
+    // From here a SIGINT/SIGTERM stops the render between tiles and saves what is finished.
+    installInterruptHandlers();
 
     std::vector<int> frames = frameList(o);
     bool sequence = frames.size() > 1;
+    int framesSkipped = 0;
+    auto skipped = [&](int frame, const std::string& out) {
+        if (!o.quiet)
+            std::fprintf(stderr, "frame %d: %s is complete, skipped\n", frame, out.c_str());
+        ++framesSkipped;
+    };
     for (int frame : frames) {
+        if (interruptRequested()) break;
+        // With -o the output is known before loading: a complete frame costs no load at all.
+        if (o.skipExisting && !o.output.empty()) {
+            std::string out = framePath(o.output, frame, sequence);
+            if (isCompleteFrame(out)) {
+                skipped(frame, out);
+                continue;
+            }
+        }
         auto tLoad = std::chrono::steady_clock::now();
-        Scene scene = loadScene(o.input, LoadOptions{frame, o.overrides}, color);
+        LoadOptions load{frame, o.overrides};
+        if (memoryBudget > 0)
+            load.beforeGridLoad = [&](const Scene& partial, const std::string& file,
+                                      const std::string& grid, uint64_t bytes) {
+                int w = partial.settings.width, h = partial.settings.height;
+                if (!o.resolution.empty()) std::sscanf(o.resolution.c_str(), "%dx%d", &w, &h);
+                checkMemoryBudget(estimateBeforeGrid(file, grid, bytes, w, h), memoryBudget,
+                                  o.input, "loading grid '" + grid + "' would need");
+            };
+        Scene scene = loadScene(o.input, load, color);
         RenderSettings& s = scene.settings;
         std::string integratorName = o.integrator.empty() ? scene.integrator : o.integrator;
         if (!o.quality.empty())
@@ -102,10 +134,79 @@ int runRender(const RenderOptions& o) {
             scene.render.camera =
                 orbitCamera(scene.render.camera, 360.f * float(frame - 1) / float(o.turntable));
         checkOutputSettings(scene, color);
+        std::string out =
+            framePath(o.output.empty() ? scene.output.path : o.output, frame, sequence);
+        if (o.skipExisting && isCompleteFrame(out)) {
+            skipped(frame, out);
+            continue;
+        }
+        if (memoryBudget > 0) {
+            MemoryEstimate estimate = estimateFrameMemory(scene, integratorName);
+            checkMemoryBudget(estimate, memoryBudget, scene.source);
+            if (!o.quiet)
+                std::fprintf(stderr, "frame %d: memory estimate %s (budget %s)\n", frame,
+                             estimate.describe().c_str(), formatBytes(memoryBudget).c_str());
+        }
         double loadSeconds = secondsSince(tLoad);
 
-        RenderedFrame rendered = renderFrame(scene, integratorName, color);
+        // Killed renders: finished tiles go to <out>.partial as they finish (rate-limited),
+        // and --resume starts from it when it matches this scene and these settings.
+        const std::string partialPath = partialPathFor(out);
+        FrameFingerprint fingerprint =
+            frameFingerprint(scene, o.input, integratorName, frame, o.overrides);
+        PartialFilm resumed;
+        TileCheckpoint checkpoint;
+        if (o.resume && fs::exists(partialPath)) {
+            resumed = loadPartialForResume(partialPath, fingerprint, s.width, s.height, s.tileSize);
+            checkpoint.initial = resumed.film.get();
+            checkpoint.done = resumed.done;
+        } else if (o.resume && !o.quiet) {
+            std::fprintf(stderr, "frame %d: no %s to resume from; rendering the whole frame\n",
+                         frame, partialPath.c_str());
+        } else if (!o.resume && !o.quiet && fs::exists(partialPath)) {
+            std::fprintf(stderr, "frame %d: %s exists; rendering afresh (--resume continues it)\n",
+                         frame, partialPath.c_str());
+        }
+        PartialFilmWriter partial(partialPath, s.tileSize, color.xyzToWorking(),
+                                  {{"fingerprint", fingerprint.hash},
+                                   {"settings", fingerprint.settings},
+                                   {"scene", scene.source},
+                                   {"frame", std::to_string(frame)}},
+                                  partialWriteInterval());
+        bool partialFailed = false;
+        checkpoint.tileFinished = [&](const Film& film, const std::vector<uint8_t>& done) {
+            if (partialFailed) return;
+            try {
+                partial.tileFinished(film, done);
+            } catch (const MirageError& e) {
+                // A checkpoint that cannot be written costs the ability to resume, not the frame.
+                partialFailed = true;
+                std::fprintf(stderr, "mirage: warning: %s (checkpointing off for this frame)\n",
+                             e.what());
+            }
+        };
+        checkpoint.stopAfterTiles = testStopAfterTiles();
+
+        RenderedFrame rendered = renderFrame(scene, integratorName, color, &checkpoint);
         const RenderStats& stats = rendered.stats;
+        if (stats.interrupted) {
+            // Flush what is finished; the final EXR is not touched.
+            if (stats.tilesDone > stats.tilesResumed && !partialFailed) {
+                try {
+                    partial.write(*rendered.film, checkpoint.done);
+                } catch (const MirageError& e) {
+                    std::fprintf(stderr, "mirage: warning: %s\n", e.what());
+                }
+            }
+            int signal = interruptSignal();
+            std::fprintf(stderr,
+                         "mirage: interrupted (%s): frame %d has %d of %d tiles, saved in %s "
+                         "(%d partial writes, %.3fs); continue with --resume\n",
+                         signal == SIGTERM ? "SIGTERM" : "SIGINT", frame, stats.tilesDone,
+                         stats.tiles, partialPath.c_str(), partial.writes(),
+                         partial.writeSeconds());
+            return interruptExitCode();
+        }
         const Integrator* integrator = rendered.integrator.get();
         Image& image = rendered.image;
 
@@ -134,8 +235,13 @@ int runRender(const RenderOptions& o) {
                         {"capped_paths", std::to_string(integrator->cappedPaths())},
                         {"version", MIRAGE_VERSION},
                         {"ocio_config", color.configDescription()}};
-        std::string out = framePath(o.output.empty() ? scene.output.path : o.output, frame, sequence);
+        exr.metadata["complete"] = "true";  // --skip-existing trusts only this
+        if (stats.tilesResumed > 0)
+            exr.metadata["resumed_tiles"] = std::to_string(stats.tilesResumed);
         writeExr(out, image, exr);
+        // The final frame is in place (atomically): its partial file has served.
+        std::error_code ec;
+        fs::remove(partialPath, ec);
         double writeSeconds = secondsSince(tWrite);
 
         if (!o.quiet) {
@@ -148,15 +254,27 @@ int runRender(const RenderOptions& o) {
                          loadSeconds, stats.seconds, writeSeconds, mlps,
                          (unsigned long long)stats.nonFiniteSamples,
                          (unsigned long long)integrator->cappedPaths(), formatBytes(peakMemoryBytes()).c_str());
+            if (partial.writes() > 0)
+                std::fprintf(
+                    stderr, "frame %d: partial file: %d writes, %.3fs (%.2f %% of render)\n",
+                    frame, partial.writes(), partial.writeSeconds(),
+                    stats.seconds > 0 ? 100.0 * partial.writeSeconds() / stats.seconds : 0.0);
             std::string extra = integrator->summary();
             if (!extra.empty()) std::fprintf(stderr, "frame %d: %s\n", frame, extra.c_str());
         }
         std::printf("%s\n", out.c_str());
         if (!preview.empty()) std::printf("%s\n", preview.c_str());
     }
-    if (!o.quiet)
-        std::fprintf(stderr, "done: %zu frame(s) in %s\n", frames.size(),
-                     formatSeconds(secondsSince(t0)).c_str());
+    if (interruptRequested()) {
+        std::fprintf(stderr, "mirage: interrupted between frames; finished frames are complete\n");
+        return interruptExitCode();
+    }
+    if (!o.quiet) {
+        std::string skips =
+            framesSkipped ? ", " + std::to_string(framesSkipped) + " skipped as complete" : "";
+        std::fprintf(stderr, "done: %zu frame(s) in %s%s\n", frames.size(),
+                     formatSeconds(secondsSince(t0)).c_str(), skips.c_str());
+    }
     return 0;
 }
 

@@ -67,7 +67,7 @@ void applyQualityPreset(Scene& scene, const QualityPreset& preset, const std::st
 }
 
 RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
-                          const ColorPipeline& color) {
+                          const ColorPipeline& color, TileCheckpoint* checkpoint) {
     auto t0 = std::chrono::steady_clock::now();
     RenderedFrame frame;
     const RenderSettings& s = scene.settings;
@@ -78,8 +78,9 @@ RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
     frame.integrator =
         makeIntegrator(integrator.empty() ? scene.integrator : integrator, scene.maxDepth, photon);
     frame.integrator->preprocess(scene.render);
-    Film film = render(scene.render, *frame.integrator, s, &frame.stats);
-    frame.image = film.develop(color);
+    frame.film = std::make_unique<Film>(
+        render(scene.render, *frame.integrator, s, &frame.stats, checkpoint));
+    frame.image = frame.film->develop(color);
     frame.seconds = secondsSince(t0);
     return frame;
 }

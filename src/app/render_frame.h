@@ -49,13 +49,15 @@ void applyQualityPreset(Scene& scene, const QualityPreset& preset, const std::st
 struct RenderedFrame {
     Image image;                              // developed, in the working space
     RenderStats stats;
+    std::unique_ptr<Film> film;               // the sums behind `image` (partial files)
     std::unique_ptr<Integrator> integrator;   // for its name, summary and capped paths
     double seconds = 0;                       // wall: integrator set-up, photon pass, render, develop
 };
 
 // Renders `scene` with `integrator` ("" = the scene's own) and develops it through `color`.
+// `checkpoint` (optional) resumes from and checkpoints to a partial file (renderer.h).
 RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
-                          const ColorPipeline& color);
+                          const ColorPipeline& color, TileCheckpoint* checkpoint = nullptr);
 
 double secondsSince(std::chrono::steady_clock::time_point t0);
 

@@ -41,13 +41,18 @@ public:
     // Averages the samples and converts XYZ to the working space of `color`.
     Image develop(const ColorPipeline& color) const;
 
-private:
+    // A pixel's running sums: what a partial file (partial_film.h) stores so that a resumed
+    // render continues exactly where the killed one stopped.
     struct Pixel {
         double xyz[3] = {0, 0, 0};
         double alpha = 0;
         uint32_t samples = 0;
         uint32_t nonFinite = 0;
     };
+    const Pixel& pixel(int x, int y) const { return mPixels[size_t(y) * mWidth + x]; }
+    Pixel& pixel(int x, int y) { return mPixels[size_t(y) * mWidth + x]; }
+
+private:
     int mWidth, mHeight;
     std::vector<Pixel> mPixels;
 };

@@ -3,53 +3,111 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 
 #include <atomic>
+#include <csignal>
+#include <memory>
+#include <mutex>
+
+#include "core/error.h"
+#include "core/interrupt.h"
 
 namespace mirage {
 
 Film render(const RenderScene& scene, Integrator& integrator, const RenderSettings& s,
-            RenderStats* stats) {
-    Film film(s.width, s.height);
+            RenderStats* stats, TileCheckpoint* checkpoint) {
+    const int tilesX = tileCountX(s);
+    const int tiles = tileCount(s);
+    Film film = checkpoint && checkpoint->initial ? *checkpoint->initial : Film(s.width, s.height);
+    MIRAGE_CHECK(film.width() == s.width && film.height() == s.height);
     PerspectiveCamera camera(scene.camera, s.width, s.height);
-    const int tilesX = (s.width + s.tileSize - 1) / s.tileSize;
-    const int tilesY = (s.height + s.tileSize - 1) / s.tileSize;
-    const int tiles = tilesX * tilesY;
+
+    // Which tiles are finished. A tile's pixels are written before its flag is stored (release)
+    // and read by a checkpoint writer only after it loads the flag (acquire): no data race.
+    std::unique_ptr<std::atomic<uint8_t>[]> done(new std::atomic<uint8_t>[size_t(tiles)]);
+    int resumed = 0;
+    for (int t = 0; t < tiles; ++t) {
+        bool d = checkpoint && size_t(t) < checkpoint->done.size() && checkpoint->done[t];
+        done[t].store(d ? 1 : 0, std::memory_order_relaxed);
+        resumed += d;
+    }
+    auto snapshot = [&] {
+        std::vector<uint8_t> v(size_t(tiles), 0);
+        for (int t = 0; t < tiles; ++t) v[t] = done[t].load(std::memory_order_acquire);
+        return v;
+    };
 
     Progress progress("render", uint64_t(tiles), "tiles", s.progress);
+    if (resumed > 0) progress.advance(uint64_t(resumed));
     std::atomic<uint64_t> lookups{0};
+    std::atomic<int64_t> finishedNow{0};
+    std::mutex checkpointMutex;
     tbb::enumerable_thread_specific<ThreadState> states([&] { return ThreadState(scene); });
 
-    tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
-        ThreadState& ts = states.local();
-        uint64_t before = ts.tracking.lookups;
-        for (int tile = r.begin(); tile < r.end(); ++tile) {
-            int x0 = (tile % tilesX) * s.tileSize, y0 = (tile / tilesX) * s.tileSize;
-            int x1 = std::min(x0 + s.tileSize, s.width), y1 = std::min(y0 + s.tileSize, s.height);
-            for (int y = y0; y < y1; ++y)
-                for (int x = x0; x < x1; ++x) {
-                    uint64_t pixel = uint64_t(y) * uint64_t(s.width) + uint64_t(x);
-                    for (int i = 0; i < s.spp; ++i) {
-                        Sampler sampler(s.seed, pixel, uint64_t(i));
-                        float jx = sampler.get1D(), jy = sampler.get1D();
-                        SampledWavelengths w = SampledWavelengths::sampleVisible(sampler.get1D());
-                        ts.tracking.setWavelengths(w);
-                        Ray ray = camera.generate(float(x) + jx, float(y) + jy);
-                        RadianceSample rs = integrator.Li(scene, ray, w, sampler, ts);
-                        film.addSample(x, y, rs.L, w, rs.alpha, rs.xyz);
+    // One tile per task (simple_partitioner, grain 1), so that an interrupt stops the hand-out
+    // of tiles within one tile's time on every thread.
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, tiles, 1),
+        [&](const tbb::blocked_range<int>& r) {
+            ThreadState& ts = states.local();
+            uint64_t before = ts.tracking.lookups;
+            for (int tile = r.begin(); tile < r.end(); ++tile) {
+                if (done[tile].load(std::memory_order_relaxed) || interruptRequested()) continue;
+                int x0 = (tile % tilesX) * s.tileSize, y0 = (tile / tilesX) * s.tileSize;
+                int x1 = std::min(x0 + s.tileSize, s.width);
+                int y1 = std::min(y0 + s.tileSize, s.height);
+                for (int y = y0; y < y1; ++y)
+                    for (int x = x0; x < x1; ++x) {
+                        uint64_t pixel = uint64_t(y) * uint64_t(s.width) + uint64_t(x);
+                        for (int i = 0; i < s.spp; ++i) {
+                            Sampler sampler(s.seed, pixel, uint64_t(i));
+                            float jx = sampler.get1D(), jy = sampler.get1D();
+                            SampledWavelengths w =
+                                SampledWavelengths::sampleVisible(sampler.get1D());
+                            ts.tracking.setWavelengths(w);
+                            Ray ray = camera.generate(float(x) + jx, float(y) + jy);
+                            RadianceSample rs = integrator.Li(scene, ray, w, sampler, ts);
+                            film.addSample(x, y, rs.L, w, rs.alpha, rs.xyz);
+                        }
                     }
+                done[tile].store(1, std::memory_order_release);
+                progress.advance();
+                int64_t n = ++finishedNow;
+                if (checkpoint && checkpoint->stopAfterTiles >= 0 &&
+                    n >= checkpoint->stopAfterTiles)
+                    requestInterrupt(SIGINT);
+                // A thread that finds the writer busy goes on rendering instead of waiting.
+                if (checkpoint && checkpoint->tileFinished && checkpointMutex.try_lock()) {
+                    std::lock_guard<std::mutex> lock(checkpointMutex, std::adopt_lock);
+                    checkpoint->tileFinished(film, snapshot());
                 }
-            progress.advance();
-        }
-        lookups += ts.tracking.lookups - before;
-    });
+            }
+            lookups += ts.tracking.lookups - before;
+        },
+        tbb::simple_partitioner());
     progress.finish();
 
+    std::vector<uint8_t> finalDone = snapshot();
+    int tilesDone = 0;
+    uint64_t pixelsDone = 0;
+    for (int t = 0; t < tiles; ++t) {
+        if (!finalDone[t]) continue;
+        ++tilesDone;
+        int x0 = (t % tilesX) * s.tileSize, y0 = (t / tilesX) * s.tileSize;
+        pixelsDone += uint64_t(std::min(s.tileSize, s.width - x0)) *
+                      uint64_t(std::min(s.tileSize, s.height - y0));
+    }
+    if (checkpoint) checkpoint->done = finalDone;
     if (stats) {
         stats->seconds = progress.elapsedSeconds();
-        stats->samples = uint64_t(s.width) * s.height * s.spp;
+        stats->samples = pixelsDone * uint64_t(s.spp);
         stats->mediumLookups = lookups.load();
         stats->nonFiniteSamples = film.nonFiniteSamples();
+        stats->tiles = tiles;
+        stats->tilesDone = tilesDone;
+        stats->tilesResumed = resumed;
+        stats->interrupted = tilesDone < tiles;
     }
     return film;
 }

@@ -1,9 +1,12 @@
 // The render pass: tiles over the image, scheduled by TBB over all cores. Each pixel's samples
 // use the counter-based sampler keyed by (seed, pixel, sample), and each pixel is accumulated
-// by the one task that owns its tile, so the image is bit-identical for any thread count.
+// by the one task that owns its tile, so the image is bit-identical for any thread count — and
+// for any order or subset of tiles, which is what lets a killed render resume exactly.
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <vector>
 
 #include "core/progress.h"
 #include "film/film.h"
@@ -24,9 +27,37 @@ struct RenderStats {
     uint64_t samples = 0;
     uint64_t mediumLookups = 0;  // medium evaluations (each reads every grid of its shader)
     uint64_t nonFiniteSamples = 0;
+    int tiles = 0;             // tiles in the image
+    int tilesDone = 0;         // finished, including those restored from a partial file
+    int tilesResumed = 0;      // restored from a partial file, not rendered now
+    bool interrupted = false;  // stopped by interruptRequested() before every tile was done
 };
 
+// Tiles are numbered row-major: tile t covers x from (t % tilesX)·tileSize, y from
+// (t / tilesX)·tileSize, clipped to the image.
+inline int tileCountX(const RenderSettings& s) { return (s.width + s.tileSize - 1) / s.tileSize; }
+inline int tileCount(const RenderSettings& s) {
+    return tileCountX(s) * ((s.height + s.tileSize - 1) / s.tileSize);
+}
+
+// Checkpointing a render (killed renders, --resume). All fields are optional.
+struct TileCheckpoint {
+    // Resume: the film restored from a partial file and which tiles it holds (1 = finished);
+    // those tiles are not rendered again. Sizes must match the settings.
+    const Film* initial = nullptr;
+    std::vector<uint8_t> done;
+    // Called after a tile finishes, by one thread at a time (others skip while it runs), with
+    // the film and which tiles are finished; it must read only finished tiles' pixels, and
+    // decides itself whether writing a checkpoint now is worth its cost.
+    std::function<void(const Film&, const std::vector<uint8_t>& done)> tileFinished;
+    // Test hook: raise the interrupt flag (as SIGINT) after this many tiles finish in this run.
+    int64_t stopAfterTiles = -1;
+};
+
+// Renders every tile not already done, stopping early when interruptRequested() (tiles in
+// flight finish; the rest are left undone, and stats->interrupted is set). On return,
+// checkpoint->done (if given) says which tiles the film holds.
 Film render(const RenderScene& scene, Integrator& integrator, const RenderSettings& settings,
-            RenderStats* stats);
+            RenderStats* stats, TileCheckpoint* checkpoint = nullptr);
 
 }  // namespace mirage

@@ -2,6 +2,8 @@
 // and a record of what was loaded and why, for `mirage info`.
 #pragma once
 
+#include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -55,6 +57,12 @@ struct Scene {
 struct LoadOptions {
     int frame = 1;                        // substituted into $F patterns
     std::vector<std::string> overrides;   // --set key=value, applied before parsing
+    // Called before each grid is read, with the scene so far (settings, media already built),
+    // the file, the grid and its in-core size from the file's metadata; may throw to stop the
+    // load (--max-memory refuses a grid that will not fit before reading it).
+    std::function<void(const Scene&, const std::string& file, const std::string& grid,
+                       uint64_t bytes)>
+        beforeGridLoad = nullptr;
 };
 
 Scene loadScene(const std::string& path, const LoadOptions& options, const ColorPipeline& color);

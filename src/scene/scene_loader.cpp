@@ -183,11 +183,22 @@ std::vector<std::pair<std::string, std::string>> bindGrids(
 static std::unique_ptr<Medium> buildMedium(const ShaderDesc& shader, VolumeRecord& rec,
                                            const std::vector<std::pair<std::string, std::string>>& explicitBind,
                                            const Transform& xf, int majorantRes,
-                                           const FileLoc& where) {
+                                           const FileLoc& where, const Scene& scene,
+                                           const LoadOptions& options) {
     rec.bindings = bindGrids(shader, explicitBind, rec.file, &rec.unusedGrids, where);
     std::vector<FloatGrid> grids;
-    for (const auto& [slot, gridName] : rec.bindings)
+    for (const auto& [slot, gridName] : rec.bindings) {
+        if (options.beforeGridLoad) {
+            // In-core size from the file's metadata (cheap: no voxels are read).
+            VdbFileInfo info = inspectVdbFile(rec.file);
+            uint64_t bytes = 0;
+            for (size_t i = 0; i < info.grids.size(); ++i)
+                if (info.grids[i].name == gridName || "#" + std::to_string(i) == gridName)
+                    bytes = std::max(info.grids[i].memoryBytes, info.grids[i].activeVoxels * 4);
+            options.beforeGridLoad(scene, rec.file, gridName, bytes);
+        }
         grids.push_back(loadFloatGrid(rec.file, gridName));
+    }
     return std::make_unique<Medium>(shader, std::move(grids), xf, rec.densityScale, majorantRes);
 }
 
@@ -287,7 +298,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
         if (auto t = v.optionalTable("transform")) xf = readTransform(*t);
         v.finish();
         scene.render.media.push_back(
-            buildMedium(shader, rec, bind, xf, scene.majorantResolution, where));
+            buildMedium(shader, rec, bind, xf, scene.majorantResolution, where, scene, options));
         scene.volumes.push_back(std::move(rec));
     }
 
@@ -329,7 +340,8 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
     rec.shader = "smoke";
     ShaderDesc shader = loadShader("smoke", "");
     scene.render.media.push_back(
-        buildMedium(shader, rec, {}, Transform(), scene.majorantResolution, FileLoc{rec.file, 0, 0}));
+        buildMedium(shader, rec, {}, Transform(), scene.majorantResolution,
+                    FileLoc{rec.file, 0, 0}, scene, options));
     scene.volumes.push_back(rec);
     float aspect = float(scene.settings.width) / float(scene.settings.height);
     scene.render.camera = frameBounds(scene.render.bounds(), 40.f, aspect);

@@ -1,0 +1,237 @@
+// The partial file: see partial_film.h for the layout and why it holds the accumulators.
+
+#include "film/partial_film.h"
+
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+
+#include "core/error.h"
+
+namespace mirage {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The accumulator channels, in the order of PixelRecord::acc.
+const char* const kAccChannels[] = {"acc.Xhi", "acc.Xlo", "acc.Yhi", "acc.Ylo", "acc.Zhi",
+                                    "acc.Zlo", "acc.Ahi", "acc.Alo", "acc.N",   "acc.bad"};
+constexpr int kAcc = 10;
+
+// One pixel in the file's native layout: 4 float channels, then 10 uint32 channels.
+struct PixelRecord {
+    float rgba[4];
+    uint32_t acc[kAcc];
+};
+static_assert(sizeof(PixelRecord) == 4 * 4 + kAcc * 4, "no padding in the native layout");
+
+[[noreturn]] void fail(const std::string& path, const std::string& message) {
+    throw MirageError(FileLoc{path, 0, 0}, message);
+}
+
+void splitDouble(double d, uint32_t* hi, uint32_t* lo) {
+    uint64_t bits;
+    std::memcpy(&bits, &d, 8);
+    *hi = uint32_t(bits >> 32);
+    *lo = uint32_t(bits);
+}
+
+std::string encodeDone(const std::vector<uint8_t>& done) {
+    std::string s((done.size() + 3) / 4, '0');
+    for (size_t t = 0; t < done.size(); ++t)
+        if (done[t]) {
+            int v = (s[t / 4] <= '9' ? s[t / 4] - '0' : s[t / 4] - 'a' + 10) | (1 << (t % 4));
+            s[t / 4] = "0123456789abcdef"[v];
+        }
+    return s;
+}
+
+bool decodeDone(const std::string& s, size_t tiles, std::vector<uint8_t>* done) {
+    if (s.size() != (tiles + 3) / 4) return false;
+    done->assign(tiles, 0);
+    for (size_t t = 0; t < tiles; ++t) {
+        char c = s[t / 4];
+        int v = c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : -1;
+        if (v < 0) return false;
+        (*done)[t] = (v >> (t % 4)) & 1;
+    }
+    return true;
+}
+
+double nowSeconds() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+}
+
+}  // namespace
+
+std::string partialPathFor(const std::string& outputPath) { return outputPath + ".partial"; }
+
+void writePartialFilm(const std::string& path, const Film& film, int tileSize,
+                      const std::vector<uint8_t>& done, const Mat3& toWorking,
+                      const std::map<std::string, std::string>& metadata,
+                      const std::string& compression) {
+    const int w = film.width(), h = film.height();
+    const int tilesX = (w + tileSize - 1) / tileSize;
+    MIRAGE_CHECK(tileSize > 0 && done.size() == size_t(tilesX) * ((h + tileSize - 1) / tileSize));
+
+    // Only finished tiles are read: the others may be in progress on another thread.
+    std::vector<PixelRecord> pixels(size_t(w) * h);
+    std::memset(pixels.data(), 0, pixels.size() * sizeof(PixelRecord));
+    for (size_t t = 0; t < done.size(); ++t) {
+        if (!done[t]) continue;
+        int x0 = int(t % tilesX) * tileSize, y0 = int(t / tilesX) * tileSize;
+        for (int y = y0; y < std::min(y0 + tileSize, h); ++y)
+            for (int x = x0; x < std::min(x0 + tileSize, w); ++x) {
+                const Film::Pixel& p = film.pixel(x, y);
+                PixelRecord& r = pixels[size_t(y) * w + x];
+                for (int c = 0; c < 3; ++c) splitDouble(p.xyz[c], &r.acc[2 * c], &r.acc[2 * c + 1]);
+                splitDouble(p.alpha, &r.acc[6], &r.acc[7]);
+                r.acc[8] = p.samples;
+                r.acc[9] = p.nonFinite;
+                if (p.samples == 0) continue;
+                double inv = 1.0 / double(p.samples);
+                Vec3d rgb = toWorking.apply(Vec3d(p.xyz[0] * inv, p.xyz[1] * inv, p.xyz[2] * inv));
+                r.rgba[0] = float(rgb.x);
+                r.rgba[1] = float(rgb.y);
+                r.rgba[2] = float(rgb.z);
+                r.rgba[3] = float(p.alpha * inv);
+            }
+    }
+
+    OIIO::ImageSpec spec(w, h, 4 + kAcc, OIIO::TypeFloat);
+    spec.channelnames = {"R", "G", "B", "A"};
+    spec.channelformats.assign(4, OIIO::TypeFloat);
+    for (const char* name : kAccChannels) {
+        spec.channelnames.push_back(name);
+        spec.channelformats.push_back(OIIO::TypeUInt32);
+    }
+    spec.alpha_channel = 3;
+    spec.tile_width = tileSize;
+    spec.tile_height = tileSize;
+    spec.attribute("compression", compression);
+    spec.attribute("mirage:partial", "true");
+    spec.attribute("mirage:tile_size", std::to_string(tileSize));
+    spec.attribute("mirage:tiles_done", encodeDone(done));
+    for (const auto& [key, value] : metadata) spec.attribute("mirage:" + key, value);
+
+    // Temporary file next to the target, then rename (atomic within one folder).
+    fs::path target(path);
+    fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    fs::path tmp = dir / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()));
+    auto removeTmp = [&tmp] {
+        std::error_code ignored;
+        fs::remove(tmp, ignored);
+    };
+    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("openexr");
+    if (!out) fail(path, "no OpenEXR writer: " + OIIO::geterror());
+    if (!out->open(tmp.string(), spec)) {
+        std::string message = out->geterror();
+        removeTmp();
+        fail(path, "cannot open '" + tmp.string() + "' for writing: " + message);
+    }
+    bool ok = out->write_image(OIIO::TypeUnknown, pixels.data(), sizeof(PixelRecord));
+    ok = out->close() && ok;
+    if (!ok) {
+        std::string message = out->geterror();
+        removeTmp();
+        fail(path, "cannot write the partial file: " + message);
+    }
+    fs::rename(tmp, target, ec);
+    if (ec) {
+        removeTmp();
+        fail(path, "cannot move the partial file into place: " + ec.message());
+    }
+}
+
+PartialFilm readPartialFilm(const std::string& path) {
+    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::create("openexr");
+    if (!in) fail(path, "no OpenEXR reader: " + OIIO::geterror());
+    OIIO::ImageSpec spec;
+    if (!in->open(path, spec)) fail(path, "cannot read the partial file: " + in->geterror());
+
+    PartialFilm result;
+    for (const OIIO::ParamValue& p : spec.extra_attribs) {
+        std::string name = p.name().string();
+        if (name.rfind("mirage:", 0) == 0) result.metadata[name.substr(7)] = p.get_string(1 << 20);
+    }
+    if (result.metadata["partial"] != "true")
+        fail(path, "not a Mirage partial file (no mirage:partial metadata)");
+    const int w = spec.width, h = spec.height;
+    result.tileSize = std::atoi(result.metadata["tile_size"].c_str());
+    if (w <= 0 || h <= 0 || result.tileSize <= 0)
+        fail(path, "partial file has no pixels or no tile size");
+    size_t tiles = size_t((w + result.tileSize - 1) / result.tileSize) *
+                   size_t((h + result.tileSize - 1) / result.tileSize);
+    if (!decodeDone(result.metadata["tiles_done"], tiles, &result.done))
+        fail(path, "partial file has a malformed mirage:tiles_done list");
+
+    int index[kAcc];
+    for (int c = 0; c < kAcc; ++c) {
+        index[c] = spec.channelindex(kAccChannels[c]);
+        if (index[c] < 0)
+            fail(path,
+                 std::string("partial file lacks the accumulator channel ") + kAccChannels[c]);
+    }
+    result.film = std::make_unique<Film>(w, h);
+    std::vector<uint32_t> channel(size_t(w) * h);
+    for (int c = 0; c < kAcc; ++c) {
+        if (!in->read_image(0, 0, index[c], index[c] + 1, OIIO::TypeUInt32, channel.data()))
+            fail(path, "cannot read the partial file's pixels: " + in->geterror());
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                Film::Pixel& p = result.film->pixel(x, y);
+                uint32_t v = channel[size_t(y) * w + x];
+                // Even channels hold a double's high word, odd ones its low word.
+                if (c < 8) {
+                    uint64_t bits;
+                    double* slot = c < 6 ? &p.xyz[c / 2] : &p.alpha;
+                    std::memcpy(&bits, slot, 8);
+                    bits = (c % 2 == 0) ? (bits & 0xffffffffull) | (uint64_t(v) << 32)
+                                        : (bits & ~0xffffffffull) | v;
+                    std::memcpy(slot, &bits, 8);
+                } else if (c == 8) {
+                    p.samples = v;
+                } else {
+                    p.nonFinite = v;
+                }
+            }
+    }
+    in->close();
+    return result;
+}
+
+PartialFilmWriter::PartialFilmWriter(std::string path, int tileSize, const Mat3& toWorking,
+                                     std::map<std::string, std::string> metadata, double minSeconds,
+                                     double costFactor)
+    : mPath(std::move(path)),
+      mTileSize(tileSize),
+      mToWorking(toWorking),
+      mMetadata(std::move(metadata)),
+      mMinSeconds(minSeconds),
+      mCostFactor(costFactor),
+      mStart(nowSeconds()) {}
+
+void PartialFilmWriter::tileFinished(const Film& film, const std::vector<uint8_t>& done) {
+    double now = nowSeconds() - mStart;
+    if (now - mLastWrite < std::max(mMinSeconds, mCostFactor * mLastCost)) return;
+    write(film, done);
+}
+
+void PartialFilmWriter::write(const Film& film, const std::vector<uint8_t>& done) {
+    double t0 = nowSeconds();
+    writePartialFilm(mPath, film, mTileSize, done, mToWorking, mMetadata);
+    double t1 = nowSeconds();
+    mLastCost = t1 - t0;
+    mWriteSeconds += mLastCost;
+    mLastWrite = t1 - mStart;
+    ++mWrites;
+}
+
+}  // namespace mirage

@@ -1,0 +1,62 @@
+// `--max-memory SIZE`: an estimate of what a frame will need, checked before the heavy work
+// (photon pass, render), so a scene that will not fit fails at once with the estimate and what
+// dominates it, instead of being killed by the system halfway through.
+//
+// It is checked twice. Before each grid is read, with the grid's size from the file's metadata
+// (a grid that cannot fit is refused before it is loaded). Then once the grids are loaded (they
+// are what the process holds so far, read from the resident set), adding what is still to come: the
+// photon maps (photon integrator: stored photons per emitted photon from a pilot pass of a few
+// thousand photons, times the bytes per stored photon measured on the whole photon pipeline), and
+// the film and its copies.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace mirage {
+
+struct Scene;
+
+// "4G", "512M", "1.5G", "64k", "2T" (binary multiples: k = 1024) or plain bytes. Throws
+// MirageError naming `what` (e.g. "--max-memory") for anything else or a size of 0.
+uint64_t parseMemorySize(const std::string& text, const std::string& what = "--max-memory");
+
+struct MemoryItem {
+    std::string what;
+    uint64_t bytes = 0;
+};
+
+struct MemoryEstimate {
+    std::vector<MemoryItem> items;
+    uint64_t total() const;
+    // "1.2 GiB: photon maps 1.1 GiB (…), grids 50 MiB, …", largest first.
+    std::string describe() const;
+};
+
+// Bytes per stored volume photon over the whole photon pipeline (pass with its per-block lists,
+// kd-tree, per-photon XYZ/phase/radius, beam disc BVH), measured as peak resident memory
+// against photon count (README, "Killed renders and memory").
+constexpr uint64_t kBytesPerStoredPhoton = 112;
+// Per pixel: the film's sums (Film::Pixel, 40 B), the developed image (16 B), the output copy
+// (16 B), the partial file's staging record (56 B) and a resumed film's copy (40 B).
+constexpr uint64_t kBytesPerPixel = 168;
+
+// Estimates the memory of rendering `scene` with `integrator` (its grids already loaded).
+// Runs a pilot photon pass for the photon integrator (a few thousand photons, well under 1 s).
+MemoryEstimate estimateFrameMemory(const Scene& scene, const std::string& integrator);
+
+// Before a grid is read (LoadOptions::beforeGridLoad): what is resident now, the grid's in-core
+// size from its file's metadata, and a width × height film. The photon maps are not known yet.
+MemoryEstimate estimateBeforeGrid(const std::string& file, const std::string& grid,
+                                  uint64_t gridBytes, int width, int height);
+
+// Throws MirageError when estimate.total() > budget, with the estimate and what dominates it:
+// "<where>: <what> an estimated <total> = <items>, more than --max-memory <budget>; …".
+void checkMemoryBudget(const MemoryEstimate& estimate, uint64_t budget, const std::string& where,
+                       const std::string& what = "the frame needs");
+
+// Resident memory of this process now, bytes (Linux /proc/self/statm; 0 if unavailable).
+uint64_t currentMemoryBytes();
+
+}  // namespace mirage

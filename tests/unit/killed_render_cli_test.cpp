@@ -1,0 +1,164 @@
+// Killed renders end to end, through the mirage binary: a render stopped after a few tiles (the
+// test hook MIRAGE_TEST_STOP_AFTER_TILES raises the same flag SIGINT does) exits 130, leaves
+// <out>.partial and no final EXR; --resume then writes the same pixels as an uninterrupted
+// render; a partial file from other settings is refused; a real SIGTERM exits 143; sequences
+// skip complete frames; and --max-memory refuses an impossible photon count within 2 s.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+
+#include "film/image_io.h"
+#include "test_support.h"
+
+namespace mirage {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The procedural fog sphere, 40×24 pixels in 8-pixel tiles (15 tiles), photon integrator: the
+// photon pass is re-run on resume and must give the same photons.
+std::string writeScene(const std::string& dir, const std::string& integrator = "photon") {
+    std::string out;
+    EXPECT_EQ(
+        test::runMirage("make-asset fog-sphere -o '" + dir + "/fog.vdb' --resolution 16", &out), 0)
+        << out;
+    std::ofstream f(dir + "/scene.toml");
+    f << "[film]\nresolution = [40, 24]\ntile_size = 8\nspp = 2\nseed = 7\n"
+         "[render]\nintegrator = \""
+      << integrator
+      << "\"\nphotons = 20000\n"
+         "[camera]\nposition = [0, 1, 4]\nlook_at = [0, 1, 0]\nfov = 35\n"
+         "[[volume]]\nfile = \"fog.vdb\"\nshader = \"smoke\"\ndensity_scale = 3\n"
+         "[[light]]\ntype = \"sun\"\ndirection = [0.6, -0.7, -0.4]\nirradiance = 1476\n";
+    return dir + "/scene.toml";
+}
+
+int render(const std::string& args, std::string* out, const std::string& env = "") {
+    return test::runCommand(env + " '" MIRAGE_BINARY "' render " + args, out);
+}
+
+}  // namespace
+
+TEST(KilledRenderCli, InterruptedThenResumedEqualsUninterruptedBitForBit) {
+    const std::string dir = test::tempDir();
+    const std::string scene = writeScene(dir);
+    std::string out;
+    ASSERT_EQ(render("'" + scene + "' -q --float -o '" + dir + "/ref.exr'", &out), 0) << out;
+
+    const std::string target = dir + "/frame.exr";
+    int rc = render("'" + scene + "' -q --float --threads 2 -o '" + target + "'", &out,
+                    "MIRAGE_TEST_STOP_AFTER_TILES=4");
+    EXPECT_EQ(rc, 130) << out;
+    EXPECT_NE(out.find("--resume"), std::string::npos) << out;
+    EXPECT_FALSE(fs::exists(target)) << "an interrupted frame must not leave a final EXR";
+    ASSERT_TRUE(fs::exists(target + ".partial")) << out;
+
+    // Resumed on one thread: neither the photon pass nor the tiles depend on the thread count.
+    ASSERT_EQ(render("'" + scene + "' -q --float --resume --threads 1 -o '" + target + "'", &out),
+              0)
+        << out;
+    EXPECT_FALSE(fs::exists(target + ".partial")) << "the partial file is removed once final";
+    std::map<std::string, std::string> meta;
+    Image a = readExr(dir + "/ref.exr"), b = readExr(target, &meta);
+    ASSERT_EQ(a.rgba.size(), b.rgba.size());
+    size_t differ = 0;
+    for (size_t i = 0; i < a.rgba.size(); ++i) differ += a.rgba[i] != b.rgba[i];
+    EXPECT_EQ(differ, 0u) << "resumed pixels differ from the uninterrupted render";
+    EXPECT_EQ(meta["mirage:complete"], "true");
+    EXPECT_GE(std::stoi(meta["mirage:resumed_tiles"]), 4);
+}
+
+TEST(KilledRenderCli, ResumeRefusesAPartialFileFromOtherSettings) {
+    const std::string dir = test::tempDir();
+    const std::string scene = writeScene(dir, "single");
+    const std::string target = dir + "/frame.exr";
+    std::string out;
+    int rc =
+        render("'" + scene + "' -q -o '" + target + "'", &out, "MIRAGE_TEST_STOP_AFTER_TILES=2");
+    ASSERT_EQ(rc, 130) << out;
+    rc = render("'" + scene + "' -q --resume --spp 3 -o '" + target + "'", &out);
+    EXPECT_EQ(rc, 1) << out;
+    EXPECT_NE(out.find("--resume refused"), std::string::npos) << out;
+    EXPECT_NE(out.find("spp was '2', now '3'"), std::string::npos) << out;
+    EXPECT_TRUE(fs::exists(target + ".partial")) << "a refused resume keeps the partial file";
+
+    // The scene text itself is part of the fingerprint.
+    std::ofstream(scene, std::ios::app) << "# edited\n";
+    rc = render("'" + scene + "' -q --resume -o '" + target + "'", &out);
+    EXPECT_EQ(rc, 1) << out;
+    EXPECT_NE(out.find("scene file or one of its grid files changed"), std::string::npos) << out;
+}
+
+TEST(KilledRenderCli, SigtermStopsTheRenderWithExit143AndNoFinalFile) {
+    const std::string dir = test::tempDir();
+    const std::string scene = writeScene(dir, "volpath");
+    const std::string target = dir + "/frame.exr";
+    // About 15 s uninterrupted on 2 cores, in 4-pixel tiles so that those in flight end soon;
+    // killed after 1.5 s.
+    std::string out;
+    int rc =
+        test::runCommand("MIRAGE_PARTIAL_INTERVAL=0 '" MIRAGE_BINARY "' render '" + scene +
+                             "' -q --spp 1024 --set film.tile_size=4 --threads 2 -o '" + target +
+                             "' & pid=$!; sleep 1.5; "
+                             "kill -TERM $pid; wait $pid",
+                         &out);
+    EXPECT_EQ(rc, 143) << out;
+    EXPECT_FALSE(fs::exists(target));
+}
+
+TEST(KilledRenderCli, SkipExistingSkipsCompleteFramesOnly) {
+    const std::string dir = test::tempDir();
+    const std::string scene = writeScene(dir, "single");
+    const std::string pattern = dir + "/seq.####.exr";
+    std::string out;
+    ASSERT_EQ(render("'" + scene + "' -q --frames 1-2 -o '" + pattern + "'", &out), 0) << out;
+    auto t1 = fs::last_write_time(dir + "/seq.0001.exr");
+    // Frame 3 is killed: it leaves only a partial file, which is not a complete frame.
+    int rc = render("'" + scene + "' -q --frame 3 -o '" + pattern + "'", &out,
+                    "MIRAGE_TEST_STOP_AFTER_TILES=1");
+    ASSERT_EQ(rc, 130) << out;
+    ASSERT_FALSE(fs::exists(dir + "/seq.0003.exr"));
+
+    ASSERT_EQ(render("'" + scene + "' --skip-existing --frames 1-3 -o '" + pattern + "'", &out), 0)
+        << out;
+    EXPECT_NE(out.find("seq.0001.exr is complete, skipped"), std::string::npos) << out;
+    EXPECT_NE(out.find("seq.0002.exr is complete, skipped"), std::string::npos) << out;
+    EXPECT_EQ(fs::last_write_time(dir + "/seq.0001.exr"), t1) << "a complete frame was rewritten";
+    EXPECT_TRUE(fs::exists(dir + "/seq.0003.exr"));
+    std::map<std::string, std::string> meta;
+    readExr(dir + "/seq.0003.exr", &meta);
+    EXPECT_EQ(meta["mirage:complete"], "true");
+}
+
+TEST(KilledRenderCli, MaxMemoryRefusesABillionPhotonsWithin2Seconds) {
+    const std::string dir = test::tempDir();
+    const std::string scene = writeScene(dir);
+    std::string out;
+    auto t0 = std::chrono::steady_clock::now();
+    int rc = render(
+        "'" + scene + "' -q --set render.photons=1000000000 --max-memory 1G -o '" + dir + "/m.exr'",
+        &out);
+    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_EQ(rc, 1) << out;
+    EXPECT_LT(seconds, 2.0);
+    EXPECT_NE(out.find("more than --max-memory 1.00 GiB"), std::string::npos) << out;
+    EXPECT_NE(out.find("photon maps"), std::string::npos) << out;
+    EXPECT_FALSE(fs::exists(dir + "/m.exr"));
+
+    // A budget smaller than what is resident is refused before the grid is read, naming it.
+    rc = render("'" + scene + "' -q --max-memory 1k -o '" + dir + "/m.exr'", &out);
+    EXPECT_EQ(rc, 1) << out;
+    EXPECT_NE(out.find("loading grid 'density' would need an estimated"), std::string::npos) << out;
+    EXPECT_NE(out.find("fog.vdb (file metadata)"), std::string::npos) << out;
+
+    // The same scene within budget renders; a malformed size is one clear error.
+    EXPECT_EQ(render("'" + scene + "' -q --max-memory 4G -o '" + dir + "/m.exr'", &out), 0) << out;
+    rc = render("'" + scene + "' -q --max-memory 12X -o '" + dir + "/m.exr'", &out);
+    EXPECT_EQ(rc, 1) << out;
+    EXPECT_NE(out.find("--max-memory '12X'"), std::string::npos) << out;
+}
+}  // namespace mirage

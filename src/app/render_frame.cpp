@@ -77,6 +77,8 @@ RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
     photon.progress = s.progress;
     frame.integrator =
         makeIntegrator(integrator.empty() ? scene.integrator : integrator, scene.maxDepth, photon);
+    if (scene.refraction)
+        frame.integrator = makeCurvedCameraIntegrator(std::move(frame.integrator), scene.refraction);
     frame.integrator->preprocess(scene.render);
     Film film = render(scene.render, *frame.integrator, s, &frame.stats);
     frame.image = film.develop(color);

@@ -25,7 +25,20 @@ public:
         const Refraction& rf = *mRefraction;
         // The path's geometry is the hero wavelength's (curved_tracking.h).
         const double lambda = w.lambda[0];
+        const double nCam = rf.field->index(Vec3d(ray.o), lambda);
+        // Radiance arriving at the camera: Σ over chords of (transmittance of the chords before)
+        // × (what the wrapped integrator sees along this chord alone), then the final ray. The
+        // transmittances are separate estimates (transmittance()), independent of the chords'
+        // radiance estimates, so each product is unbiased. L/n² is conserved along the path
+        // (the n² law): radiance found at index n counts (nCam/n)² at the camera.
+        RadianceSample out;
+        out.L = SampledSpectrum(0.f);
         SampledSpectrum T(1.f);
+        auto add = [&](const RadianceSample& s, double n) {
+            const float k = float((nCam / n) * (nCam / n));
+            out.L += s.L * T * k;
+            out.xyz += s.xyz * (T.average() * k);  // already reduced to XYZ: the mean T
+        };
         bool atSurface = false;
         Ray next;
         auto visit = [&](const PathState& a, const PathState& b, bool) {
@@ -36,39 +49,36 @@ public:
             if (scene.hasSurfaces()) {
                 Ray chord{pa, unit, len};
                 if (scene.geometry->intersect(chord)) {
-                    // The wrapped integrator takes this chord: it finds the same surface and
-                    // attenuates up to it itself.
+                    // The wrapped integrator takes this chord and everything beyond it.
                     next = Ray{pa, unit};
                     atSurface = true;
                     return false;
                 }
             }
-            if (!scene.media.empty()) {
-                // Optical depth over arc length: the chord parametrised by arc (|d| = len/h).
-                T *= transmittance(ts.tracking, Ray{pa, unit * (len / h)}, h, sampler);
-                if (T.maxValue() <= 0.f) return false;
+            bool inMedium = false;
+            for (const auto& m : scene.media) {
+                float t0, t1;
+                inMedium |= m->worldBounds().intersect(pa, unit, 0.f, len, &t0, &t1);
             }
-            return true;
+            if (!inMedium) return true;  // nothing to see or to attenuate on this chord
+            // What the media along this chord emit and scatter towards it (the wrapped
+            // integrator, stopped at the chord's end), then their transmittance over arc
+            // length (the chord parametrised by arc: |d| = len/h).
+            add(mInner->Li(scene, Ray{pa, unit, len}, w, sampler, ts), rf.field->index(a.r, lambda));
+            T *= transmittance(ts.tracking, Ray{pa, unit * (len / h)}, h, sampler);
+            return T.maxValue() > 0.f;
         };
         const CurvedPathResult r = traceCurvedPath(*rf.field, Vec3d(ray.o), Vec3d(ray.d), lambda,
                                                    rf.maxArc, rf.path, visit);
-        RadianceSample s;
         if (T.maxValue() <= 0.f) {
-            s.L = SampledSpectrum(0.f);
-            s.alpha = 1.f;
-            return s;
+            out.alpha = 1.f;
+            return out;
         }
         if (!atSurface) next = Ray{Vec3(r.end.r), Vec3(r.end.direction())};
-        s = mInner->Li(scene, next, w, sampler, ts);
-        // n² law: L/n² is conserved along the path, so L_camera = L_end · (n_camera/n_end)².
-        const double nCam = rf.field->index(Vec3d(ray.o), lambda);
-        const double nEnd = rf.field->index(Vec3d(next.o), lambda);
-        const float k = float((nCam / nEnd) * (nCam / nEnd));
-        s.L = s.L * T * k;
-        const float tMean = T.average();
-        s.xyz = s.xyz * (tMean * k);  // already reduced to XYZ: the mean transmittance
-        s.alpha = 1.f - tMean * (1.f - s.alpha);
-        return s;
+        const RadianceSample last = mInner->Li(scene, next, w, sampler, ts);
+        add(last, rf.field->index(Vec3d(next.o), lambda));
+        out.alpha = 1.f - T.average() * (1.f - last.alpha);
+        return out;
     }
 
 private:

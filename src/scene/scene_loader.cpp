@@ -309,7 +309,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
         scene.render.camera = frameBounds(scene.render.bounds(), 40.f, aspect);
     }
     if (auto t = top.optionalTable("refraction")) {
-        scene.refraction = readRefraction(*t);
+        scene.refraction = readRefraction(*t, scene.render.media);
         // A field with ∇n = 0 everywhere bends nothing: the scene renders as without it.
         const Vec3d big(1e30);
         if (scene.refraction->field->gradientBound(-big, big) == 0) scene.refraction.reset();

@@ -4,6 +4,8 @@
 // road.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <string>
 
@@ -109,6 +111,55 @@ TEST(RefractionScene, ChordByChordMediaMatchTheStraightRender) {
     EXPECT_NEAR(b / a, 1.0, 0.03);
 }
 
+TEST(RefractionScene, FireTemperatureGridBendsOnlyNearTheFire) {
+    // Heat haze: the fire cache's temperature grid → n (Stam & Languenou), seen against a wall
+    // of emissive stripes. Rays that stay clear of the grid's bricks run as one straight chord
+    // and see what the straight render sees; rays through the plume may differ.
+    const std::string dir = test::tempDir();
+    std::string log;
+    ASSERT_EQ(test::runMirage("make-asset fire -o '" + dir + "/fire.vdb' --resolution 32", &log),
+              0)
+        << log;
+    auto scene = [&](const std::string& name, const std::string& extra) {
+        std::ofstream f(dir + "/" + name);
+        f << "[film]\nresolution = [48, 32]\nspp = 4\nseed = 2\n"
+             "[render]\nintegrator = \"single\"\n"
+             "[camera]\nposition = [0, 1, 4]\nlook_at = [0, 1, 0]\nfov = 40\n"
+             "[[volume]]\nfile = \"fire.vdb\"\nshader = \"fire\"\n"
+             "[[material]]\nname = \"glow\"\ntype = \"diffuse\"\nreflectance = 0.0\n"
+             "emission = 1.0\n";
+        for (int i = 0; i < 8; ++i)
+            f << "[[shape]]\ntype = \"quad\"\ncorner = [" << -3 + 0.8 * i
+              << ", -1, -2]\nedge_u = [0.4, 0, 0]\nedge_v = [0, 4, 0]\nmaterial = \"glow\"\n";
+        f << extra;
+        return dir + "/" + name;
+    };
+    const std::string haze = scene("haze.toml", "[refraction]\nprofile = \"grid\"\nvolume = 0\n");
+    std::string info;
+    ASSERT_EQ(test::runMirage("info '" + haze + "'", &info), 0) << info;
+    EXPECT_NE(info.find("temperature grid 'temperature' of volume 0"), std::string::npos) << info;
+    const Image straight = render(scene("plain.toml", ""), dir + "/plain.exr");
+    const Image bent = render(haze, dir + "/haze.exr");
+    // The outer 12 columns on each side pass the fire's plane more than 1.1 m to its side (the
+    // grid's bricks reach |x| < 0.6 m): the same, up to rounding of the chord's direction.
+    double outside = 0;
+    for (int y = 0; y < 32; ++y)
+        for (int x : {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 36, 37, 38, 39, 40, 41, 42, 43, 44, 45,
+                      46, 47})
+            for (int c = 0; c < 3; ++c)
+                outside = std::max(outside, double(std::abs(straight.pixel(x, y)[c] -
+                                                             bent.pixel(x, y)[c])));
+    EXPECT_LT(outside, 1e-4);
+    std::string out;
+    EXPECT_EQ(test::runMirage("info '" +
+                                  scene("bad.toml", "[refraction]\nprofile = \"grid\"\n"
+                                                    "grid = \"heat\"\n") +
+                                  "'",
+                              &out),
+              1);
+    EXPECT_NE(out.find("no grid slot 'heat'"), std::string::npos) << out;
+}
+
 TEST(RefractionScene, BadProfileIsOneMessage) {
     const std::string dir = test::tempDir();
     std::string out;
@@ -117,7 +168,7 @@ TEST(RefractionScene, BadProfileIsOneMessage) {
                               &out),
               1);
     EXPECT_NE(out.find("profile"), std::string::npos) << out;
-    EXPECT_NE(out.find("linear or atmosphere"), std::string::npos) << out;
+    EXPECT_NE(out.find("linear, atmosphere or grid"), std::string::npos) << out;
 }
 
 }  // namespace

@@ -84,7 +84,7 @@ TEST(RefractionScene, HotRoadShowsTheWallBelowTheHorizon) {
 TEST(RefractionScene, ChordByChordMediaMatchTheStraightRender) {
     // A field that bends nothing visible (k = 1e−9/m) but is walked in 10 cm chords: the media
     // seen chord by chord (each chord's emission and scattering, times the transmittance of the
-    // chords before) must add up to the straight render's, within the noise (≈ 0.6 % here).
+    // chords before) must add up to the straight render's, within the noise (≈ 0.9 % here).
     const std::string dir = test::tempDir();
     std::string log;
     ASSERT_EQ(test::runMirage("make-asset fog-sphere -o '" + dir + "/fog.vdb' --resolution 16",
@@ -93,7 +93,7 @@ TEST(RefractionScene, ChordByChordMediaMatchTheStraightRender) {
         << log;
     auto scene = [&](const std::string& name, const std::string& extra) {
         std::ofstream f(dir + "/" + name);
-        f << "[film]\nresolution = [24, 24]\nspp = 128\nseed = 11\n"
+        f << "[film]\nresolution = [24, 24]\nspp = 64\nseed = 11\n"
              "[render]\nintegrator = \"single\"\n"
              "[camera]\nposition = [0, 1, 4]\nlook_at = [0, 1, 0]\nfov = 35\n"
              "[[volume]]\nfile = \"fog.vdb\"\nshader = \"smoke\"\ndensity_scale = 3\n"
@@ -108,7 +108,7 @@ TEST(RefractionScene, ChordByChordMediaMatchTheStraightRender) {
         dir + "/chords.exr");
     const double a = rowsMean(straight, 0, 24), b = rowsMean(chords, 0, 24);
     ASSERT_GT(a, 0.01);
-    EXPECT_NEAR(b / a, 1.0, 0.03);
+    EXPECT_NEAR(b / a, 1.0, 0.04);
 }
 
 TEST(RefractionScene, FireTemperatureGridBendsOnlyNearTheFire) {

@@ -79,3 +79,25 @@ struct TradeoffOptions {
 int runTradeoff(const TradeoffOptions& o);
 
 }  // namespace mirage
+
+namespace mirage {
+
+// `mirage raypath`: one light path through a refractive-index profile by the renderer's path
+// stepper (raypath_command.cpp documents it).
+struct RaypathOptions {
+    std::string profile = "linear";      // linear | atmosphere
+    double n0 = 1.0, k = 0.0;            // linear: n = n0 + k·y
+    std::string origin = "0,0,0", direction = "1,0,0";  // x,y,z (m; any length)
+    double length = 1.0;                 // arc length, m
+    double tolerance = 1e-6;             // RK45 error tolerance per step
+    std::string method = "rk45";         // rk45 | euler
+    double step = 1e-2;                  // euler: fixed step, m
+    double maxStep = 0;                  // rk45: largest step, m (0 = unlimited)
+    double wavelength = 550;             // nm
+    int64_t maxSteps = 10'000'000;
+    std::vector<std::string> inversions; // atmosphere: base,top,dT[,blend] (m, m, K, m)
+    bool json = false;
+};
+int runRaypath(const RaypathOptions& o);
+
+}  // namespace mirage

@@ -126,6 +126,34 @@ int main(int argc, char** argv) {
     tradeoff->add_option("--ocio", to.ocioConfig, "OCIO config (default: $OCIO, else built-in)");
     tradeoff->add_flag("-q,--quiet", to.quiet, "No progress output");
 
+    RaypathOptions rp;
+    auto* raypath = app.add_subcommand(
+        "raypath", "Trace one curved light path through a refractive-index profile");
+    raypath->add_option("--profile", rp.profile, "linear (n = n0 + k·y) or atmosphere")
+        ->check(CLI::IsMember({"linear", "atmosphere"}));
+    raypath->add_option("--n0", rp.n0, "linear: index at y = 0")->check(CLI::PositiveNumber);
+    raypath->add_option("--k", rp.k, "linear: dn/dy in 1/m");
+    raypath->add_option("--origin", rp.origin, "Start point x,y,z in metres");
+    raypath->add_option("--direction", rp.direction, "Start direction x,y,z (normalised)");
+    raypath->add_option("--length", rp.length, "Arc length to trace, m")
+        ->check(CLI::PositiveNumber);
+    raypath->add_option("--tolerance", rp.tolerance, "rk45: error tolerance per step")
+        ->check(CLI::Range(1e-16, 1.0));
+    raypath->add_option("--method", rp.method, "rk45 (Dormand-Prince 5(4)) or euler")
+        ->check(CLI::IsMember({"rk45", "euler"}));
+    raypath->add_option("--step", rp.step, "euler: fixed step, m")->check(CLI::PositiveNumber);
+    raypath->add_option("--max-step", rp.maxStep, "rk45: largest step, m (default unlimited)")
+        ->check(CLI::PositiveNumber);
+    raypath->add_option("--max-steps", rp.maxSteps, "Hard cap on steps (reached: reported)")
+        ->check(CLI::PositiveNumber);
+    raypath->add_option("--wavelength", rp.wavelength, "Wavelength, nm")
+        ->check(CLI::Range(360.0, 830.0));
+    raypath->add_option("--inversion", rp.inversions,
+                        "atmosphere: a layer BASE,TOP,DT[,BLEND] (m, m, K, m) warmer by DT "
+                        "between BASE and TOP, edges blended over BLEND (default 1 m); "
+                        "repeatable");
+    raypath->add_flag("--json", rp.json, "Print the result as JSON");
+
     // Command-line syntax errors exit 2 (README "Input rules"); CLI11's own codes (105 for a
     // bad option value, 106 for a missing one, ...) would tell a farm wrapper nothing stable.
     try {
@@ -140,6 +168,7 @@ int main(int argc, char** argv) {
         if (*asset) return runMakeAsset(ao);
         if (*slab) return runSlab(so);
         if (*tradeoff) return runTradeoff(to);
+        if (*raypath) return runRaypath(rp);
     } catch (const MirageError& e) {
         std::fprintf(stderr, "mirage: error: %s\n", e.what());
         return 1;

@@ -77,6 +77,8 @@ RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
     photon.progress = s.progress;
     frame.integrator =
         makeIntegrator(integrator.empty() ? scene.integrator : integrator, scene.maxDepth, photon);
+    if (scene.refraction)
+        frame.integrator = makeCurvedCameraIntegrator(std::move(frame.integrator), scene.refraction);
     frame.integrator->preprocess(scene.render);
     frame.film = std::make_unique<Film>(
         render(scene.render, *frame.integrator, s, &frame.stats, checkpoint));

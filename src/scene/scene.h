@@ -10,6 +10,7 @@
 
 #include "render/render_scene.h"
 #include "render/renderer.h"
+#include "render/curved_camera.h"
 
 namespace mirage {
 
@@ -49,6 +50,9 @@ struct Scene {
     PhotonIntegratorSettings photon;
     int majorantResolution = 64;
     std::vector<VolumeRecord> volumes;
+    // [refraction]: camera rays bend in this index field; null when the scene has none (or its
+    // gradient is 0 everywhere), and then nothing changes.
+    std::shared_ptr<const Refraction> refraction;
 
     // Which physics terms this scene activates, and why ("model only what a scene requires").
     std::vector<PhysicsTerm> physics() const;

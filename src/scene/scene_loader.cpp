@@ -8,6 +8,7 @@
 #include "film/color.h"
 #include "medium/ocean_components.h"
 #include "scene/geometry_loader.h"
+#include "scene/refraction_loader.h"
 #include "scene/scene.h"
 #include "scene/shader_loader.h"
 #include "scene/toml_reader.h"
@@ -321,6 +322,12 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
     } else if (!scene.render.media.empty() || scene.render.hasSurfaces()) {
         scene.render.camera = frameBounds(scene.render.bounds(), 40.f, aspect);
     }
+    if (auto t = top.optionalTable("refraction")) {
+        scene.refraction = readRefraction(*t, scene.render.media);
+        // A field with ∇n = 0 everywhere bends nothing: the scene renders as without it.
+        const Vec3d big(1e30);
+        if (scene.refraction->field->gradientBound(-big, big) == 0) scene.refraction.reset();
+    }
     top.finish();
     return scene;
 }
@@ -420,7 +427,13 @@ std::vector<PhysicsTerm> Scene::physics() const {
     terms.push_back({"fluorescence", !fluorescenceWhy.empty(),
                      fluorescenceWhy.empty() ? "no shader declares a quantum efficiency"
                                              : fluorescenceWhy});
-    terms.push_back({"curved paths", false, "no refractive-index field: straight-line tracking"});
+    if (refraction)
+        terms.push_back({"curved paths", true,
+                         "[refraction]: " + refraction->description +
+                             ": camera rays bend (Dormand-Prince RK5(4)), straight beyond " +
+                             std::to_string(int(refraction->maxArc)) + " m"});
+    else
+        terms.push_back({"curved paths", false, "no refractive-index field: straight-line tracking"});
     return terms;
 }
 

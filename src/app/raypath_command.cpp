@@ -1,0 +1,144 @@
+// `mirage raypath`: the validation instrument for curved light. Traces one path through a
+// refractive-index profile with the path stepper the renderer uses (transport/curved_path.h)
+// and prints where it ends.
+//
+//   mirage raypath --profile linear --n0 N0 --k K --origin x,y,z --direction x,y,z
+//                  --length L [--tolerance TOL] [--method rk45|euler] [--step H]
+//                  [--max-step H] [--max-steps N] [--wavelength NM] [--json]
+//   mirage raypath --profile atmosphere [--inversion BASE,TOP,DT[,BLEND]]… (y = height, m)
+//
+// Output: end_point [x,y,z] (m), end_direction (unit), optical_path_length ∫n dl (m),
+// arc_length, steps (accepted), rejected, straight_chords, evaluations (of n and ∇n), capped
+// (the step cap was reached first), seconds (the trace alone). For the linear profile the exact
+// answer (medium/linear_profile_path.h) and the distance to it are printed as well.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <sstream>
+
+#include "app/commands.h"
+#include "core/error.h"
+#include "medium/air_index.h"
+#include "medium/index_field.h"
+#include "medium/linear_profile_path.h"
+#include "transport/curved_path.h"
+
+namespace mirage {
+
+namespace {
+
+std::vector<double> parseNumbers(const std::string& option, const std::string& text,
+                                 size_t minCount, size_t maxCount, const char* expected) {
+    std::vector<double> v;
+    std::stringstream ss(text);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        char* end = nullptr;
+        const double x = std::strtod(item.c_str(), &end);
+        if (item.empty() || *end != '\0' || !std::isfinite(x))
+            throw MirageError(option + ": expected " + expected + ", got '" + text + "'");
+        v.push_back(x);
+    }
+    if (v.size() < minCount || v.size() > maxCount)
+        throw MirageError(option + ": expected " + expected + ", got '" + text + "'");
+    return v;
+}
+
+Vec3d parseVec(const std::string& option, const std::string& text) {
+    const std::vector<double> v =
+        parseNumbers(option, text, 3, 3, "three comma-separated numbers x,y,z");
+    return Vec3d(v[0], v[1], v[2]);
+}
+
+std::unique_ptr<IndexField> makeProfile(const RaypathOptions& o) {
+    if (o.profile == "linear") return std::make_unique<LinearIndexField>(o.n0, o.k);
+    AtmosphereSettings atm;
+    for (const std::string& text : o.inversions) {
+        const std::vector<double> v = parseNumbers(
+            "--inversion", text, 3, 4, "BASE,TOP,DT[,BLEND] (m, m, K, m) with BASE < TOP");
+        InversionLayer layer;
+        layer.base = v[0];
+        layer.top = v[1];
+        layer.deltaT = v[2];
+        if (v.size() == 4) layer.blend = v[3];
+        if (!(layer.base < layer.top) || !(layer.blend > 0))
+            throw MirageError("--inversion: expected BASE < TOP and BLEND > 0, got '" + text +
+                              "'");
+        atm.inversions.push_back(layer);
+    }
+    return std::make_unique<AtmosphereIndexField>(atm);
+}
+
+void printVec(const char* key, const Vec3d& v, const char* tail) {
+    std::printf("  \"%s\": [%.17g, %.17g, %.17g]%s\n", key, v.x, v.y, v.z, tail);
+}
+
+}  // namespace
+
+int runRaypath(const RaypathOptions& o) {
+    const Vec3d origin = parseVec("--origin", o.origin);
+    const Vec3d direction = parseVec("--direction", o.direction);
+    if (!(length(direction) > 0))
+        throw MirageError("--direction: expected a non-zero vector, got '" + o.direction + "'");
+    const std::unique_ptr<IndexField> field = makeProfile(o);
+    if (!(field->index(origin, o.wavelength) > 0))
+        throw MirageError("--origin: the refractive index there is not positive (n = " +
+                          std::to_string(field->index(origin, o.wavelength)) + ")");
+
+    CurvedPathSettings set;
+    set.method = o.method == "euler" ? PathMethod::Euler : PathMethod::RK45;
+    set.tolerance = o.tolerance;
+    set.eulerStep = o.step;
+    if (o.maxStep > 0) set.maxStep = o.maxStep;
+    set.maxSteps = o.maxSteps;
+
+    const auto t0 = std::chrono::steady_clock::now();
+    const CurvedPathResult r =
+        traceCurvedPath(*field, origin, direction, o.wavelength, o.length, set);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const Vec3d endDir = r.end.direction();
+
+    if (o.json) {
+        std::printf("{\n  \"profile\": \"%s\",\n  \"method\": \"%s\",\n", o.profile.c_str(),
+                    o.method.c_str());
+        printVec("end_point", r.end.r, ",");
+        printVec("end_direction", endDir, ",");
+        std::printf("  \"optical_path_length\": %.17g,\n  \"arc_length\": %.17g,\n",
+                    r.end.opl, r.end.arc);
+        std::printf("  \"steps\": %lld,\n  \"rejected\": %lld,\n  \"straight_chords\": %lld,\n"
+                    "  \"evaluations\": %lld,\n  \"capped\": %s,\n",
+                    (long long)r.steps, (long long)r.rejected, (long long)r.straightChords,
+                    (long long)r.evaluations, r.capped ? "true" : "false");
+        if (o.profile == "linear") {
+            const LinearProfilePath ex = exactLinearProfilePath(
+                o.n0, o.k, Vec3d(0, 1, 0), origin, direction, r.end.arc);
+            printVec("exact_end_point", ex.endPoint, ",");
+            std::printf("  \"exact_optical_path_length\": %.17g,\n"
+                        "  \"end_point_error\": %.6g,\n",
+                        ex.opticalPathLength, length(r.end.r - ex.endPoint));
+        }
+        std::printf("  \"seconds\": %.6g\n}\n", seconds);
+    } else {
+        std::printf("raypath: %s profile, %s, %g m at %g nm\n", o.profile.c_str(),
+                    o.method.c_str(), o.length, o.wavelength);
+        std::printf("  end point      %.12g %.12g %.12g\n", r.end.r.x, r.end.r.y, r.end.r.z);
+        std::printf("  end direction  %.12g %.12g %.12g\n", endDir.x, endDir.y, endDir.z);
+        std::printf("  optical path   %.15g m over %.15g m\n", r.end.opl, r.end.arc);
+        std::printf("  %lld steps (%lld rejected, %lld straight), %lld evaluations, %.3g s%s\n",
+                    (long long)r.steps, (long long)r.rejected, (long long)r.straightChords,
+                    (long long)r.evaluations, seconds,
+                    r.capped ? "; STEP CAP REACHED before the length was covered" : "");
+    }
+    if (r.capped) {
+        std::fprintf(stderr,
+                     "mirage: error: raypath: the path reached the step cap (%lld steps) after "
+                     "%.9g of %.9g m; raise --max-steps or --tolerance/--step\n",
+                     (long long)set.maxSteps, r.end.arc, o.length);
+        return 1;
+    }
+    return 0;
+}
+
+}  // namespace mirage

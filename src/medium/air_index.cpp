@@ -1,0 +1,138 @@
+// The refractive index of air and the stratified atmosphere field (air_index.h says what).
+#include "medium/air_index.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <utility>
+
+namespace mirage {
+
+namespace {
+
+// US Standard Atmosphere 1976 layers: base geopotential height (m) and lapse rate (K/m)
+// (../shared/data/README.md).
+constexpr int kLayers = 7;
+constexpr std::array<double, kLayers + 1> kBase = {0,     11000, 20000, 32000,
+                                                   47000, 51000, 71000, 84852};
+constexpr std::array<double, kLayers> kLapse = {-6.5e-3, 0, 1.0e-3, 2.8e-3, 0, -2.8e-3, -2.0e-3};
+// g0 M / R: the hydrostatic constant, K/m.
+constexpr double kHydro = air::kG0 * air::kMolarMass / air::kGasConstant;
+
+struct LayerBase {
+    double T, P;
+};
+
+// Temperature and pressure at every layer base, integrated once from T0 = 288.15 K and
+// P0 = 101325 Pa: P = Pb (Tb / T)^(g0 M / (R L)) in a layer with lapse L, and
+// P = Pb exp(−g0 M (H − Hb) / (R Tb)) in an isothermal one.
+const std::array<LayerBase, kLayers + 1>& layerBases() {
+    static const std::array<LayerBase, kLayers + 1> bases = [] {
+        std::array<LayerBase, kLayers + 1> b{};
+        b[0] = {288.15, 101325.0};
+        for (int i = 0; i < kLayers; ++i) {
+            const double dH = kBase[i + 1] - kBase[i];
+            const double T = b[i].T + kLapse[i] * dH;
+            const double P = kLapse[i] == 0
+                                 ? b[i].P * std::exp(-kHydro * dH / b[i].T)
+                                 : b[i].P * std::pow(b[i].T / T, kHydro / kLapse[i]);
+            b[i + 1] = {T, P};
+        }
+        return b;
+    }();
+    return bases;
+}
+
+// The C² step S(t) = 6t⁵ − 15t⁴ + 10t³ on [0, 1] (0 below, 1 above) and its derivative.
+std::pair<double, double> smootherstep(double t) {
+    if (t <= 0) return {0.0, 0.0};
+    if (t >= 1) return {1.0, 0.0};
+    return {t * t * t * (t * (6 * t - 15) + 10), 30 * t * t * (t - 1) * (t - 1)};
+}
+
+}  // namespace
+
+double airDensity(double pressurePa, double temperatureK) {
+    return pressurePa * air::kMolarMass / (air::kGasConstant * temperatureK);
+}
+
+double airRefractivity(double lambdaNm, double a, double bUm2) {
+    const double um = lambdaNm * 1e-3;
+    return a * (1.0 + bUm2 / (um * um));
+}
+
+double airIndex(double pressurePa, double temperatureK, double lambdaNm) {
+    static const double rhoRef = airDensity(air::kRefPressure, air::kRefTemperature);
+    return 1.0 + airDensity(pressurePa, temperatureK) / rhoRef * airRefractivity(lambdaNm);
+}
+
+AtmosphereSample usStandardAtmosphere1976(double H) {
+    const auto& b = layerBases();
+    int i = 0;
+    while (i + 1 < kLayers && H >= kBase[i + 1]) ++i;
+    const double dH = H - kBase[i];  // negative below sea level: layer 0 extended downwards
+    const double T = b[i].T + kLapse[i] * dH;
+    const double P = kLapse[i] == 0 ? b[i].P * std::exp(-kHydro * dH / b[i].T)
+                                    : b[i].P * std::pow(b[i].T / T, kHydro / kLapse[i]);
+    return {T, P, airDensity(P, T), kLapse[i]};
+}
+
+AtmosphereIndexField::AtmosphereIndexField(AtmosphereSettings settings)
+    : mSettings(std::move(settings)) {}
+
+void AtmosphereIndexField::temperature(double z, double* T, double* dTdz) const {
+    const double H = geopotentialHeight(z);
+    const double dHdz = std::pow(air::kEarthRadius / (air::kEarthRadius + z), 2);
+    const AtmosphereSample s = usStandardAtmosphere1976(H);
+    *T = s.temperature;
+    *dTdz = s.dTdH * dHdz;
+    // Each layer is the difference of two blended steps: up at the base, down at the top.
+    for (const InversionLayer& l : mSettings.inversions) {
+        const auto up = smootherstep((z - l.base) / l.blend + 0.5);
+        const auto down = smootherstep((z - l.top) / l.blend + 0.5);
+        *T += l.deltaT * (up.first - down.first);
+        *dTdz += l.deltaT * (up.second - down.second) / l.blend;
+    }
+}
+
+void AtmosphereIndexField::eval(const Vec3d& x, double lambdaNm, double* n,
+                                Vec3d* gradient) const {
+    const double z = x.y - mSettings.groundHeight;
+    const double H = geopotentialHeight(z);
+    const double dHdz = std::pow(air::kEarthRadius / (air::kEarthRadius + z), 2);
+    const AtmosphereSample std1976 = usStandardAtmosphere1976(H);
+    double T, dTdz;
+    temperature(z, &T, &dTdz);
+    // n − 1 = K P / T, so d(n−1)/dz = (n−1)(P'/P − T'/T), with the hydrostatic
+    // P'/P = −g0 M / (R T_1976) · dH/dz of the standard atmosphere's own pressure.
+    const double nm1 = airIndex(std1976.pressure, T, lambdaNm) - 1.0;
+    const double dlnP = -kHydro / std1976.temperature * dHdz;
+    *n = 1.0 + nm1;
+    *gradient = Vec3d(0, nm1 * (dlnP - dTdz / T), 0);
+}
+
+double AtmosphereIndexField::gradientBound(const Vec3d& lo, const Vec3d& hi) const {
+    // |dn/dz| ≤ (n−1)max · (|P'/P|max + |T'|max / Tmin): each factor bounded over [z0, z1].
+    const double z0 = lo.y - mSettings.groundHeight, z1 = hi.y - mSettings.groundHeight;
+    const double H0 = geopotentialHeight(z0), H1 = geopotentialHeight(z1);
+    // The 1976 temperature is piecewise linear in H: its minimum is at an end or a layer base.
+    double tStdMin = std::min(usStandardAtmosphere1976(H0).temperature,
+                              usStandardAtmosphere1976(H1).temperature);
+    for (double Hb : kBase)
+        if (Hb > H0 && Hb < H1)
+            tStdMin = std::min(tStdMin, usStandardAtmosphere1976(Hb).temperature);
+    const double dHdzMax =
+        std::pow(air::kEarthRadius / (air::kEarthRadius + std::min(z0, 0.0)), 2);
+    double coldest = 0, dTmax = 6.5e-3 * dHdzMax;  // every 1976 lapse rate is ≤ 6.5 K/km
+    for (const InversionLayer& l : mSettings.inversions) {
+        coldest += std::min(0.0, l.deltaT);
+        dTmax += std::abs(l.deltaT) * 1.875 / l.blend;  // max of S' is 15/8
+    }
+    const double tMin = tStdMin + coldest;
+    if (!(tMin > 0)) return kInfinity;
+    const double pMax = usStandardAtmosphere1976(H0).pressure;  // P falls with height
+    const double nm1Max = airIndex(pMax, tMin, 360.0) - 1.0;    // refractivity grows to blue
+    return nm1Max * (kHydro / tStdMin * dHdzMax + dTmax / tMin);
+}
+
+}  // namespace mirage

@@ -1,0 +1,96 @@
+// Curved camera rays around an integrator (curved_camera.h says what and what not).
+#include "render/curved_camera.h"
+
+#include <utility>
+
+#include "transport/tracking.h"
+
+namespace mirage {
+
+namespace {
+
+class CurvedCameraIntegrator final : public Integrator {
+public:
+    CurvedCameraIntegrator(std::unique_ptr<Integrator> inner,
+                           std::shared_ptr<const Refraction> refraction)
+        : mInner(std::move(inner)), mRefraction(std::move(refraction)) {}
+
+    std::string name() const override { return mInner->name() + " (curved camera rays)"; }
+    void preprocess(const RenderScene& scene) override { mInner->preprocess(scene); }
+    uint64_t cappedPaths() const override { return mInner->cappedPaths(); }
+    std::string summary() const override { return mInner->summary(); }
+
+    RadianceSample Li(const RenderScene& scene, const Ray& ray, const SampledWavelengths& w,
+                      Sampler& sampler, ThreadState& ts) const override {
+        const Refraction& rf = *mRefraction;
+        // The path's geometry is the hero wavelength's (curved_tracking.h).
+        const double lambda = w.lambda[0];
+        const double nCam = rf.field->index(Vec3d(ray.o), lambda);
+        // Radiance arriving at the camera: Σ over chords of (transmittance of the chords before)
+        // × (what the wrapped integrator sees along this chord alone), then the final ray. The
+        // transmittances are separate estimates (transmittance()), independent of the chords'
+        // radiance estimates, so each product is unbiased. L/n² is conserved along the path
+        // (the n² law): radiance found at index n counts (nCam/n)² at the camera.
+        RadianceSample out;
+        out.L = SampledSpectrum(0.f);
+        SampledSpectrum T(1.f);
+        auto add = [&](const RadianceSample& s, double n) {
+            const float k = float((nCam / n) * (nCam / n));
+            out.L += s.L * T * k;
+            out.xyz += s.xyz * (T.average() * k);  // already reduced to XYZ: the mean T
+        };
+        bool atSurface = false;
+        Ray next;
+        auto visit = [&](const PathState& a, const PathState& b, bool) {
+            const Vec3 pa(a.r), pb(b.r);
+            const float h = float(b.arc - a.arc), len = length(pb - pa);
+            if (!(h > 0.f) || !(len > 0.f)) return true;
+            const Vec3 unit = (pb - pa) / len;
+            if (scene.hasSurfaces()) {
+                Ray chord{pa, unit, len};
+                if (scene.geometry->intersect(chord)) {
+                    // The wrapped integrator takes this chord and everything beyond it.
+                    next = Ray{pa, unit};
+                    atSurface = true;
+                    return false;
+                }
+            }
+            bool inMedium = false;
+            for (const auto& m : scene.media) {
+                float t0, t1;
+                inMedium |= m->worldBounds().intersect(pa, unit, 0.f, len, &t0, &t1);
+            }
+            if (!inMedium) return true;  // nothing to see or to attenuate on this chord
+            // What the media along this chord emit and scatter towards it (the wrapped
+            // integrator, stopped at the chord's end), then their transmittance over arc
+            // length (the chord parametrised by arc: |d| = len/h).
+            add(mInner->Li(scene, Ray{pa, unit, len}, w, sampler, ts), rf.field->index(a.r, lambda));
+            T *= transmittance(ts.tracking, Ray{pa, unit * (len / h)}, h, sampler);
+            return T.maxValue() > 0.f;
+        };
+        const CurvedPathResult r = traceCurvedPath(*rf.field, Vec3d(ray.o), Vec3d(ray.d), lambda,
+                                                   rf.maxArc, rf.path, visit);
+        if (T.maxValue() <= 0.f) {
+            out.alpha = 1.f;
+            return out;
+        }
+        if (!atSurface) next = Ray{Vec3(r.end.r), Vec3(r.end.direction())};
+        const RadianceSample last = mInner->Li(scene, next, w, sampler, ts);
+        add(last, rf.field->index(Vec3d(next.o), lambda));
+        out.alpha = 1.f - T.average() * (1.f - last.alpha);
+        return out;
+    }
+
+private:
+    std::unique_ptr<Integrator> mInner;
+    std::shared_ptr<const Refraction> mRefraction;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> makeCurvedCameraIntegrator(std::unique_ptr<Integrator> inner,
+                                                       std::shared_ptr<const Refraction> refraction) {
+    return std::make_unique<CurvedCameraIntegrator>(std::move(inner), std::move(refraction));
+}
+
+}  // namespace mirage

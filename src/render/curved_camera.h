@@ -1,0 +1,35 @@
+// Camera rays that bend in a refractive-index field (mirages, heat haze): a decorator around any
+// integrator. The camera ray follows its Fermat path (transport/curved_path.h) chord by chord
+// until a chord meets a surface or `maxArc` of path is walked. On every chord that crosses a
+// medium's bounds the wrapped integrator estimates what the media emit and scatter towards the
+// chord (its ray stopped at the chord's end), and the chord's transmittance over arc length
+// attenuates everything beyond; the wrapped integrator then takes the last chord (when it met a
+// surface) or the straight continuation. Radiance keeps L/n² along the path (the n² law).
+//
+// What it leaves out, until photons walk curved paths too (issue 5): paths scattered off the
+// camera ray, and shadow rays, stay straight (the seed takes direct light from the photon map
+// where paths curve). For a road mirage, or a sun behind a layered atmosphere seen across clear
+// air, that does not matter; for heat haze it bends what is seen through the hot air, not the
+// light that reaches it.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "medium/index_field.h"
+#include "render/integrator.h"
+#include "transport/curved_path.h"
+
+namespace mirage {
+
+struct Refraction {
+    std::shared_ptr<const IndexField> field;
+    CurvedPathSettings path;  // tolerance, maxStep, …
+    float maxArc = 1000.f;    // m of curved path per camera ray; straight beyond
+    std::string description;  // for `mirage info`
+};
+
+std::unique_ptr<Integrator> makeCurvedCameraIntegrator(std::unique_ptr<Integrator> inner,
+                                                       std::shared_ptr<const Refraction> refraction);
+
+}  // namespace mirage

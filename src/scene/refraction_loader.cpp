@@ -1,0 +1,108 @@
+// [refraction] → Refraction (refraction_loader.h documents the keys).
+#include "scene/refraction_loader.h"
+
+#include <cstdio>
+
+#include "medium/air_index.h"
+#include "medium/grid_index_field.h"
+
+namespace mirage {
+
+namespace {
+
+// The temperature grid of volume `index` as a GridIndexField: T = max(ambient, offset +
+// scale·value) per voxel (a fire cache's grid holds flame temperatures and 0 in the air around
+// them; that air is at `ambient`), placed in the world by the volume's transform, which must be
+// a uniform scale and a translation.
+std::shared_ptr<const IndexField> gridField(const TableReader& t,
+                                            const std::vector<std::unique_ptr<Medium>>& media,
+                                            std::string* description) {
+    const int64_t index = t.getInt("volume", 0, 0, 1 << 20);
+    if (size_t(index) >= media.size())
+        t.fail("volume", "expected the index of a [[volume]] (the scene has " +
+                             std::to_string(media.size()) + ")");
+    const Medium& m = *media[size_t(index)];
+    const ShaderDesc& shader = m.shader();
+    const EmissionSpec emission = shader.emission.value_or(EmissionSpec{});
+    const std::string slot = t.getString("grid", emission.temperatureGrid.empty()
+                                                     ? std::string("temperature")
+                                                     : emission.temperatureGrid);
+    const std::vector<std::string> slots = shader.gridSlots();
+    size_t at = 0;
+    while (at < slots.size() && slots[at] != slot) ++at;
+    if (at >= slots.size() || at >= m.grids().size()) {
+        std::string list;
+        for (const auto& s : slots) list += (list.empty() ? "" : ", ") + s;
+        t.fail("grid", "volume " + std::to_string(index) + "'s shader '" + shader.name +
+                           "' has no grid slot '" + slot + "'; its slots are: " + list);
+    }
+    const double ambient = t.getNumber("ambient", air::kStamTp, 1.0, 1e5);
+    const double scale = t.getNumber("temperature_scale", emission.temperatureScale, -1e6, 1e6);
+    const double offset = t.getNumber("temperature_offset", emission.temperatureOffset, -1e6, 1e6);
+
+    const Transform& xf = m.objectToWorld();
+    const auto& L = xf.linear.m;
+    const double s = L[0];
+    if (!(s > 0) || L[4] != s || L[8] != s || L[1] != 0 || L[2] != 0 || L[3] != 0 || L[5] != 0 ||
+        L[6] != 0 || L[7] != 0)
+        t.fail("volume", "a temperature grid bends light only under a uniform scale and a "
+                         "translation; volume " + std::to_string(index) +
+                         " is rotated or scaled unevenly");
+    DenseScalarGrid d = denseFromFloatGrid(m.grids()[at], 0.f);
+    for (float& v : d.values) v = float(std::max(ambient, offset + scale * double(v)));
+    d.background = float(ambient);
+    d.origin = Vec3d(xf.point(Vec3(d.origin)));
+    d.voxelSize *= s;
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "temperature grid '%s' of volume %lld (%dx%dx%d, ambient %g K): "
+                  "n = 1 + (Tp/T)(n0 - 1), tricubic B-spline",
+                  slot.c_str(), (long long)index, d.nx, d.ny, d.nz, ambient);
+    *description = buf;
+    return std::make_shared<GridIndexField>(std::move(d), GridIndexSettings{});
+}
+
+}  // namespace
+
+std::shared_ptr<const Refraction> readRefraction(const TableReader& t,
+                                                 const std::vector<std::unique_ptr<Medium>>& media) {
+    auto r = std::make_shared<Refraction>();
+    const std::string profile = t.getString("profile", "linear");
+    char buf[200];
+    if (profile == "linear") {
+        const double n0 = t.getNumber("n0", 1.0, 1e-6, 100.0);
+        const double k = t.getNumber("k", 0.0, -1e3, 1e3);
+        r->field = std::make_shared<LinearIndexField>(n0, k);
+        std::snprintf(buf, sizeof buf, "linear profile n = %g + %g·y", n0, k);
+        r->description = buf;
+    } else if (profile == "atmosphere") {
+        AtmosphereSettings a;
+        a.groundHeight = t.getNumber("ground_height", 0.0, -1e7, 1e7);
+        for (const TableReader& l : t.tables("inversion")) {
+            InversionLayer layer;
+            layer.base = l.getNumber("base");
+            layer.top = l.getNumber("top");
+            layer.deltaT = l.getNumber("delta_t", 0.0, -200.0, 2000.0);
+            layer.blend = l.getNumber("blend", 1.0, 1e-6, 1e6);
+            if (!(layer.top > layer.base)) l.fail("top", "expected top > base");
+            l.finish();
+            a.inversions.push_back(layer);
+        }
+        std::snprintf(buf, sizeof buf, "US Standard Atmosphere 1976 with %zu inversion layer(s)",
+                      a.inversions.size());
+        r->description = buf;
+        r->field = std::make_shared<AtmosphereIndexField>(a);
+    } else if (profile == "grid") {
+        r->field = gridField(t, media, &r->description);
+    } else {
+        t.fail("profile", "unknown profile '" + profile + "'; expected linear, atmosphere or grid");
+    }
+    r->path.tolerance = t.getNumber("tolerance", 1e-6, 1e-14, 1.0);
+    const double maxStep = t.getNumber("max_step", 0.0, 0.0, 1e9);
+    if (maxStep > 0) r->path.maxStep = maxStep;
+    r->maxArc = float(t.getNumber("max_distance", 1000.0, 1e-6, 1e9));
+    t.finish();
+    return r;
+}
+
+}  // namespace mirage

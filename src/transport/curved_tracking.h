@@ -1,0 +1,111 @@
+// Free flights and transmittance along curved light paths (Gutierrez et al. 2005: photons and
+// camera rays follow Fermat paths where the refractive index varies). The path stepper
+// (curved_path.h) hands over one chord per accepted step; each chord is
+//   - tested against the surfaces (a callback, so that transport does not depend on geometry:
+//     the renderer passes GeometryScene::intersect), and the walk ends at the first hit;
+//   - tracked with the straight-line trackers of tracking.h, parametrised by arc length: the
+//     chord ray runs from the step's start to its end with direction (end − start)/h, so its
+//     parameter t ∈ [0, h] is arc length and the optical depth the trackers accumulate,
+//     ∫σ dt, is the optical depth over arc length (the chord is only where σ is looked up).
+// The Poisson processes of tentative collisions are memoryless, so restarting them at every
+// chord is exact. The path's geometry is that of one wavelength (the hero wavelength, as for
+// dispersive glass); in air the spread is ~1e−4 of the bending (air_index.h).
+//
+// Surface hits are found on the chord, which departs from the path by at most its sagitta
+// h²/(8R), R ≥ n/|∇n| the path's radius of curvature: CurvedPathSettings::maxStep or stepCap
+// bound it.
+#pragma once
+
+#include <cmath>
+#include <functional>
+
+#include "medium/index_field.h"
+#include "transport/curved_path.h"
+#include "transport/tracking.h"
+
+namespace mirage {
+
+// The nearest surface along a chord: `chord` has a unit direction, the answer is its distance in
+// (0, tMax), or +∞ for none.
+using ChordSurfaceTest = std::function<float(const Ray& chord, float tMax)>;
+
+struct CurvedWalkEnd {
+    enum class Kind { Reached, Surface, Stopped, Capped } kind = Kind::Reached;
+    Vec3 p;              // where the walk ended (world, m)
+    Vec3 direction;      // unit path direction there (at a surface: the chord's direction)
+    float arc = 0;       // arc length from the origin, m
+    Ray chord;           // the last chord, unit direction (for the caller's surface query)
+    float chordT = 0;    // distance along `chord` of the end
+    int64_t chords = 0;  // chords walked
+};
+
+// Radiance along a path through a varying index keeps L/n² (the n² law): the factor that takes
+// radiance at index nFrom to index nTo.
+inline float radianceIndexScale(double nFrom, double nTo) {
+    return float((nTo / nFrom) * (nTo / nFrom));
+}
+
+// Calls f(const Collision&, float arc) at every tentative collision along the curved path from
+// origin along the unit dir, over arc length maxArc (Collision::t is the arc length within the
+// chord, Collision::p lies on the chord). f returns Track::Stop to end the walk there.
+template <typename F>
+CurvedWalkEnd trackCurvedCollisions(TrackingContext& ctx, const IndexField& field,
+                                    const CurvedPathSettings& settings,
+                                    const ChordSurfaceTest& surfaces, const Vec3& origin,
+                                    const Vec3& dir, float lambdaNm, float maxArc,
+                                    Sampler& sampler, F&& f) {
+    CurvedWalkEnd end;
+    auto visit = [&](const PathState& a, const PathState& b, bool) {
+        ++end.chords;
+        const Vec3 pa(a.r), pb(b.r);
+        const float h = float(b.arc - a.arc), len = length(pb - pa);
+        if (!(h > 0.f) || !(len > 0.f)) return true;
+        const Vec3 unit = (pb - pa) / len;
+        end.chord = Ray{pa, unit};
+        const float tSurface = surfaces ? surfaces(end.chord, len) : kInfinity;
+        // The tracked chord: parameter = arc length (direction of length len/h ≤ 1).
+        const float scale = h / len;
+        Ray arcRay{pa, unit / scale};
+        const float tStop = std::min(h, tSurface * scale);
+        bool stopped = false;
+        trackCollisions(ctx, arcRay, tStop, sampler, [&](const Collision& c) {
+            if (f(c, float(a.arc) + c.t) == Track::Continue) return Track::Continue;
+            stopped = true;
+            end.kind = CurvedWalkEnd::Kind::Stopped;
+            end.p = c.p;
+            end.direction = unit;
+            end.arc = float(a.arc) + c.t;
+            end.chordT = c.t / scale;
+            return Track::Stop;
+        });
+        if (stopped) return false;
+        if (tSurface < len) {
+            end.kind = CurvedWalkEnd::Kind::Surface;
+            end.p = end.chord.at(tSurface);
+            end.direction = unit;
+            end.arc = float(a.arc) + tSurface * scale;
+            end.chordT = tSurface;
+            return false;
+        }
+        return true;
+    };
+    const CurvedPathResult r = traceCurvedPath(field, Vec3d(origin), Vec3d(dir), lambdaNm,
+                                               maxArc, settings, visit);
+    if (r.stopped) return end;
+    end.kind = r.capped ? CurvedWalkEnd::Kind::Capped : CurvedWalkEnd::Kind::Reached;
+    end.p = Vec3(r.end.r);
+    end.direction = Vec3(r.end.direction());
+    end.arc = float(r.end.arc);
+    return end;
+}
+
+// Transmittance along the curved path over arc length maxArc, up to the first surface (the walk
+// ends there: end->kind says Surface, and a shadow query treats that as blocked). Homogeneous
+// media take the closed form exp(−σt·arc), the others ratio tracking, chord by chord.
+SampledSpectrum curvedTransmittance(TrackingContext& ctx, const IndexField& field,
+                                    const CurvedPathSettings& settings,
+                                    const ChordSurfaceTest& surfaces, const Vec3& origin,
+                                    const Vec3& dir, float lambdaNm, float maxArc,
+                                    Sampler& sampler, CurvedWalkEnd* end = nullptr);
+
+}  // namespace mirage

@@ -400,8 +400,10 @@ std::vector<PhysicsTerm> Scene::physics() const {
                               : "no shader has an [emission] table"});
     terms.push_back({"spectral coefficients", spectral,
                      spectral ? spectralWhy
-                              : "every σ is wavelength-independent: one grid lookup and one "
-                                "coefficient per component serve all 4 wavelengths"});
+                              : "every σ is wavelength-independent: grey path (σ set once "
+                                "per medium, one grid lookup and one coefficient per component "
+                                "serve all 4 wavelengths; only light and emission spectra are "
+                                "sampled)"});
     if (render.hasSurfaces()) {
         const GeometryScene& g = *render.geometry;
         size_t triangles = 0;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "photon/medium_emitter.h"
+#include "photon/photon_pass.h"
 #include "test_support.h"
 
 using namespace mirage;
@@ -150,4 +151,26 @@ TEST(MediumEmitter, WeightedEstimateMatchesGridIntegralOfUnevenFire) {
     // The table alone overestimates (B grows exponentially with T, so the mean of the corners'
     // emission exceeds the emission of the interpolated temperature): the weights correct it.
     EXPECT_GT(emitter.tablePower(), integral);
+}
+
+TEST(MediumEmitter, PhotonPassChoosesLightsAndMediaByPower) {
+    // An isothermal block beside a point light of the same order of power: the share of photons
+    // from the medium is Φ_m / (Φ_m + Φ_l) (binomial, 4σ), and the photons' summed power is the
+    // lights' plus the medium's.
+    auto m = isothermalBlock(8, 0.1, 1.f, 1500.f, 500.f);
+    const double mediumPower = MediumEmitter(*m).tablePower();
+    auto light = makePointLight(Vec3(2.f, 0.4f, 0.4f), float(2.0 * mediumPower), Spectrum(1.f));
+    PhotonPassSettings ps;
+    ps.photons = 60000;
+    ps.seed = 4;
+    ps.progress = Progress::Mode::Quiet;
+    PhotonPassStats stats;
+    tracePhotons({light.get()}, {m.get()}, ps, &stats);
+    const double p = mediumPower / (mediumPower + 2.0 * mediumPower);
+    const double n = double(ps.photons);
+    EXPECT_NEAR(double(stats.fromMedia) / n, p, 4.0 * std::sqrt(p * (1 - p) / n));
+    EXPECT_NEAR(stats.mediumPower, mediumPower, 1e-6 * mediumPower);
+    // The medium's photons carry weight 1 inside the block and less in its blurred fringe.
+    EXPECT_NEAR(stats.emittedPower / (3.0 * mediumPower), 1.0, 0.1);
+    EXPECT_LE(stats.emittedPower, 3.0 * mediumPower * 1.001);
 }

@@ -83,14 +83,16 @@ MediumEmitter::MediumEmitter(const Medium& medium) : mMedium(&medium) {
     MIRAGE_CHECK(shader.emission.has_value() && !medium.homogeneous());
     const EmissionSpec& e = *shader.emission;
     const auto slots = shader.gridSlots();
-    mTemperatureSlot = int(std::find(slots.begin(), slots.end(), e.temperatureGrid) - slots.begin());
+    mTemperatureSlot =
+        int(std::find(slots.begin(), slots.end(), e.temperatureGrid) - slots.begin());
     for (const auto& c : shader.components)
         mComponentSlot.push_back(
-            c.grid.empty() ? -1 : int(std::find(slots.begin(), slots.end(), c.grid) - slots.begin()));
+            c.grid.empty() ? -1
+                           : int(std::find(slots.begin(), slots.end(), c.grid) - slots.begin()));
 
     const FloatGrid& tgrid = medium.grids()[size_t(mTemperatureSlot)];
-    const float tMax = std::max(tgrid.maxValue() * e.temperatureScale + e.temperatureOffset,
-                                e.temperatureOffset);
+    const float tMax =
+        std::max(tgrid.maxValue() * e.temperatureScale + e.temperatureOffset, e.temperatureOffset);
     mTMin = e.minTemperature;
     if (!(tMax > mTMin) || !(e.intensity > 0.f)) return;
 
@@ -133,8 +135,8 @@ MediumEmitter::MediumEmitter(const Medium& medium) : mMedium(&medium) {
         const double q = powerDensityAt(Vec3(p[0], p[1], p[2]), acc);
         if (!(q > 0.0)) return;
         corners[packCoord(i, j, k)] = Corner{float(q), T};
-        for (int d = 0; d < 8; ++d) keys.push_back(packCoord(i - (d & 1), j - ((d >> 1) & 1),
-                                                             k - ((d >> 2) & 1)));
+        for (int d = 0; d < 8; ++d)
+            keys.push_back(packCoord(i - (d & 1), j - ((d >> 1) & 1), k - ((d >> 2) & 1)));
     });
     mEmittingVoxels = corners.size();
     std::sort(keys.begin(), keys.end());
@@ -151,8 +153,8 @@ MediumEmitter::MediumEmitter(const Medium& medium) : mMedium(&medium) {
         double sum = 0.0;
         float hottest = mTMin;
         for (int d = 0; d < 8; ++d) {
-            auto it = corners.find(packCoord(cell.i + (d & 1), cell.j + ((d >> 1) & 1),
-                                             cell.k + ((d >> 2) & 1)));
+            auto it = corners.find(
+                packCoord(cell.i + (d & 1), cell.j + ((d >> 1) & 1), cell.k + ((d >> 2) & 1)));
             if (it == corners.end()) continue;
             sum += it->second.q;
             hottest = std::max(hottest, it->second.T);
@@ -225,8 +227,8 @@ bool MediumEmitter::sample(Sampler& sampler, Medium::Context& ctx, PhotonEmissio
     // A uniform point of the dual cell (index space maps affinely to object and world space).
     const nanovdb::FloatGrid& g = *mMedium->grids()[size_t(mTemperatureSlot)].grid();
     const float u0 = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
-    nanovdb::Vec3f po = g.indexToWorldF(
-        nanovdb::Vec3f(float(cell.i) + u0, float(cell.j) + u1, float(cell.k) + u2));
+    nanovdb::Vec3f po =
+        g.indexToWorldF(nanovdb::Vec3f(float(cell.i) + u0, float(cell.j) + u1, float(cell.k) + u2));
     const Vec3 pObject(po[0], po[1], po[2]);
 
     // λ from the hottest corner's Planck spectrum, then the exact emission there at λ.

@@ -71,7 +71,7 @@ private:
     std::vector<int> mComponentSlot;  // grid index per component, −1 = constant
     float mTMin = 0, mTStep = 1, mSamplerStep = 1;
     std::vector<std::vector<float>> mIntegral;  // per component, per T step (W·m⁻²·sr⁻¹ · 1/m)
-    std::vector<SpectrumSampler> mSamplers;     // Planck spectra at mTMin + k · mSamplerStep
+    std::vector<SpectrumSampler> mSamplers;  // Planck spectra at mTMin + k · mSamplerStep
     std::vector<Cell> mCells;
     std::vector<double> mCdf;  // cumulative cell power (W)
     double mTotal = 0.0;

@@ -9,8 +9,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <vector>
 
@@ -56,8 +56,8 @@ int main() {
             scene[s].media.push_back(std::make_unique<Medium>(shader, std::vector<FloatGrid>{grid},
                                                               Transform(), 1.f, 64));
             scene[s].media[0]->setGreyPath(s == 0);
-            scene[s].lights.push_back(makeDistantLight(normalize(Vec3(0.6f, -0.7f, -0.4f)),
-                                                       1476.f, blackbodyNormalized(5800.f)));
+            scene[s].lights.push_back(makeDistantLight(normalize(Vec3(0.6f, -0.7f, -0.4f)), 1476.f,
+                                                       blackbodyNormalized(5800.f)));
             scene[s].camera.position = Vec3(0.f, 1.f, 3.2f);
             scene[s].camera.lookAt = Vec3(0.f, 1.f, 0.f);
             scene[s].camera.fovDeg = 40.f;
@@ -94,12 +94,14 @@ int main() {
         }
         const double rg = median(renderSeconds[0]), rsp = median(renderSeconds[1]);
         const double pg = median(photonSeconds[0]), psp = median(photonSeconds[1]);
-        std::printf("volpath 96x96, 32 spp, 1 thread: grey %.3f s, spectral %.3f s CPU, "
-                    "spectral/grey %.3f\n",
-                    rg, rsp, rsp / rg);
-        std::printf("photon pass, 3e5 photons, 1 thread: grey %.3f s, spectral %.3f s CPU, "
-                    "spectral/grey %.3f\n",
-                    pg, psp, psp / pg);
+        std::printf(
+            "volpath 96x96, 32 spp, 1 thread: grey %.3f s, spectral %.3f s CPU, "
+            "spectral/grey %.3f\n",
+            rg, rsp, rsp / rg);
+        std::printf(
+            "photon pass, 3e5 photons, 1 thread: grey %.3f s, spectral %.3f s CPU, "
+            "spectral/grey %.3f\n",
+            pg, psp, psp / pg);
         std::printf("largest pixel difference %.3g (image mean %.3g)\n", maxDiff,
                     sum / double(images[1].rgba.size()));
         std::filesystem::remove(path);

@@ -39,8 +39,7 @@ RenderScene glowingBox() {
     EmissionSpec e;
     e.temperatureGrid = "temperature";
     shader.emission = e;
-    scene.media.push_back(
-        std::make_unique<Medium>(shader, std::move(grids), Transform(), 1.f, 16));
+    scene.media.push_back(std::make_unique<Medium>(shader, std::move(grids), Transform(), 1.f, 16));
     scene.camera.position = Vec3(0.5f, 0.6f, 3.f);
     scene.camera.lookAt = Vec3(0.5f, 0.5f, 0.5f);
     scene.camera.fovDeg = 26.f;
@@ -174,9 +173,8 @@ TEST(FirePhotons, DensityAndHeatEmittedPowerMatchesGridIntegral) {
     for (int i = (box.min()[0] - 1) * sub; i < (box.max()[0] + 2) * sub; ++i)
         for (int j = (box.min()[1] - 1) * sub; j < (box.max()[1] + 2) * sub; ++j)
             for (int k = (box.min()[2] - 1) * sub; k < (box.max()[2] + 2) * sub; ++k) {
-                auto p = heat.indexToWorldF(nanovdb::Vec3f((i + 0.5f) / sub - 0.5f,
-                                                           (j + 0.5f) / sub - 0.5f,
-                                                           (k + 0.5f) / sub - 0.5f));
+                auto p = heat.indexToWorldF(nanovdb::Vec3f(
+                    (i + 0.5f) / sub - 0.5f, (j + 0.5f) / sub - 0.5f, (k + 0.5f) / sub - 0.5f));
                 integral += emitter.powerDensity(Vec3(p[0], p[1], p[2]));
             }
     const nanovdb::Vec3d h = heat.voxelSize();
@@ -190,10 +188,11 @@ TEST(FirePhotons, DensityAndHeatEmittedPowerMatchesGridIntegral) {
     pass.progress = Progress::Mode::Quiet;
     PhotonPassStats stats;
     tracePhotons({}, scene.render.mediaPointers(), pass, &stats);
-    std::printf("density_and_heat: grid integral %.6g W, table %.6g W (%zu cells), photon pass "
-                "%.6g W from %llu photons\n",
-                integral, emitter.tablePower(), emitter.cells(), stats.emittedPower,
-                (unsigned long long)stats.fromMedia);
+    std::printf(
+        "density_and_heat: grid integral %.6g W, table %.6g W (%zu cells), photon pass "
+        "%.6g W from %llu photons\n",
+        integral, emitter.tablePower(), emitter.cells(), stats.emittedPower,
+        (unsigned long long)stats.fromMedia);
     EXPECT_EQ(stats.fromMedia, pass.photons);
     EXPECT_NEAR(stats.emittedPower / integral, 1.0, 0.02);
 
@@ -218,6 +217,5 @@ TEST(FirePhotons, DensityAndHeatEmittedPowerMatchesGridIntegral) {
         sum += v;
     }
     EXPECT_GT(sum, 0.0);
-    EXPECT_NE(pm->summary().find("from emissive media 50000"), std::string::npos)
-        << pm->summary();
+    EXPECT_NE(pm->summary().find("from emissive media 50000"), std::string::npos) << pm->summary();
 }

@@ -17,11 +17,13 @@ namespace {
 
 std::string writeFireScene(const std::string& dir, const std::string& volumeExtra,
                            const std::string& shader = "fire") {
-    const std::string scene = dir + "/fire_" + std::to_string(volumeExtra.size()) + shader + ".toml";
+    const std::string scene =
+        dir + "/fire_" + std::to_string(volumeExtra.size()) + shader + ".toml";
     std::ofstream f(scene);
     f << "[film]\nresolution = [16, 16]\nspp = 1\n[render]\nintegrator = \"photon\"\n"
          "[[volume]]\nfile = \"fire.vdb\"\nshader = \""
-      << shader << "\"\ndensity_scale = 6.0\n" << volumeExtra << "\n";
+      << shader << "\"\ndensity_scale = 6.0\n"
+      << volumeExtra << "\n";
     return scene;
 }
 

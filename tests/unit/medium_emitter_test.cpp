@@ -4,12 +4,13 @@
 //  - in such a block the emitted wavelengths follow Planck's law (χ² test);
 //  - in a hot, uneven blob the emitter's estimate Φ_table × mean weight equals the integral of
 //    the emission field by fine quadrature over the grid (the weights make it unbiased).
+#include "photon/medium_emitter.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-#include "photon/medium_emitter.h"
 #include "photon/photon_pass.h"
 #include "test_support.h"
 
@@ -40,10 +41,10 @@ std::unique_ptr<Medium> isothermalBlock(int n, double h, float sigmaA, float T, 
                                         const Transform& xf = Transform()) {
     std::vector<FloatGrid> grids;
     grids.push_back(test::makeGrid([](int, int, int) { return 1.f; }, 0, n - 1, h));
-    grids.push_back(test::makeGrid([T](int, int, int) { return T; }, 0, n - 1, h, Vec3d(0.0),
-                                   "temperature"));
-    return std::make_unique<Medium>(emissiveShader(sigmaA, 0.5f, minT), std::move(grids), xf,
-                                    1.f, 8);
+    grids.push_back(
+        test::makeGrid([T](int, int, int) { return T; }, 0, n - 1, h, Vec3d(0.0), "temperature"));
+    return std::make_unique<Medium>(emissiveShader(sigmaA, 0.5f, minT), std::move(grids), xf, 1.f,
+                                    8);
 }
 
 }  // namespace
@@ -55,7 +56,8 @@ TEST(MediumEmitter, IsothermalBlockPowerIsFourPiSigmaAVolumeRadiance) {
         auto m = isothermalBlock(n, h, 0.8f, T, 500.f);
         MediumEmitter emitter(*m);
         const double V = std::pow(n * h, 3);
-        const double expected = 4.0 * double(kPi) * 0.8 * V * planckIntegralSimpson(360.0, 830.0, T);
+        const double expected =
+            4.0 * double(kPi) * 0.8 * V * planckIntegralSimpson(360.0, 830.0, T);
         EXPECT_EQ(emitter.emittingVoxels(), size_t(n * n * n));
         EXPECT_NEAR(emitter.tablePower() / expected, 1.0, 0.005) << "T = " << T;
     }

@@ -59,6 +59,9 @@ int runInfo(const InfoOptions& o) {
         }
         for (const auto& u : v.unusedGrids)
             std::printf("    grid '%s' is read by no shader slot: not loaded\n", u.c_str());
+        std::printf("    coefficients: %s\n",
+                    m.greyPath() ? "grey path (every σ wavelength-independent, none fluoresces)"
+                                 : "spectral path (σ evaluated at each path's 4 wavelengths)");
         if (m.emissive() && !m.homogeneous()) {
             MediumEmitter emitter(m);
             std::printf("    emission: intensity %g, %zu emitting voxels above %g K, %.4g W over "

@@ -55,4 +55,7 @@ TEST(FireScene, EmissionIntensityScalesThePowerAndNothingElse) {
     ASSERT_EQ(0, test::runMirage("info '" + writeFireScene(dir, "") + "'", &out)) << out;
     EXPECT_NE(out.find("the photon pass emits ∝ this"), std::string::npos) << out;
     EXPECT_NE(out.find("emitted light included"), std::string::npos) << out;
+    // The fire shader's σ are grey: its coefficients take the grey path (emission stays
+    // spectral, Planck at each wavelength).
+    EXPECT_NE(out.find("coefficients: grey path"), std::string::npos) << out;
 }

@@ -129,6 +129,14 @@ MediumEmitter::MediumEmitter(const Medium& medium) : mMedium(&medium) {
     std::unordered_map<uint64_t, Corner> corners;
     std::vector<uint64_t> keys;
     auto hot = [&](float v) { return v * e.temperatureScale + e.temperatureOffset > mTMin; };
+    // Cell keys hold 21 bits per axis (packCoord): refuse a grid whose hot voxels lie beyond.
+    const nanovdb::CoordBBox box = g.indexBBox();
+    for (int a = 0; a < 3; ++a)
+        if (std::abs(box.min()[a]) >= (1 << 20) - 16 || std::abs(box.max()[a]) >= (1 << 20) - 16)
+            throw MirageError("temperature grid '" + tgrid.name() +
+                              "': index coordinates beyond ±1048560 voxels; the emitter of "
+                              "shader '" +
+                              shader.name + "' expects smaller indices");
     forEachStoredVoxel(g, hot, [&](int i, int j, int k, float v) {
         const float T = v * e.temperatureScale + e.temperatureOffset;
         nanovdb::Vec3f p = g.indexToWorldF(nanovdb::Vec3f(float(i), float(j), float(k)));

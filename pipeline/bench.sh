@@ -39,7 +39,7 @@ printf 'smoke1.vdb 512x512, single scattering, %d runs, %d cores\n' "$RUNS" "$(n
 printf '  vdb_render (ray marching, step 1 voxel, shadow step 3): median %.2f s\n' "$v"
 printf '  mirage (delta/ratio tracking, %d spp):                    median %.2f s\n' "$SPP" "$m"
 printf '  ratio mirage / vdb_render: %.2f\n' "$(awk -v a="$m" -v b="$v" 'BEGIN {print a / b}')"
-./build/bench_lookups "$SMOKE"
+./build/tests/bench_lookups "$SMOKE"
 
 # Peer check against Blender Cycles (when installed): same cache, camera, medium and sun,
 # 64 spp at 256×256, single scattering (single vs Cycles with 0 volume bounces) and multiple
@@ -77,4 +77,7 @@ fi
 # Curved light (README "Curved light"): end-point error and time of the Fermat path stepper,
 # Dormand–Prince RK5(4)7M over tolerances 1e-3 … 1e-14 against forward Euler, on the linear
 # profile with its exact path; writes out/bench/raypath.csv and two plots (~20 s).
-./build/bench_raypath out/bench
+./build/tests/bench_raypath out/bench
+# "Model only what a scene requires": the grey path (σ wavelength-independent) against the
+# forced spectral path on the same grey scene, volpath and photon pass, 1 thread, CPU time.
+./build/tests/bench_grey_path

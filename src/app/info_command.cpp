@@ -3,6 +3,7 @@
 
 #include "app/commands.h"
 #include "film/color.h"
+#include "photon/medium_emitter.h"
 #include "scene/scene.h"
 #include "volume/vdb_file.h"
 
@@ -58,6 +59,16 @@ int runInfo(const InfoOptions& o) {
         }
         for (const auto& u : v.unusedGrids)
             std::printf("    grid '%s' is read by no shader slot: not loaded\n", u.c_str());
+        std::printf("    coefficients: %s\n",
+                    m.greyPath() ? "grey path (every σ wavelength-independent, none fluoresces)"
+                                 : "spectral path (σ evaluated at each path's 4 wavelengths)");
+        if (m.emissive() && !m.homogeneous()) {
+            MediumEmitter emitter(m);
+            std::printf("    emission: intensity %g, %zu emitting voxels above %g K, %.4g W over "
+                        "360–830 nm (the photon pass emits ∝ this)\n",
+                        m.shader().emission->intensity, emitter.emittingVoxels(),
+                        m.shader().emission->minTemperature, emitter.tablePower());
+        }
         Bounds3 b = m.worldBounds();
         std::printf("    world bounds (%g, %g, %g)..(%g, %g, %g) m, majorant %dx%dx%d cells, "
                     "max σt %g 1/m\n",

@@ -137,6 +137,7 @@ void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantRes
     // Majorant: Σ_c concentration_c · max_λ(σa,c + σs,c) · max of the grid over each cell.
     auto slots = mShader.gridSlots();
     mMajorant = MajorantGrid(objectBounds, majorantResolution);
+    bool greyAll = true;
     for (const auto& c : mShader.components) {
         const float k = c.concentration * mDensityScale;
         const FloatGrid* grid = nullptr;
@@ -157,12 +158,15 @@ void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantRes
             else mMajorant.addGrid(*grid, scale);
         }
         mPhases.emplace_back(c.phase, c.g);
+        greyAll &= c.kind != ComponentKind::Chlorophyll && c.sigmaA.isConstant() &&
+                   c.sigmaS.isConstant() && !c.fluorescent();
         mFluorescent |= c.fluorescent();
         mFluorescence.push_back(c.fluorescent() ? FluorescenceEmission(c.emissionPeakNm,
                                                                        c.emissionFwhmNm,
                                                                        c.antiStokes)
                                                 : FluorescenceEmission());
     }
+    mGreyCoefficients = greyAll;
 }
 
 Medium::Context::Context(const Medium& m) : mMedium(&m) {
@@ -178,10 +182,16 @@ Medium::Context::Context(const Medium& m) : mMedium(&m) {
         mTemperatureSlot = int(std::find(slots.begin(), slots.end(),
                                          m.mShader.emission->temperatureGrid) -
                                slots.begin());
+    // Grey: the coefficients do not depend on λ, so they are set here once, at any λ.
+    if (m.greyPath()) {
+        setWavelengths(SampledWavelengths::sampleVisible(0.5f));
+        mGrey = true;
+    }
 }
 
 void Medium::Context::setWavelengths(const SampledWavelengths& w) {
     mLambda = w;
+    if (mGrey) return;  // σ(λ) is constant: nothing to re-sample
     const auto& comps = mMedium->mShader.components;
     for (size_t i = 0; i < comps.size(); ++i) {
         float k = comps[i].concentration * mMedium->mDensityScale;
@@ -199,16 +209,32 @@ void Medium::eval(const Vec3& p, Context& ctx, MediumPoint* out) const {
     out->sigmaA = SampledSpectrum(0.f);
     out->sigmaS = SampledSpectrum(0.f);
     out->components = int(mShader.components.size());
-    for (int i = 0; i < out->components; ++i) {
-        int slot = ctx.mSlot[i];
-        float c = slot < 0 ? 1.f : mGrids[slot].sample(ctx.mAcc[slot], p);
-        if (ctx.mPowerLaw[i]) {
-            powerLawAt(ctx, i, c, &out->sigmaA, &out->sigmaSComponent[i]);
-        } else {
-            out->sigmaA += ctx.mSigmaA[i] * c;
-            out->sigmaSComponent[i] = ctx.mSigmaS[i] * c;
+    if (ctx.mGrey) {
+        // One number per component, broadcast to the path's wavelengths once.
+        float sigmaA = 0.f, sigmaS = 0.f;
+        for (int i = 0; i < out->components; ++i) {
+            int slot = ctx.mSlot[i];
+            float c = slot < 0 ? 1.f : mGrids[slot].sample(ctx.mAcc[slot], p);
+            float s = ctx.mSigmaS[i][0] * c;
+            sigmaA += ctx.mSigmaA[i][0] * c;
+            sigmaS += s;
+            if (out->components > 1) out->sigmaSComponent[i] = SampledSpectrum(s);
         }
-        out->sigmaS += out->sigmaSComponent[i];
+        out->sigmaA = SampledSpectrum(sigmaA);
+        out->sigmaS = SampledSpectrum(sigmaS);
+        if (out->components == 1) out->sigmaSComponent[0] = out->sigmaS;
+    } else {
+        for (int i = 0; i < out->components; ++i) {
+            int slot = ctx.mSlot[i];
+            float c = slot < 0 ? 1.f : mGrids[slot].sample(ctx.mAcc[slot], p);
+            if (ctx.mPowerLaw[i]) {
+                powerLawAt(ctx, i, c, &out->sigmaA, &out->sigmaSComponent[i]);
+            } else {
+                out->sigmaA += ctx.mSigmaA[i] * c;
+                out->sigmaSComponent[i] = ctx.mSigmaS[i] * c;
+            }
+            out->sigmaS += out->sigmaSComponent[i];
+        }
     }
     out->Le = SampledSpectrum(0.f);
     if (ctx.mTemperatureSlot >= 0 && !out->sigmaA.isZero()) {

@@ -49,6 +49,16 @@ public:
     bool emissive() const { return mShader.emission.has_value(); }
     // Some component re-emits absorbed light (Γ > 0): the Γ roulette applies (reemission.h).
     bool fluorescent() const { return mFluorescent; }
+    // "Model only what a scene requires" (DESIGN.md): every component is linear with
+    // wavelength-independent σa and σs and none fluoresces, so σ is one number per component.
+    // Then eval() computes one value per component instead of one per wavelength, and
+    // Context::setWavelengths() keeps the constants it set once instead of re-sampling σ(λ) for
+    // every path. Emission (Planck, spectral by nature) is evaluated per wavelength either way.
+    bool greyCoefficients() const { return mGreyCoefficients; }
+    // Whether the grey path is taken when it applies (default true); false forces the spectral
+    // path, for the test and benchmark that compare the two. Call before making contexts.
+    void setGreyPath(bool on) { mGreyPath = on; }
+    bool greyPath() const { return mGreyPath && mGreyCoefficients; }
     // The scale the constructor applied to every component's concentration.
     float densityScale() const { return mDensityScale; }
     // Constant coefficients over objectBounds(): transmittance has the closed form
@@ -80,6 +90,7 @@ public:
         std::array<bool, kMaxComponents> mPowerLaw;
         std::array<int, kMaxComponents> mSlot;  // grid index per component, -1 homogeneous
         int mTemperatureSlot = -1;
+        bool mGrey = false;  // the medium's grey path: σ set once, scalar eval
     };
 
     // Coefficients at an object-space point.
@@ -118,6 +129,7 @@ private:
     std::vector<ComponentPhase> mPhases;
     std::vector<FluorescenceEmission> mFluorescence;  // per component (empty when Γ = 0)
     bool mFluorescent = false;
+    bool mGreyCoefficients = false, mGreyPath = true;
 };
 
 }  // namespace mirage

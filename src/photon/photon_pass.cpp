@@ -6,7 +6,11 @@
 // power when the lights sample their emission exactly. The albedo roulette keeps that power
 // through the walk (photon_walk.h); only a spectral phase mixture could change it, by p/pdf.
 //
-// Not yet emitted: photons from emissive media (fire), which would leave the grid ∝ σa·Le.
+// Emissive media (fire) are sources beside the lights: a MediumEmitter (medium_emitter.h) of
+// tabulated power Φ_m is chosen with probability Φ_m/Φ, Φ now summing lights and media, and its
+// photons carry (Φ/N) × w with the emitter's weight w. Emission seen directly is the render
+// pass's (σa·Le along the camera ray); a photon stores only where it scatters, and its first
+// scattering is stored too, since no shadow ray of the render pass reaches an emissive medium.
 #include "photon/photon_pass.h"
 
 #include <tbb/blocked_range.h>
@@ -16,6 +20,7 @@
 #include <chrono>
 #include <optional>
 
+#include "photon/medium_emitter.h"
 #include "photon/photon_walk.h"
 
 namespace mirage {
@@ -26,19 +31,25 @@ namespace {
 // (hundreds of microseconds at least) hides the scheduling and the PhotonWalk set-up.
 constexpr uint64_t kBlockPhotons = 4096;
 
-// Light choice ∝ emitted power: a discrete distribution by its cumulative sum.
+// Source choice ∝ emitted power: a discrete distribution by its cumulative sum over the
+// lights, then the emissive media (index lights.size() + e is emitter e).
 class LightChooser {
 public:
-    LightChooser(const std::vector<const Light*>& lights, const Bounds3& bounds) {
+    LightChooser(const std::vector<const Light*>& lights, const Bounds3& bounds,
+                 const std::vector<MediumEmitter>& emitters) {
         double sum = 0.0;
         for (const Light* l : lights) {
             sum += std::max(0.0, double(l->emittedPower(bounds)));
             mCdf.push_back(sum);
         }
+        for (const MediumEmitter& e : emitters) {
+            sum += e.tablePower();
+            mCdf.push_back(sum);
+        }
         mTotal = sum;
     }
     double totalPower() const { return mTotal; }
-    // Index of the light for u in [0, 1); lights of zero power are never chosen.
+    // Index of the source for u in [0, 1); sources of zero power are never chosen.
     size_t choose(float u) const {
         double target = double(u) * mTotal;
         size_t i = size_t(std::upper_bound(mCdf.begin(), mCdf.end(), target) - mCdf.begin());
@@ -52,26 +63,41 @@ private:
 
 struct PhotonPath {
     bool capped = false;
+    bool fromMedium = false;  // emitted by an emissive medium
+    double power = 0.0;       // W the photon left its source with
 };
 
 // Photon `index`: emission, then flights until it leaves every medium, is absorbed, or has
 // scattered maxBounces times. Appends its stored photons to *out.
 PhotonPath tracePhoton(uint64_t index, const std::vector<const Light*>& lights,
-                       const LightChooser& chooser, const Bounds3& bounds, float photonPower,
+                       const std::vector<MediumEmitter>& emitters,
+                       const std::vector<size_t>& emitterMedium, const LightChooser& chooser,
+                       const Bounds3& bounds, float photonPower,
                        const PhotonPassSettings& settings, const GeometryScene* geometry,
                        PhotonWalk& walk, PhotonMapLists* out) {
     PhotonPath path;
     Sampler sampler(settings.seed, index, 0);
-    const Light& light = *lights[chooser.choose(sampler.get1D())];
+    const size_t source = chooser.choose(sampler.get1D());
     PhotonEmission em;
-    if (!light.emitPhoton(bounds, sampler, &em)) return path;
+    // Light from a medium is never direct light of the render pass (no NEE to media): its
+    // first scattering and its first diffuse surface are stored, in the global map.
+    const bool fromMedium = source >= lights.size();
+    if (fromMedium) {
+        const size_t e = source - lights.size();
+        path.fromMedium = true;
+        if (!emitters[e].sample(sampler, walk.tracking().context(emitterMedium[e]), &em))
+            return path;
+    } else if (!lights[source]->emitPhoton(bounds, sampler, &em)) {
+        return path;
+    }
     float power = photonPower * em.weight;
     if (!(power > 0.f)) return path;
+    path.power = power;
     walk.setWavelength(em.lambda);
 
     Ray ray{em.origin, em.direction, kInfinity};
-    bool direct = true;        // no interaction yet: light straight from the light
-    bool specularOnly = true;  // every interaction so far was a mirror or glass
+    bool direct = !fromMedium;        // no interaction yet: light straight from the light
+    bool specularOnly = !fromMedium;  // every interaction so far was a mirror or glass
     for (int bounces = 0;;) {
         std::optional<SurfaceHit> hit;
         if (geometry) hit = geometry->intersect(ray);
@@ -149,7 +175,15 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
     Bounds3 bounds;
     for (const Medium* m : media) bounds.expand(m->worldBounds());
     if (geometry) bounds.expand(geometry->bounds());
-    LightChooser chooser(lights, bounds);
+    std::vector<MediumEmitter> emitters;
+    std::vector<size_t> emitterMedium;  // index of each emitter's medium in `media`
+    for (size_t i = 0; i < media.size(); ++i)
+        if (media[i]->emissive() && !media[i]->homogeneous()) {
+            emitters.emplace_back(*media[i]);
+            emitterMedium.push_back(i);
+            local.mediumPower += emitters.back().tablePower();
+        }
+    LightChooser chooser(lights, bounds, emitters);
     const uint64_t n = settings.photons;
     // Nothing to do without photons, light, media or surfaces: a photon that meets nothing
     // stores nothing.
@@ -157,7 +191,8 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
         const float photonPower = float(chooser.totalPower() / double(n));
         const uint64_t blocks = (n + kBlockPhotons - 1) / kBlockPhotons;
         std::vector<PhotonMapLists> blockPhotons(blocks);
-        std::vector<uint64_t> blockCapped(blocks, 0);
+        std::vector<uint64_t> blockCapped(blocks, 0), blockFromMedia(blocks, 0);
+        std::vector<double> blockPower(blocks, 0.0);
         Progress progress("photons", n, "photons", settings.progress);
 
         tbb::parallel_for(
@@ -166,9 +201,12 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
                 for (uint64_t b = r.begin(); b != r.end(); ++b) {
                     uint64_t first = b * kBlockPhotons, last = std::min(n, first + kBlockPhotons);
                     for (uint64_t i = first; i < last; ++i) {
-                        PhotonPath path = tracePhoton(i, lights, chooser, bounds, photonPower,
-                                                      settings, geometry, walk, &blockPhotons[b]);
+                        PhotonPath path =
+                            tracePhoton(i, lights, emitters, emitterMedium, chooser, bounds,
+                                        photonPower, settings, geometry, walk, &blockPhotons[b]);
                         blockCapped[b] += path.capped;
+                        blockFromMedia[b] += path.fromMedium;
+                        blockPower[b] += path.power;
                     }
                     progress.advance(last - first);
                 }
@@ -189,7 +227,11 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
         concatenate(&PhotonMapLists::volume);
         concatenate(&PhotonMapLists::surfaceGlobal);
         concatenate(&PhotonMapLists::surfaceCaustic);
-        for (uint64_t b = 0; b < blocks; ++b) local.cappedPaths += blockCapped[b];
+        for (uint64_t b = 0; b < blocks; ++b) {
+            local.cappedPaths += blockCapped[b];
+            local.fromMedia += blockFromMedia[b];
+            local.emittedPower += blockPower[b];
+        }
         local.emitted = n;
     }
     local.stored = maps.volume.size() + maps.surfaceGlobal.size() + maps.surfaceCaustic.size();

@@ -1,5 +1,6 @@
 // The photon pass (Jensen & Christensen 1998, with the full RTE of Gutierrez et al. 2005):
-// photons are emitted from the lights in proportion to their power, fly by delta tracking
+// photons are emitted from the lights and emissive media (medium_emitter.h) in proportion to
+// their power, fly by delta tracking
 // through the media, and at each real collision an albedo roulette decides between scattering
 // (new direction from the phase function, power unchanged) and absorption. Scattering events
 // are stored as volume photons. Parallel and deterministic: photon i's random numbers depend
@@ -40,6 +41,9 @@ struct PhotonPassSettings {
 
 struct PhotonPassStats {
     uint64_t emitted = 0, stored = 0, cappedPaths = 0;
+    uint64_t fromMedia = 0;   // photons emitted by emissive media (fire)
+    double mediumPower = 0;   // W over 360–830 nm, the media emitters' tabulated power
+    double emittedPower = 0;  // W, Σ of every photon's power as it left its source
     double seconds = 0;
 };
 

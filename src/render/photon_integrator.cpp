@@ -20,8 +20,9 @@
 // Transmittance from the camera to each photon is the deterministic march of
 // medium/ray_optical_depth.h at the photon's wavelength, done once per camera ray.
 //
-// Light emitted by the media themselves (fire) reaches the camera directly, through the single-
-// scatter integrator, but its scattered part is missing until the photon pass emits from media.
+// Light emitted by the media themselves (fire) reaches the camera directly through the single-
+// scatter integrator; the photon pass emits it too (photon/medium_emitter.h) and stores every
+// scattering of it, the first included, so its scattered part comes from the photons.
 //
 // Surfaces. The single-scatter part follows mirrors and glass to the first diffuse surface or
 // medium event and adds direct light there (NEE). The photon part walks the same kind of
@@ -161,13 +162,15 @@ public:
         std::snprintf(buf, sizeof buf,
                       "photons: %llu traced, %llu stored in %.2fs (%.2f M photons/s) | map "
                       "build %.2fs | %s estimate %.2fs thread time (%.1f µs/ray, k %d, max "
-                      "radius %.3g m) | photon paths cut at max_depth %llu",
+                      "radius %.3g m) | photon paths cut at max_depth %llu | from emissive "
+                      "media %llu (%.3g W)",
                       (unsigned long long)p.emitted, (unsigned long long)p.stored, p.seconds,
                       p.seconds > 0 ? double(p.emitted) / p.seconds / 1e6 : 0.0, mBuildSeconds,
                       mBeam ? "beam" : "point", estimateSeconds,
                       estimates ? estimateSeconds / double(estimates) * 1e6 : 0.0,
                       mSettings.kOrDefault(), double(mMaxRadius),
-                      (unsigned long long)p.cappedPaths);
+                      (unsigned long long)p.cappedPaths, (unsigned long long)p.fromMedia,
+                      p.mediumPower);
         std::string line = buf;
         if (mGlobal && mCaustic && (mGlobal->size() + mCaustic->size()) > 0)
             line += " | surface photons: " + std::to_string(mGlobal->size()) + " global, " +

@@ -282,6 +282,16 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
             v.fail("shader", e.what());
         }
         rec.densityScale = float(v.getNumber("density_scale", 1.0, 0.0, 1e12));
+        // Per-volume exposure of the blackbody emission: multiplies the shader's `intensity`
+        // (1 = physical Planck radiance; 2 = one stop brighter, same colour).
+        if (v.has("emission_intensity")) {
+            const double k = v.getNumber("emission_intensity", 1.0, 0.0, 1e12);
+            if (!shader.emission)
+                v.fail("emission_intensity", "shader '" + shader.name +
+                                                 "' has no [emission] table, so there is no "
+                                                 "emission to scale");
+            shader.emission->intensity *= float(k);
+        }
         std::vector<std::pair<std::string, std::string>> bind;
         if (auto b = v.optionalTable("bind")) {
             for (const auto& k : b->keys()) {
@@ -401,18 +411,27 @@ std::vector<PhysicsTerm> Scene::physics() const {
     terms.push_back({"single scattering", scatter && !render.lights.empty(),
                      !scatter ? "no component scatters (σs = 0)"
                               : render.lights.empty() ? "no lights" : "σs > 0 and " + std::to_string(render.lights.size()) + " light(s): shadow rays by ratio tracking"});
-    bool multiple = integrator != "single" && scatter && !render.lights.empty();
+    // Emissive media light the scene too: their light scatters like a light's (photons from
+    // the medium in the photon pass, emission at every collision in volpath).
+    bool multiple = integrator != "single" && scatter && (!render.lights.empty() || emission);
     terms.push_back({"multiple scattering", multiple,
                      integrator == "single"
                          ? "integrator 'single' computes single scattering only"
                          : multiple ? "integrator '" + integrator + "' follows paths of up to " +
-                                          std::to_string(maxDepth) + " scattering events"
+                                          std::to_string(maxDepth) + " scattering events" +
+                                          (emission ? ", emitted light included" : "")
                                     : "nothing scatters or nothing lights the scene"});
-    terms.push_back({"emission", emission, emission ? emitWhy : "no shader has an [emission] table"});
+    terms.push_back({"emission", emission,
+                     emission ? emitWhy + (integrator == "photon"
+                                               ? "; the photon pass emits from it ∝ 4π σa·Le"
+                                               : "")
+                              : "no shader has an [emission] table"});
     terms.push_back({"spectral coefficients", spectral,
                      spectral ? spectralWhy
-                              : "every σ is wavelength-independent: one grid lookup and one "
-                                "coefficient per component serve all 4 wavelengths"});
+                              : "every σ is wavelength-independent: grey path (σ set once "
+                                "per medium, one grid lookup and one coefficient per component "
+                                "serve all 4 wavelengths; only light and emission spectra are "
+                                "sampled)"});
     if (render.hasSurfaces()) {
         const GeometryScene& g = *render.geometry;
         size_t triangles = 0;

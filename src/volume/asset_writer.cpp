@@ -244,9 +244,12 @@ AssetField fireField(uint64_t seed) {
         if (density < 1e-3f && flame < 1e-3f) return;
         out[0] = density >= 1e-3f ? density : 0.f;
         out[2] = flame >= 1e-3f ? flame : 0.f;
-        // 1800 K at full reaction; the smoke cools from ~700 K above the flames to ambient.
+        // 1800 K at full reaction. The luminous zone of a sooty flame is hot nearly throughout
+        // (soot at ~1300–1700 K), cooling only at its thin edge: T rises as flame^0.3 (1520 K
+        // at half reaction), not linearly, or most of the flame would glow 10 stops dimmer
+        // than its core. The smoke cools from ~700 K above the flames to ambient.
         const float tSmoke = 300.f + 400.f * shape * clamp(1.6f - p.y, 0.f, 1.f);
-        out[1] = std::max(300.f + 1500.f * flame, tSmoke);
+        out[1] = std::max(300.f + 1500.f * std::pow(flame, 0.3f), tSmoke);
     };
     return a;
 }

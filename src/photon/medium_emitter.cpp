@@ -1,0 +1,262 @@
+#include "photon/medium_emitter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include "core/error.h"
+#include "medium/phase.h"
+
+namespace mirage {
+
+namespace {
+
+constexpr double kFourPi = 4.0 * 3.14159265358979323846;
+// Temperature step of the per-component emission integrals: at most 2 K, where linear
+// interpolation of ∫ σa B dλ in T is exact to ~1e-5 (B is smooth in T).
+constexpr float kMaxIntegralStepK = 2.f;
+constexpr int kMaxIntegralSteps = 4096;
+// Planck samplers every 25 K: any positive p(λ) keeps the estimate unbiased (the weight divides
+// by it), a near one keeps the weights near 1.
+constexpr float kSamplerStepK = 25.f;
+constexpr int kMaxSamplers = 400;
+
+// ∫_360^830 s(λ) B(λ,T) dλ with B per nm (W·m⁻²·sr⁻¹·nm⁻¹), trapezoids at 1 nm: the spectra
+// are linear between whole nanometres (spectrum.h), B is smooth at that scale.
+template <typename S>
+double planckIntegral(const S& s, float T) {
+    double sum = 0.0;
+    for (int l = int(kLambdaMin); l <= int(kLambdaMax); ++l) {
+        double w = (l == int(kLambdaMin) || l == int(kLambdaMax)) ? 0.5 : 1.0;
+        sum += w * double(s(float(l))) * planck(double(l), double(T)) * 1e-9;
+    }
+    return sum;
+}
+
+// Voxel coordinates packed into one key (21 bits per axis, offset to be non-negative).
+uint64_t packCoord(int i, int j, int k) {
+    constexpr int64_t kOff = 1 << 20;
+    return (uint64_t(int64_t(i) + kOff) << 42) | (uint64_t(int64_t(j) + kOff) << 21) |
+           uint64_t(int64_t(k) + kOff);
+}
+void unpackCoord(uint64_t key, int* i, int* j, int* k) {
+    constexpr int64_t kOff = 1 << 20, kMask = (1 << 21) - 1;
+    *i = int(int64_t((key >> 42) & kMask) - kOff);
+    *j = int(int64_t((key >> 21) & kMask) - kOff);
+    *k = int(int64_t(key & kMask) - kOff);
+}
+
+// Calls f(i, j, k, value) for every voxel of the grid that stores a value for which
+// keep(value) holds: all 512 of each leaf (the sampler reads inactive leaf values too) and the
+// voxels of lower (8³) and upper (128³) node tiles. Root tiles (4096³ voxels) are not expanded.
+template <typename Keep, typename F>
+void forEachStoredVoxel(const nanovdb::FloatGrid& grid, Keep&& keep, F&& f) {
+    const auto& tree = grid.tree();
+    const auto* leaf = tree.getFirstLeaf();
+    for (uint32_t n = 0; n < tree.nodeCount(0); ++n) {
+        const nanovdb::Coord o = leaf[n].origin();
+        const float* v = leaf[n].data()->mValues;
+        for (int m = 0; m < 512; ++m)
+            if (keep(v[m])) f(o[0] + ((m >> 6) & 7), o[1] + ((m >> 3) & 7), o[2] + (m & 7), v[m]);
+    }
+    auto tiles = [&](const auto* nodes, uint32_t count, uint32_t tableSize, int dim) {
+        for (uint32_t n = 0; n < count; ++n) {
+            const auto* data = nodes[n].data();
+            for (uint32_t t = 0; t < tableSize; ++t) {
+                if (data->isChild(t) || !keep(data->mTable[t].value)) continue;
+                const nanovdb::Coord o = nodes[n].offsetToGlobalCoord(t);
+                const float v = data->mTable[t].value;
+                for (int a = 0; a < dim; ++a)
+                    for (int b = 0; b < dim; ++b)
+                        for (int c = 0; c < dim; ++c) f(o[0] + a, o[1] + b, o[2] + c, v);
+            }
+        }
+    };
+    tiles(tree.getFirstLower(), tree.nodeCount(1), 4096u, 8);
+    tiles(tree.getFirstUpper(), tree.nodeCount(2), 32768u, 128);
+}
+
+}  // namespace
+
+MediumEmitter::MediumEmitter(const Medium& medium) : mMedium(&medium) {
+    const ShaderDesc& shader = medium.shader();
+    MIRAGE_CHECK(shader.emission.has_value() && !medium.homogeneous());
+    const EmissionSpec& e = *shader.emission;
+    const auto slots = shader.gridSlots();
+    mTemperatureSlot =
+        int(std::find(slots.begin(), slots.end(), e.temperatureGrid) - slots.begin());
+    for (const auto& c : shader.components)
+        mComponentSlot.push_back(
+            c.grid.empty() ? -1
+                           : int(std::find(slots.begin(), slots.end(), c.grid) - slots.begin()));
+
+    const FloatGrid& tgrid = medium.grids()[size_t(mTemperatureSlot)];
+    const float tMax =
+        std::max(tgrid.maxValue() * e.temperatureScale + e.temperatureOffset, e.temperatureOffset);
+    mTMin = e.minTemperature;
+    if (!(tMax > mTMin) || !(e.intensity > 0.f)) return;
+
+    // Per-component ∫ σa_c(λ) B(λ,T) dλ over T ∈ [mTMin, tMax].
+    int steps = std::min(kMaxIntegralSteps, int(std::ceil((tMax - mTMin) / kMaxIntegralStepK)) + 1);
+    steps = std::max(steps, 2);
+    mTStep = (tMax - mTMin) / float(steps - 1);
+    mIntegral.resize(shader.components.size());
+    for (size_t c = 0; c < shader.components.size(); ++c) {
+        if (shader.components[c].kind == ComponentKind::Chlorophyll) continue;  // per point
+        mIntegral[c].resize(size_t(steps));
+        for (int k = 0; k < steps; ++k)
+            mIntegral[c][size_t(k)] =
+                float(planckIntegral(shader.components[c].sigmaA, mTMin + float(k) * mTStep));
+    }
+    const int samplers =
+        std::max(2, std::min(kMaxSamplers, int(std::ceil((tMax - mTMin) / kSamplerStepK)) + 1));
+    mSamplerStep = (tMax - mTMin) / float(samplers - 1);
+    for (int k = 0; k < samplers; ++k) {
+        const double T = double(mTMin) + double(k) * double(mSamplerStep);
+        std::vector<float> dense(Spectrum::kDenseSamples);
+        for (int l = 0; l < Spectrum::kDenseSamples; ++l)
+            dense[size_t(l)] = float(planck(double(kLambdaMin) + l, T) * 1e-9);
+        mSamplers.emplace_back(Spectrum::fromDense(std::move(dense)));
+    }
+
+    // q at every emitting voxel centre of the temperature grid.
+    const nanovdb::FloatGrid& g = *tgrid.grid();
+    std::vector<FloatGrid::Accessor> acc;
+    for (const auto& grid : medium.grids()) acc.push_back(grid.accessor());
+    struct Corner {
+        float q, T;
+    };
+    std::unordered_map<uint64_t, Corner> corners;
+    std::vector<uint64_t> keys;
+    auto hot = [&](float v) { return v * e.temperatureScale + e.temperatureOffset > mTMin; };
+    // Cell keys hold 21 bits per axis (packCoord): refuse a grid whose hot voxels lie beyond.
+    const nanovdb::CoordBBox box = g.indexBBox();
+    for (int a = 0; a < 3; ++a)
+        if (std::abs(box.min()[a]) >= (1 << 20) - 16 || std::abs(box.max()[a]) >= (1 << 20) - 16)
+            throw MirageError("temperature grid '" + tgrid.name() +
+                              "': index coordinates beyond ±1048560 voxels; the emitter of "
+                              "shader '" +
+                              shader.name + "' expects smaller indices");
+    forEachStoredVoxel(g, hot, [&](int i, int j, int k, float v) {
+        const float T = v * e.temperatureScale + e.temperatureOffset;
+        nanovdb::Vec3f p = g.indexToWorldF(nanovdb::Vec3f(float(i), float(j), float(k)));
+        const double q = powerDensityAt(Vec3(p[0], p[1], p[2]), acc);
+        if (!(q > 0.0)) return;
+        corners[packCoord(i, j, k)] = Corner{float(q), T};
+        for (int d = 0; d < 8; ++d)
+            keys.push_back(packCoord(i - (d & 1), j - ((d >> 1) & 1), k - ((d >> 2) & 1)));
+    });
+    mEmittingVoxels = corners.size();
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+
+    // A dual cell's volume in world space: the voxel's, through the volume's transform.
+    const nanovdb::Vec3d h = g.voxelSize();
+    mCellVolume = h[0] * h[1] * h[2] * std::abs(medium.objectToWorld().linear.determinant());
+    mCells.reserve(keys.size());
+    mCdf.reserve(keys.size());
+    for (uint64_t key : keys) {
+        Cell cell;
+        unpackCoord(key, &cell.i, &cell.j, &cell.k);
+        double sum = 0.0;
+        float hottest = mTMin;
+        for (int d = 0; d < 8; ++d) {
+            auto it = corners.find(
+                packCoord(cell.i + (d & 1), cell.j + ((d >> 1) & 1), cell.k + ((d >> 2) & 1)));
+            if (it == corners.end()) continue;
+            sum += it->second.q;
+            hottest = std::max(hottest, it->second.T);
+        }
+        cell.sampler = uint16_t(samplerIndex(hottest));
+        mTotal += mCellVolume * sum / 8.0;
+        mCells.push_back(cell);
+        mCdf.push_back(mTotal);
+    }
+}
+
+int MediumEmitter::samplerIndex(float T) const {
+    const int n = int(mSamplers.size());
+    if (n <= 1) return 0;
+    return std::clamp(int(std::lround((T - mTMin) / mSamplerStep)), 0, n - 1);
+}
+
+double MediumEmitter::componentIntegral(int c, float T) const {
+    const std::vector<float>& table = mIntegral[size_t(c)];
+    const float x = (T - mTMin) / mTStep;
+    const int k = std::clamp(int(x), 0, int(table.size()) - 2);
+    const float f = std::clamp(x - float(k), 0.f, 1.f);
+    return double(table[size_t(k)]) * (1.0 - f) + double(table[size_t(k) + 1]) * f;
+}
+
+double MediumEmitter::powerDensity(const Vec3& pObject) const {
+    std::vector<FloatGrid::Accessor> acc;
+    for (const auto& grid : mMedium->grids()) acc.push_back(grid.accessor());
+    return powerDensityAt(pObject, acc);
+}
+
+double MediumEmitter::powerDensityAt(const Vec3& p,
+                                     const std::vector<FloatGrid::Accessor>& acc) const {
+    if (mSamplers.empty()) return 0.0;
+    const ShaderDesc& shader = mMedium->shader();
+    const EmissionSpec& e = *shader.emission;
+    const auto& grids = mMedium->grids();
+    const size_t ts = size_t(mTemperatureSlot);
+    const float T = grids[ts].sample(acc[ts], p) * e.temperatureScale + e.temperatureOffset;
+    if (!(T > mTMin)) return 0.0;  // Medium::eval emits nothing there either
+    double sum = 0.0;
+    for (size_t c = 0; c < shader.components.size(); ++c) {
+        const MediumComponent& comp = shader.components[c];
+        const int slot = mComponentSlot[c];
+        const float v = slot < 0 ? 1.f : grids[size_t(slot)].sample(acc[size_t(slot)], p);
+        const float C = comp.concentration * mMedium->densityScale() * v;
+        if (!(C > 0.f)) continue;
+        if (comp.kind != ComponentKind::Chlorophyll) {
+            sum += double(C) * componentIntegral(int(c), T);
+        } else {
+            // σa = A(λ) C^e(λ) (medium.h): not linear in C, so integrated here, per point.
+            const float lc = std::log(C);
+            sum += planckIntegral(
+                [&](float l) { return comp.sigmaA(l) * std::exp(comp.sigmaAExponent(l) * lc); }, T);
+        }
+    }
+    return kFourPi * double(e.intensity) * sum;
+}
+
+bool MediumEmitter::sample(Sampler& sampler, Medium::Context& ctx, PhotonEmission* out) const {
+    if (mCells.empty()) return false;
+    // The cell ∝ its tabulated power.
+    const double target = double(sampler.get1D()) * mTotal;
+    size_t i = size_t(std::upper_bound(mCdf.begin(), mCdf.end(), target) - mCdf.begin());
+    i = std::min(i, mCells.size() - 1);
+    const Cell& cell = mCells[i];
+    const double cellPower = mCdf[i] - (i > 0 ? mCdf[i - 1] : 0.0);
+    if (!(cellPower > 0.0)) return false;
+
+    // A uniform point of the dual cell (index space maps affinely to object and world space).
+    const nanovdb::FloatGrid& g = *mMedium->grids()[size_t(mTemperatureSlot)].grid();
+    const float u0 = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
+    nanovdb::Vec3f po =
+        g.indexToWorldF(nanovdb::Vec3f(float(cell.i) + u0, float(cell.j) + u1, float(cell.k) + u2));
+    const Vec3 pObject(po[0], po[1], po[2]);
+
+    // λ from the hottest corner's Planck spectrum, then the exact emission there at λ.
+    float pdf = 0.f;
+    const float lambda = mSamplers[cell.sampler].sample(sampler.get1D(), &pdf);
+    if (!(pdf > 0.f)) return false;
+    SampledWavelengths w;
+    w.lambda.fill(lambda);
+    w.pdf.fill(1.f);
+    ctx.setWavelengths(w);
+    MediumPoint mp;
+    mMedium->eval(pObject, ctx, &mp);
+    const double f = kFourPi * double(mp.sigmaA[0]) * double(mp.Le[0]);  // W·m⁻³·nm⁻¹
+    out->weight = float(f * mCellVolume / (cellPower * double(pdf)));
+    if (!(out->weight > 0.f) || !std::isfinite(out->weight)) return false;
+
+    out->origin = mMedium->objectToWorld().point(pObject);
+    out->direction = sampleUniformSphere(sampler.get1D(), sampler.get1D());
+    out->lambda = lambda;
+    return true;
+}
+
+}  // namespace mirage

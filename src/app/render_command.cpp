@@ -134,6 +134,8 @@ int runRender(const RenderOptions& o) {
                         {"capped_paths", std::to_string(integrator->cappedPaths())},
                         {"version", MIRAGE_VERSION},
                         {"ocio_config", color.configDescription()}};
+        if (const PhotonStats* photon = integrator->photonStats())
+            for (const auto& [key, value] : photon->metadata()) exr.metadata[key] = value;
         std::string out = framePath(o.output.empty() ? scene.output.path : o.output, frame, sequence);
         writeExr(out, image, exr);
         double writeSeconds = secondsSince(tWrite);

@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/region.h"
 #include "core/transform.h"
 #include "medium/fluorescence.h"
 #include "medium/phase.h"
@@ -54,6 +55,22 @@ public:
     // Constant coefficients over objectBounds(): transmittance has the closed form
     // exp(−σt(λ) · length inside the box).
     bool homogeneous() const { return mGrids.empty(); }
+
+    // Confines the medium to a closed region (the interior of a closed shape, `interior_medium`
+    // in a scene file): every coefficient is zero outside it. The majorant grid stays a valid
+    // upper bound, so null-collision tracking needs no change; transmittance keeps its closed
+    // form while the region is convex (the ray's chord through region ∩ box).
+    void confineTo(std::shared_ptr<const Region> region);
+    const Region* region() const { return mRegion.get(); }
+    // Beer–Lambert's closed form applies along any ray: homogeneous, and at most one interval
+    // of the ray inside (no region, or a convex one).
+    bool closedFormTransmittance() const {
+        return homogeneous() && (!mRegion || mRegion->convex());
+    }
+    // False for an object-space point outside the region the medium is confined to.
+    bool inRegion(const Vec3& pObject) const {
+        return !mRegion || mRegion->contains(mObjectToWorld.point(pObject));
+    }
 
     // The ray in object space with the same parameter t (direction not renormalised).
     Ray toObject(const Ray& worldRay) const {
@@ -117,6 +134,7 @@ private:
     MajorantGrid mMajorant;
     std::vector<ComponentPhase> mPhases;
     std::vector<FluorescenceEmission> mFluorescence;  // per component (empty when Γ = 0)
+    std::shared_ptr<const Region> mRegion;             // null: the whole box
     bool mFluorescent = false;
 };
 

@@ -205,6 +205,10 @@ void Medium::confineTo(std::shared_ptr<const Region> region) {
     mWorldBounds.hi = vmin(mWorldBounds.hi, r.hi);
 }
 
+void Medium::excludeFrom(std::shared_ptr<const Region> region) {
+    if (region) mExcluded.push_back(std::move(region));
+}
+
 void Medium::eval(const Vec3& p, Context& ctx, MediumPoint* out) const {
     out->sigmaA = SampledSpectrum(0.f);
     out->sigmaS = SampledSpectrum(0.f);

@@ -62,14 +62,26 @@ public:
     // form while the region is convex (the ray's chord through region ∩ box).
     void confineTo(std::shared_ptr<const Region> region);
     const Region* region() const { return mRegion.get(); }
-    // Beer–Lambert's closed form applies along any ray: homogeneous, and at most one interval
-    // of the ray inside (no region, or a convex one).
+    // Cuts a closed region out of the medium (the inside of a shape that holds another
+    // medium): every coefficient is zero inside it.
+    void excludeFrom(std::shared_ptr<const Region> region);
+    const std::vector<std::shared_ptr<const Region>>& excluded() const { return mExcluded; }
+    // Beer–Lambert's closed form applies along any ray: homogeneous, and one interval of the
+    // ray inside (no region or a convex one, nothing cut out).
     bool closedFormTransmittance() const {
-        return homogeneous() && (!mRegion || mRegion->convex());
+        return homogeneous() && (!mRegion || mRegion->convex()) && mExcluded.empty();
     }
-    // False for an object-space point outside the region the medium is confined to.
+    // False for an object-space point outside the region the medium is confined to, or inside
+    // one cut out of it.
     bool inRegion(const Vec3& pObject) const {
-        return !mRegion || mRegion->contains(mObjectToWorld.point(pObject));
+        if (!mRegion && mExcluded.empty()) return true;
+        return inRegionWorld(mObjectToWorld.point(pObject));
+    }
+    bool inRegionWorld(const Vec3& p) const {
+        if (mRegion && !mRegion->contains(p)) return false;
+        for (const auto& r : mExcluded)
+            if (r->contains(p)) return false;
+        return true;
     }
 
     // The ray in object space with the same parameter t (direction not renormalised).
@@ -135,6 +147,7 @@ private:
     std::vector<ComponentPhase> mPhases;
     std::vector<FluorescenceEmission> mFluorescence;  // per component (empty when Γ = 0)
     std::shared_ptr<const Region> mRegion;             // null: the whole box
+    std::vector<std::shared_ptr<const Region>> mExcluded;
     bool mFluorescent = false;
 };
 

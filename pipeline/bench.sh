@@ -4,7 +4,8 @@
 # RUNS times each (default 3), and prints the medians and their ratio; then Mirage's NanoVDB
 # lookup rates; the photon pass on smoke1 lit by a sun; beam against point estimate at equal
 # error on the Cornell smoke scene; Cycles when installed. Needs ../shared/data (or
-# MIRAGE_SHARED_DATA) and python3.
+# MIRAGE_SHARED_DATA) and python3. Settings by environment: RUNS (3), SPP (16), PHOTONS (10^6,
+# photon pass), CS_RES (64x64), CS_SPP (16), CS_PHOTONS (3e4,1e5,3e5,1e6), REF_SPP (1024).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 DATA=${MIRAGE_SHARED_DATA:-../shared/data}

@@ -2,7 +2,10 @@
 # Benchmarks (programs, not tests). Renders ../shared/data/vdb/smoke1.vdb single-scattered at
 # 512×512 with Mirage and with OpenVDB's vdb_render at matched camera, light and coefficients,
 # RUNS times each (default 3), and prints the medians and their ratio; then Mirage's NanoVDB
-# lookup rates. Needs ../shared/data (or MIRAGE_SHARED_DATA).
+# lookup rates; the photon pass on smoke1 lit by a sun; beam against point estimate at equal
+# error on the Cornell smoke scene; Cycles when installed. Needs ../shared/data (or
+# MIRAGE_SHARED_DATA) and python3. Settings by environment: RUNS (3), SPP (16), PHOTONS (10^6,
+# photon pass), CS_RES (64x64), CS_SPP (16), CS_PHOTONS (3e4,1e5,3e5,1e6), REF_SPP (1024).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 DATA=${MIRAGE_SHARED_DATA:-../shared/data}
@@ -40,6 +43,41 @@ printf '  vdb_render (ray marching, step 1 voxel, shadow step 3): median %.2f s\
 printf '  mirage (delta/ratio tracking, %d spp):                    median %.2f s\n' "$SPP" "$m"
 printf '  ratio mirage / vdb_render: %.2f\n' "$(awk -v a="$m" -v b="$v" 'BEGIN {print a / b}')"
 ./build/tests/bench_lookups "$SMOKE"
+
+# Photon pass throughput: assets/scenes/smoke1_sun.toml (smoke1, sun + sky fill) with
+# PHOTONS photons (default 10^6), a tiny image so the render pass costs nothing; the figures are
+# the renderer's own (EXR header mirage:photon_pass_seconds, mirage:photons_per_second).
+PHOTONS=${PHOTONS:-1000000}
+attr() { oiiotool --info -v "$1" | awk -v k="mirage:$2:" '$1 == k {gsub(/"/, "", $2); print $2}'; }
+: > "$TMP/pass.txt"; : > "$TMP/rate.txt"
+for i in $(seq "$RUNS"); do
+  ./build/mirage render assets/scenes/smoke1_sun.toml --set "volume.0.file=$SMOKE" \
+    --set "render.photons=$PHOTONS" --resolution 8x10 --spp 1 --seed "$i" \
+    -o "$TMP/pass.exr" --quiet >/dev/null
+  attr "$TMP/pass.exr" photon_pass_seconds >> "$TMP/pass.txt"
+  attr "$TMP/pass.exr" photons_per_second >> "$TMP/rate.txt"
+done
+printf 'photon pass, smoke1.vdb + sun, %s photons, %d runs, %d cores\n' "$PHOTONS" "$RUNS" "$(nproc)"
+printf '  median %.2f s, %.3g photons traced/s\n' "$(median < "$TMP/pass.txt")" "$(median < "$TMP/rate.txt")"
+
+# Beam against point estimate at equal error on assets/scenes/cornell_smoke.toml: one volpath
+# reference (REF_SPP), then both estimates over a photon sweep (CS_PHOTONS) at CS_SPP; the
+# time each needs for the same relMSE is interpolated in log-log space (pipeline/equal_error.py).
+CS_RES=${CS_RES:-64x64}
+CS_SPP=${CS_SPP:-16}
+CS_PHOTONS=${CS_PHOTONS:-3e4,1e5,3e5,1e6}
+REF_SPP=${REF_SPP:-1024}
+CS_DIR="$TMP/cornell"
+mkdir -p "$CS_DIR"
+cp assets/scenes/cornell_smoke.toml "$CS_DIR/"
+./build/mirage make-asset fog-sphere -o "$CS_DIR/fog_sphere.vdb" >/dev/null
+./build/mirage tradeoff "$CS_DIR/cornell_smoke.toml" --resolution "$CS_RES" --spp "$CS_SPP" \
+  --integrator photon --vary "photons=$CS_PHOTONS" --vary estimate=beam,point \
+  --reference-spp "$REF_SPP" -o "$CS_DIR/" --quiet >/dev/null
+printf 'cornell_smoke.toml %s, %d spp, photons %s, volpath reference %d spp\n' "$CS_RES" \
+  "$CS_SPP" "$CS_PHOTONS" "$REF_SPP"
+sed 's/^/  /' "$CS_DIR/tradeoff.csv"
+python3 pipeline/equal_error.py "$CS_DIR/tradeoff.csv"
 
 # Peer check against Blender Cycles (when installed): same cache, camera, medium and sun,
 # 64 spp at 256×256, single scattering (single vs Cycles with 0 volume bounces) and multiple

@@ -11,6 +11,7 @@ PACKAGES=(
   libopenexr-dev libimath-dev openexr
   libtbb-dev libtomlplusplus-dev libcli11-dev
   libgtest-dev libbenchmark-dev
+  python3
 )
 
 missing=()

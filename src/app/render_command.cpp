@@ -238,6 +238,8 @@ int runRender(const RenderOptions& o) {
         exr.metadata["complete"] = "true";  // --skip-existing trusts only this
         if (stats.tilesResumed > 0)
             exr.metadata["resumed_tiles"] = std::to_string(stats.tilesResumed);
+        if (const PhotonStats* photon = integrator->photonStats())
+            for (const auto& [key, value] : photon->metadata()) exr.metadata[key] = value;
         writeExr(out, image, exr);
         // The final frame is in place (atomically): its partial file has served.
         std::error_code ec;

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "geometry/shape_region.h"
 
 namespace mirage {
 
@@ -220,6 +221,14 @@ int GeometryScene::addSphere(const Vec3& center, float radius, int material, int
     mSpheres.push_back(std::move(sphere));
     mTriangles.emplace_back();
     return int(id);
+}
+
+std::shared_ptr<const Region> GeometryScene::interiorRegion(int shape) const {
+    const ShapeInfo& info = mShapes[size_t(shape)];
+    if (info.type == ShapeType::Sphere) return makeSphereRegion(info.center, info.radius);
+    if (info.type == ShapeType::Quad) return nullptr;
+    const TriangleData& t = *mTriangles[size_t(shape)];
+    return makeMeshRegion(t.positions, t.indices);
 }
 
 void GeometryScene::commit() {

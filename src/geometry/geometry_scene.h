@@ -3,11 +3,11 @@
 // a material per shape. Integrators ask two questions of it: the nearest surface along a ray
 // (intersect) and whether any surface blocks a segment (occluded, for shadow rays).
 //
-// Media are not bounded by surfaces: each medium is still tracked over its own box, and
-// a shape's `interiorMedium` only records which medium the scene file placed inside it (a
-// glass sphere in fog refracts, and the fog inside and outside it is whatever the media's
-// boxes hold). Every surface, glass included, blocks shadow rays: light through specular
-// surfaces (caustics) comes from the photon map.
+// A closed shape (sphere or closed mesh) may bound a medium: `interiorMedium` names the scene
+// medium placed inside it, and interiorRegion() gives the shape's inside, to which the scene
+// stage confines that medium (Medium::confineTo) and cuts out of every other medium
+// (Medium::excludeFrom). Every surface, glass included, blocks shadow rays:
+// light through specular surfaces (caustics) comes from the photon map.
 #pragma once
 
 #include <memory>
@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/region.h"
 #include "core/transform.h"
 #include "geometry/material.h"
 
@@ -80,6 +81,9 @@ public:
     const Material& materialAt(const SurfaceHit& h) const { return material(h.material); }
     Bounds3 bounds() const { return mBounds; }
     double buildSeconds() const { return mBuildSeconds; }
+
+    // The inside of shape i (a sphere or a closed mesh; null for a quad).
+    std::shared_ptr<const Region> interiorRegion(int shape) const;
 
     // Nearest surface along ray (unit direction) in (0, ray.tMax).
     std::optional<SurfaceHit> intersect(const Ray& ray) const;

@@ -205,10 +205,29 @@ void Medium::Context::setWavelengths(const SampledWavelengths& w) {
     }
 }
 
+void Medium::confineTo(std::shared_ptr<const Region> region) {
+    mRegion = std::move(region);
+    if (!mRegion) return;
+    // The medium's world bounds (the photon pass aims sun photons at them) shrink to the region
+    // (empty when the two do not overlap: then the medium is nowhere).
+    const Bounds3 r = mRegion->bounds();
+    mWorldBounds.lo = vmax(mWorldBounds.lo, r.lo);
+    mWorldBounds.hi = vmin(mWorldBounds.hi, r.hi);
+}
+
+void Medium::excludeFrom(std::shared_ptr<const Region> region) {
+    if (region) mExcluded.push_back(std::move(region));
+}
+
 void Medium::eval(const Vec3& p, Context& ctx, MediumPoint* out) const {
     out->sigmaA = SampledSpectrum(0.f);
     out->sigmaS = SampledSpectrum(0.f);
     out->components = int(mShader.components.size());
+    if (!inRegion(p)) {
+        for (int i = 0; i < out->components; ++i) out->sigmaSComponent[i] = SampledSpectrum(0.f);
+        out->Le = SampledSpectrum(0.f);
+        return;
+    }
     if (ctx.mGrey) {
         // One number per component, broadcast to the path's wavelengths once.
         float sigmaA = 0.f, sigmaS = 0.f;
@@ -266,6 +285,7 @@ void Medium::powerLawAt(const Context& ctx, int i, float gridValue, SampledSpect
 
 float Medium::sigmaSAt(const Vec3& p, Context& ctx, float lambdaNm) const {
     float sigmaS = 0.f;
+    if (!inRegion(p)) return 0.f;
     for (size_t i = 0; i < mShader.components.size(); ++i) {
         const MediumComponent& comp = mShader.components[i];
         float xs = comp.sigmaS(lambdaNm);
@@ -283,7 +303,12 @@ float Medium::sigmaSAt(const Vec3& p, Context& ctx, float lambdaNm) const {
 
 void Medium::sigmaAComponentsAt(const Vec3& p, Context& ctx, float lambdaNm,
                                 float* sigmaA) const {
+    const bool inside = inRegion(p);
     for (size_t i = 0; i < mShader.components.size(); ++i) {
+        if (!inside) {
+            sigmaA[i] = 0.f;
+            continue;
+        }
         const MediumComponent& comp = mShader.components[i];
         int slot = ctx.mSlot[i];
         float c = slot < 0 ? 1.f : mGrids[slot].sample(ctx.mAcc[slot], p);

@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/region.h"
 #include "core/transform.h"
 #include "medium/fluorescence.h"
 #include "medium/phase.h"
@@ -64,6 +65,34 @@ public:
     // Constant coefficients over objectBounds(): transmittance has the closed form
     // exp(−σt(λ) · length inside the box).
     bool homogeneous() const { return mGrids.empty(); }
+
+    // Confines the medium to a closed region (the interior of a closed shape, `interior_medium`
+    // in a scene file): every coefficient is zero outside it. The majorant grid stays a valid
+    // upper bound, so null-collision tracking needs no change; transmittance keeps its closed
+    // form while the region is convex (the ray's chord through region ∩ box).
+    void confineTo(std::shared_ptr<const Region> region);
+    const Region* region() const { return mRegion.get(); }
+    // Cuts a closed region out of the medium (the inside of a shape that holds another
+    // medium): every coefficient is zero inside it.
+    void excludeFrom(std::shared_ptr<const Region> region);
+    const std::vector<std::shared_ptr<const Region>>& excluded() const { return mExcluded; }
+    // Beer–Lambert's closed form applies along any ray: homogeneous, and one interval of the
+    // ray inside (no region or a convex one, nothing cut out).
+    bool closedFormTransmittance() const {
+        return homogeneous() && (!mRegion || mRegion->convex()) && mExcluded.empty();
+    }
+    // False for an object-space point outside the region the medium is confined to, or inside
+    // one cut out of it.
+    bool inRegion(const Vec3& pObject) const {
+        if (!mRegion && mExcluded.empty()) return true;
+        return inRegionWorld(mObjectToWorld.point(pObject));
+    }
+    bool inRegionWorld(const Vec3& p) const {
+        if (mRegion && !mRegion->contains(p)) return false;
+        for (const auto& r : mExcluded)
+            if (r->contains(p)) return false;
+        return true;
+    }
 
     // The ray in object space with the same parameter t (direction not renormalised).
     Ray toObject(const Ray& worldRay) const {
@@ -128,6 +157,8 @@ private:
     MajorantGrid mMajorant;
     std::vector<ComponentPhase> mPhases;
     std::vector<FluorescenceEmission> mFluorescence;  // per component (empty when Γ = 0)
+    std::shared_ptr<const Region> mRegion;             // null: the whole box
+    std::vector<std::shared_ptr<const Region>> mExcluded;
     bool mFluorescent = false;
     bool mGreyCoefficients = false, mGreyPath = true;
 };

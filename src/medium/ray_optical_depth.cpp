@@ -95,11 +95,19 @@ void RayOpticalDepth::march(const Ray& ray, float tMax) {
         float a, b;
         if (!m.objectBounds().intersect(objectRay.o, objectRay.d, 0.f, tMax, &a, &b) || !(a < b))
             continue;
+        // A medium confined to a region: its chord (convex), or first entry to last exit, where
+        // the nodes' midpoints test the region.
+        if (m.region() && (!m.region()->clip(ray, &a, &b) || !(a < b))) continue;
         mSpans.push_back({int(i), objectRay, a, b});
         t0 = std::min(t0, a);
         t1 = std::max(t1, b);
         // The object ray has the world ray's parameter, so one voxel spans voxel/|d_object| in t.
         h = std::min(h, mStepVoxels * mMedia[i].voxel / length(objectRay.d));
+        // A non-convex region, and every region cut out, is sampled at the nodes' midpoints:
+        // 1/64 of its size apart.
+        if (m.region() && !m.region()->convex())
+            h = std::min(h, length(m.region()->bounds().diagonal()) / 64.f);
+        for (const auto& r : m.excluded()) h = std::min(h, length(r->bounds().diagonal()) / 64.f);
     }
     if (mSpans.empty() || !(t0 < t1)) {
         mT0 = mT1 = 0.f;
@@ -124,6 +132,11 @@ void RayOpticalDepth::march(const Ray& ray, float tMax) {
             if (!(hi > lo)) continue;
             MediumInfo& info = mMedia[size_t(s.medium)];
             Vec3 p = s.objectRay.at(0.5f * (lo + hi));
+            const Medium& medium = *info.medium;
+            const bool convex = !medium.region() || medium.region()->convex();
+            if ((!convex || !medium.excluded().empty()) &&
+                !medium.inRegionWorld(ray.at(0.5f * (lo + hi))))
+                continue;
             const auto& grids = info.medium->grids();
             for (const Term& term : info.terms) {
                 size_t g = size_t(term.grid);

@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/progress.h"
@@ -18,6 +19,21 @@ namespace mirage {
 struct ThreadState {
     explicit ThreadState(const RenderScene& scene) : tracking(scene.mediaPointers()) {}
     TrackingContext tracking;
+};
+
+// Figures of the photon integrator's two passes, for the render summary and the EXR header
+// (metadata() gives them as snake_case keys, written as mirage:<key>). Seconds are wall time,
+// except estimateSeconds: thread time summed over the render threads.
+struct PhotonStats {
+    uint64_t photonsTraced = 0;        // emitted from the lights
+    uint64_t photonsStored = 0;        // volume + surface photons
+    double photonPassSeconds = 0;
+    double photonsPerSecond = 0;       // traced / pass seconds
+    double photonMapBuildSeconds = 0;  // kd-trees of the volume and surface maps
+    double photonRadiiSeconds = 0;     // beam: k-nearest disc radius of every volume photon
+    double discBvhBuildSeconds = 0;    // beam: Embree BVH over the photon discs
+    double estimateSeconds = 0;        // beam/point and surface estimates, all threads
+    std::vector<std::pair<std::string, std::string>> metadata() const;
 };
 
 struct RadianceSample {
@@ -41,6 +57,8 @@ public:
     virtual uint64_t cappedPaths() const { return 0; }
     // One line of integrator-specific figures for the render summary ("" for none).
     virtual std::string summary() const { return ""; }
+    // The photon integrator's figures; null for the others.
+    virtual const PhotonStats* photonStats() const { return nullptr; }
 };
 
 // Single scattering plus emission: delta tracking along the camera ray, next-event estimation

@@ -91,26 +91,34 @@ public:
             lights, mMedia, scene.hasSurfaces() ? scene.geometry.get() : nullptr, pass,
             &mPassStats);
         PhotonList list = std::move(lists.volume);
+
+        // The maps (kd-trees, per-photon XYZ and phase), then the estimate's own structures;
+        // each step timed for the summary and the EXR header.
+        auto t0 = Clock::now();
         mGlobal = std::make_unique<SurfacePhotons>(std::move(lists.surfaceGlobal));
         mCaustic = std::make_unique<SurfacePhotons>(std::move(lists.surfaceCaustic));
-
-        // The map: kd-tree, per-photon XYZ and phase, then the estimate's own structures.
-        auto t0 = Clock::now();
         mPhotons = std::make_unique<VolumePhotons>(std::move(list), mMedia);
+        mStats.photonMapBuildSeconds = secondsSince(t0);
         Vec3 diag = scene.bounds().empty() ? Vec3(1.f) : scene.bounds().diagonal();
         mMaxRadius = mSettings.maxRadius > 0.f ? mSettings.maxRadius : 0.1f * length(diag);
         // Coincident photons must not get a zero disc (PhotonMap::photonRadii).
         const float minRadius = 1e-4f * mMaxRadius;
         const int k = mSettings.kOrDefault();
         if (mSettings.estimate == PhotonEstimate::Beam) {
-            mBeam = std::make_unique<BeamEstimator>(
-                *mPhotons, mPhotons->map().photonRadii(k, minRadius, mMaxRadius));
+            t0 = Clock::now();
+            std::vector<float> radii = mPhotons->map().photonRadii(k, minRadius, mMaxRadius);
+            mStats.photonRadiiSeconds = secondsSince(t0);
+            t0 = Clock::now();
+            mBeam = std::make_unique<BeamEstimator>(*mPhotons, std::move(radii));
+            mStats.discBvhBuildSeconds = secondsSince(t0);
         } else {
             mStep = mSettings.marchStep;
             if (!(mStep > 0.f)) {
                 // Half the typical search radius: the estimate is a blur of that radius, so
                 // steps of half of it sample it without aliasing (jittered per camera sample).
+                t0 = Clock::now();
                 std::vector<float> r = mPhotons->map().photonRadii(k, minRadius, mMaxRadius);
+                mStats.photonRadiiSeconds = secondsSince(t0);
                 if (r.empty()) {
                     mStep = mMaxRadius;
                 } else {
@@ -119,7 +127,11 @@ public:
                 }
             }
         }
-        mBuildSeconds = secondsSince(t0);
+        mStats.photonsTraced = mPassStats.emitted;
+        mStats.photonsStored = mPassStats.stored;
+        mStats.photonPassSeconds = mPassStats.seconds;
+        mStats.photonsPerSecond =
+            mPassStats.seconds > 0 ? double(mPassStats.emitted) / mPassStats.seconds : 0.0;
         mThreads = std::make_unique<tbb::enumerable_thread_specific<PhotonThreadState>>(
             [this] { return PhotonThreadState(mMedia); });
     }
@@ -149,28 +161,34 @@ public:
         return out;
     }
 
-    std::string summary() const override {
+    // Sums the render threads' estimate time into the stats (call after rendering).
+    const PhotonStats* photonStats() const override {
         double estimateSeconds = 0;
+        if (mThreads)
+            for (const PhotonThreadState& pt : *mThreads) estimateSeconds += pt.estimateSeconds;
+        mStats.estimateSeconds = estimateSeconds;
+        return &mStats;
+    }
+
+    std::string summary() const override {
         uint64_t estimates = 0;
         if (mThreads)
-            for (const PhotonThreadState& pt : *mThreads) {
-                estimateSeconds += pt.estimateSeconds;
-                estimates += pt.estimates;
-            }
-        const PhotonPassStats& p = mPassStats;
-        char buf[512];
+            for (const PhotonThreadState& pt : *mThreads) estimates += pt.estimates;
+        const PhotonStats& p = *photonStats();
+        char buf[640];
         std::snprintf(buf, sizeof buf,
-                      "photons: %llu traced, %llu stored in %.2fs (%.2f M photons/s) | map "
-                      "build %.2fs | %s estimate %.2fs thread time (%.1f µs/ray, k %d, max "
-                      "radius %.3g m) | photon paths cut at max_depth %llu | from emissive "
-                      "media %llu (%.3g W)",
-                      (unsigned long long)p.emitted, (unsigned long long)p.stored, p.seconds,
-                      p.seconds > 0 ? double(p.emitted) / p.seconds / 1e6 : 0.0, mBuildSeconds,
-                      mBeam ? "beam" : "point", estimateSeconds,
-                      estimates ? estimateSeconds / double(estimates) * 1e6 : 0.0,
+                      "photons: %llu traced, %llu stored | photon pass %.2fs (%.2f M photons/s) "
+                      "| photon map build %.3fs, disc radii %.3fs, disc BVH build %.3fs | %s "
+                      "estimate %.2fs thread time (%.1f µs/ray, k %d, max radius %.3g m) | "
+                      "photon paths cut at max_depth %llu | from emissive media %llu (%.3g W)",
+                      (unsigned long long)p.photonsTraced, (unsigned long long)p.photonsStored,
+                      p.photonPassSeconds, p.photonsPerSecond / 1e6, p.photonMapBuildSeconds,
+                      p.photonRadiiSeconds, p.discBvhBuildSeconds, mBeam ? "beam" : "point",
+                      p.estimateSeconds,
+                      estimates ? p.estimateSeconds / double(estimates) * 1e6 : 0.0,
                       mSettings.kOrDefault(), double(mMaxRadius),
-                      (unsigned long long)p.cappedPaths, (unsigned long long)p.fromMedia,
-                      p.mediumPower);
+                      (unsigned long long)mPassStats.cappedPaths,
+                      (unsigned long long)mPassStats.fromMedia, mPassStats.mediumPower);
         std::string line = buf;
         if (mGlobal && mCaustic && (mGlobal->size() + mCaustic->size()) > 0)
             line += " | surface photons: " + std::to_string(mGlobal->size()) + " global, " +
@@ -245,7 +263,7 @@ private:
     std::unique_ptr<BeamEstimator> mBeam;
     std::unique_ptr<SurfacePhotons> mGlobal, mCaustic;  // surface photon maps
     float mMaxRadius = 0.f, mStep = 0.f;
-    double mBuildSeconds = 0;
+    mutable PhotonStats mStats;  // estimateSeconds refreshed by photonStats()
     std::unique_ptr<tbb::enumerable_thread_specific<PhotonThreadState>> mThreads;
 };
 

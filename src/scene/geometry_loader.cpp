@@ -5,7 +5,8 @@
 //             µm², default 0: n(λ) = A + B/λ²).
 //   shape:    type = mesh (file = OBJ) | sphere (center, radius) | quad (corner, edge_u,
 //             edge_v); material (a [[material]] name); transform (as for volumes);
-//             interior_medium (index of a [[volume]] placed inside the shape).
+//             interior_medium (index of a [[volume]] placed inside a sphere or closed mesh:
+//             the scene loader confines that medium to the shape's inside).
 // Keys a type does not read are reported as unknown by TableReader::finish.
 #include "scene/geometry_loader.h"
 
@@ -79,6 +80,7 @@ std::unique_ptr<GeometryScene> readGeometry(
         geometry->addMaterial(std::move(m));
     }
 
+    std::vector<int> interiors;  // volumes already placed inside a shape
     for (const auto& t : shapes) {
         std::string type = t.getString("type");
         std::string matName = t.getString("material");
@@ -95,6 +97,13 @@ std::unique_ptr<GeometryScene> readGeometry(
             if (volumeCount == 0)
                 t.fail("interior_medium", "the scene has no [[volume]] to place inside the shape");
             interior = int(t.getInt("interior_medium", 0, 0, int64_t(volumeCount) - 1));
+            if (type == "quad")
+                t.fail("interior_medium",
+                       "a quad encloses no volume; a medium needs a sphere or a closed mesh");
+            if (std::find(interiors.begin(), interiors.end(), interior) != interiors.end())
+                t.fail("interior_medium", "volume " + std::to_string(interior) +
+                                              " is already inside another shape");
+            interiors.push_back(interior);
         }
         Transform xf;
         if (auto x = t.optionalTable("transform")) xf = readTransform(*x);

@@ -315,6 +315,20 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
 
     for (const auto& l : top.tables("light")) scene.render.lights.push_back(readLight(l, color));
     scene.render.geometry = readGeometry(top, resolve, scene.render.media.size(), color);
+    // A medium inside a closed shape exists only there, and the other media not there (glass
+    // sphere of ink in fog, water in a tank).
+    if (scene.render.geometry)
+        for (size_t i = 0; i < scene.render.geometry->shapeCount(); ++i) {
+            int m = scene.render.geometry->shape(int(i)).interiorMedium;
+            if (m < 0) continue;
+            auto region = scene.render.geometry->interiorRegion(int(i));
+            for (size_t j = 0; j < scene.render.media.size(); ++j) {
+                if (int(j) == m)
+                    scene.render.media[j]->confineTo(region);
+                else
+                    scene.render.media[j]->excludeFrom(region);
+            }
+        }
 
     float aspect = float(scene.settings.width) / float(scene.settings.height);
     if (auto c = top.optionalTable("camera")) {

@@ -63,15 +63,17 @@ SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float t
     bool heterogeneous = false;
     for (size_t i = 0; i < ctx.size(); ++i) {
         const Medium& m = ctx.medium(i);
-        if (!m.homogeneous()) {
+        if (!m.closedFormTransmittance()) {
             heterogeneous = true;
             continue;
         }
         Ray r = m.toObject(worldRay);
         float t0, t1;
         if (!m.objectBounds().intersect(r.o, r.d, 0.f, tMax, &t0, &t1) || !(t1 > t0)) continue;
+        // A medium confined to a convex region: the chord through region ∩ box.
+        if (m.region() && (!m.region()->clip(worldRay, &t0, &t1) || !(t1 > t0))) continue;
         MediumPoint mp;
-        m.eval(m.objectBounds().center(), ctx.context(i), &mp);
+        m.eval(r.at(0.5f * (t0 + t1)), ctx.context(i), &mp);  // inside box and region
         tau += (mp.sigmaA + mp.sigmaS) * (t1 - t0);
     }
     SampledSpectrum T = exp(tau * -1.f);
@@ -82,7 +84,7 @@ SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float t
     // estimate of the heterogeneous media's transmittance alone (it still pays for sampling
     // them; trackCollisions has no per-medium mask).
     trackCollisions(ctx, worldRay, tMax, sampler, [&](const Collision& c) {
-        if (ctx.medium(size_t(c.medium)).homogeneous()) return Track::Continue;
+        if (ctx.medium(size_t(c.medium)).closedFormTransmittance()) return Track::Continue;
         // Ratio tracking: multiply by the null-collision probability σn/σ̄ per wavelength.
         SampledSpectrum sigmaT = c.mp.sigmaA + c.mp.sigmaS;
         T *= (SampledSpectrum(c.sigmaMaj) - sigmaT) / c.sigmaMaj;

@@ -39,7 +39,9 @@ struct PhotonPassSettings {
 };
 
 struct PhotonPassStats {
-    uint64_t emitted = 0, stored = 0, cappedPaths = 0;
+    uint64_t emitted = 0, stored = 0;
+    uint64_t cappedPaths = 0;  // cut at maxBounces or at the collision cap of one flight
+    uint64_t nonFinite = 0;    // photons dropped for a non-finite power/position (path ended)
     double seconds = 0;
 };
 

@@ -17,12 +17,12 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
     const int tiles = tilesX * tilesY;
 
     Progress progress("render", uint64_t(tiles), "tiles", s.progress);
-    std::atomic<uint64_t> lookups{0};
+    std::atomic<uint64_t> lookups{0}, cappedFlights{0};
     tbb::enumerable_thread_specific<ThreadState> states([&] { return ThreadState(scene); });
 
     tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) {
         ThreadState& ts = states.local();
-        uint64_t before = ts.tracking.lookups;
+        uint64_t before = ts.tracking.lookups, cappedBefore = ts.tracking.cappedFlights;
         for (int tile = r.begin(); tile < r.end(); ++tile) {
             int x0 = (tile % tilesX) * s.tileSize, y0 = (tile / tilesX) * s.tileSize;
             int x1 = std::min(x0 + s.tileSize, s.width), y1 = std::min(y0 + s.tileSize, s.height);
@@ -42,6 +42,7 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
             progress.advance();
         }
         lookups += ts.tracking.lookups - before;
+        cappedFlights += ts.tracking.cappedFlights - cappedBefore;
     });
     progress.finish();
 
@@ -50,6 +51,7 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
         stats->samples = uint64_t(s.width) * s.height * s.spp;
         stats->mediumLookups = lookups.load();
         stats->nonFiniteSamples = film.nonFiniteSamples();
+        stats->cappedFlights = cappedFlights.load();
     }
     return film;
 }

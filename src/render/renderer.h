@@ -23,7 +23,8 @@ struct RenderStats {
     double seconds = 0;
     uint64_t samples = 0;
     uint64_t mediumLookups = 0;  // medium evaluations (each reads every grid of its shader)
-    uint64_t nonFiniteSamples = 0;
+    uint64_t nonFiniteSamples = 0;  // camera samples dropped by the film (NaN/∞)
+    uint64_t cappedFlights = 0;     // free flights cut at the collision cap (tracking.h)
 };
 
 Film render(const RenderScene& scene, Integrator& integrator, const RenderSettings& settings,

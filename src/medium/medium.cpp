@@ -9,6 +9,12 @@ namespace mirage {
 
 namespace {
 
+std::string formatNumber(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    return buf;
+}
+
 void checkComponentCount(const ShaderDesc& shader) {
     if (shader.components.empty() || int(shader.components.size()) > kMaxComponents)
         throw MirageError("shader '" + shader.name + "': expected 1 to " +
@@ -137,11 +143,13 @@ void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantRes
     // Majorant: Σ_c concentration_c · max_λ(σa,c + σs,c) · max of the grid over each cell.
     auto slots = mShader.gridSlots();
     mMajorant = MajorantGrid(objectBounds, majorantResolution);
+    double sigmaMax = 0.0;  // the largest σt anywhere, summed over components, 1/m
     for (const auto& c : mShader.components) {
         const float k = c.concentration * mDensityScale;
         const FloatGrid* grid = nullptr;
         if (!c.grid.empty())
             grid = &mGrids[std::find(slots.begin(), slots.end(), c.grid) - slots.begin()];
+        sigmaMax += checkedSigmaMax(c, grid, k);
         if (c.kind == ComponentKind::Chlorophyll) {
             // σ is non-linear in C: bound it at each cell's largest C = k × grid max.
             PowerLawBound bound(c);
@@ -163,6 +171,31 @@ void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantRes
                                                                        c.antiStokes)
                                                 : FluorescenceEmission());
     }
+    if (!(sigmaMax <= kMaxSigma))
+        throw MirageError("shader '" + mShader.name + "': its components sum to σt up to " +
+                          formatNumber(sigmaMax) + " 1/m, above the limit of " +
+                          formatNumber(kMaxSigma) + " 1/m; lower density_scale");
+}
+
+// The largest σt = σa + σs of one component anywhere in the medium, in double so that the
+// product cannot overflow before it is compared. Refuses (MirageError naming the shader,
+// component and grid) a product above kMaxSigma: beyond it, float sums of σ, optical depths
+// and σa·Le overflow to ∞ and every estimate that touches the medium is lost.
+double Medium::checkedSigmaMax(const MediumComponent& c, const FloatGrid* grid, float k) const {
+    const double gridMax = grid ? double(grid->maxValue()) : 1.0;
+    double sigma = c.kind == ComponentKind::Chlorophyll
+                       ? double(PowerLawBound(c)(float(std::min(double(k) * gridMax, 3e38))))
+                       : double(k) * gridMax * (double(c.sigmaA.maxValue()) + c.sigmaS.maxValue());
+    if (!(sigma <= kMaxSigma))
+        throw MirageError("shader '" + mShader.name + "': component '" + c.name + "'" +
+                          (grid ? " on grid '" + grid->name() + "' (max value " +
+                                      formatNumber(gridMax) + ")"
+                                : std::string()) +
+                          ": σt up to " + formatNumber(sigma) +
+                          " 1/m (concentration × density_scale × grid × cross-section) is above "
+                          "the limit of " + formatNumber(kMaxSigma) +
+                          " 1/m; lower density_scale, concentration or the cross-sections");
+    return sigma;
 }
 
 Medium::Context::Context(const Medium& m) : mMedium(&m) {

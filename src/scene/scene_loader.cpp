@@ -120,6 +120,15 @@ Transform readTransform(const TableReader& t) {
         const toml::node* n = t.node("scale");
         Vec3d s = n->is_number() ? Vec3d(t.getNumber("scale")) : Vec3d(t.getVec3("scale"));
         if (s.x == 0 || s.y == 0 || s.z == 0) t.fail("scale", "a zero scale collapses the volume");
+        // Grids already span 1e-5 m to 1e4 m voxels; a scale beyond 1e±6 on top of that leaves
+        // single-precision ray parameters and bounds (float) without a useful digit.
+        for (double c : {s.x, s.y, s.z})
+            if (!(std::abs(c) >= 1e-6 && std::abs(c) <= 1e6)) {
+                char found[32];
+                std::snprintf(found, sizeof found, "%g", c);
+                t.fail("scale", std::string("expected each scale factor's magnitude from 1e-6 "
+                                            "to 1e6, found ") + found);
+            }
         xf = Transform::scale(s) * xf;
     }
     if (t.has("rotate")) {
@@ -147,12 +156,16 @@ std::vector<std::pair<std::string, std::string>> bindGrids(
     std::vector<std::pair<std::string, std::string>> out;
     for (const auto& slot : slots) {
         std::string target = slot;
+        bool bound = false;  // named by the scene's bind table: never replaced by a guess
         for (const auto& [s, g] : explicitBind)
-            if (s == slot) target = g;
+            if (s == slot) {
+                target = g;
+                bound = true;
+            }
         bool isIndex = !target.empty() && target[0] == '#';
         bool found = isIndex || nano ||
                      std::find(names.begin(), names.end(), target) != names.end();
-        if (!found && slots.size() == 1 && names.size() == 1) {
+        if (!found && !bound && slots.size() == 1 && names.size() == 1) {
             target = names[0].empty() ? "#0" : names[0];  // the file's only grid
             found = true;
         }
@@ -188,7 +201,15 @@ static std::unique_ptr<Medium> buildMedium(const ShaderDesc& shader, VolumeRecor
     std::vector<FloatGrid> grids;
     for (const auto& [slot, gridName] : rec.bindings)
         grids.push_back(loadFloatGrid(rec.file, gridName));
-    return std::make_unique<Medium>(shader, std::move(grids), xf, rec.densityScale, majorantRes);
+    try {
+        return std::make_unique<Medium>(shader, std::move(grids), xf, rec.densityScale,
+                                        majorantRes);
+    } catch (const MirageError& e) {
+        // The medium names shader, component and grid; the scene names where it was asked for.
+        if (e.location().line > 0) throw;
+        if (where.line == 0) throw MirageError(rec.file + ": " + e.what());
+        throw MirageError(where, rec.file + ": " + e.what());
+    }
 }
 
 Scene loadScene(const std::string& path, const LoadOptions& options, const ColorPipeline& color) {

@@ -135,7 +135,10 @@ std::vector<double> TableReader::getNumbers(const std::string& key, size_t minCo
 
 Vec3 TableReader::getVec3(const std::string& key) const {
     auto v = getNumbers(key, 3, 3);
-    return Vec3(float(v[0]), float(v[1]), float(v[2]));
+    Vec3 out{float(v[0]), float(v[1]), float(v[2])};
+    // Finite as a double is not enough: positions and directions are single precision.
+    if (!isFinite(out)) fail(key, "expected numbers within ±3.4e38 (single precision)");
+    return out;
 }
 
 Vec3 TableReader::getVec3(const std::string& key, const Vec3& def) const {

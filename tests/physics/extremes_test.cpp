@@ -264,6 +264,51 @@ TEST(Extremes, FurnaceMatrixTemperatureAlbedoAndAnisotropy) {
             }
 }
 
+// Fluorescence at Γ = 0 and Γ = 1 (every absorbed photon re-emitted): images finite through
+// every integrator, photon paths end, and no photon ever carries more than the Φ/N it left the
+// light with (re-emission scales power by λi/λo ≤ 1: energy is never created).
+TEST(Extremes, FluorescenceAtGammaZeroAndOne) {
+    size_t stored[2] = {0, 0};
+    for (float gamma : {0.f, 1.f}) {
+        ShaderDesc s = test::greyShader(0.f, 1.f, 0.3f);
+        MediumComponent pigment;
+        pigment.name = "pigment";
+        pigment.grid = "density";
+        pigment.sigmaA = Spectrum(3.f);
+        pigment.quantumEfficiency = gamma;
+        s.components.push_back(pigment);
+        RenderScene scene;
+        scene.media.push_back(std::make_unique<Medium>(
+            s, std::vector<FloatGrid>{test::makeGrid([](int, int, int) { return 1.f; }, 0, 15,
+                                                     1.0 / 16)},
+            Transform(), 1.f, 8));
+        const float irradiance = 1000.f;
+        scene.lights.push_back(makeDistantLight(Vec3(0.f, -1.f, 0.f), irradiance, Spectrum(1.f)));
+        expectFiniteWithEveryIntegrator(scene, "Γ " + std::to_string(gamma));
+
+        PhotonPassSettings ps;
+        ps.photons = 20000;
+        ps.storeFirstInteraction = true;
+        ps.maxBounces = 1000;
+        ps.progress = Progress::Mode::Quiet;
+        PhotonPassStats stats;
+        PhotonList photons =
+            tracePhotons({scene.lights[0].get()}, scene.mediaPointers(), ps, &stats);
+        const Bounds3 b = scene.media[0]->worldBounds();
+        const double phiPerPhoton =
+            double(scene.lights[0]->emittedPower(b)) / double(ps.photons);
+        double maxPower = 0;
+        for (const Photon& ph : photons) maxPower = std::max(maxPower, double(ph.power));
+        EXPECT_GT(photons.size(), 0u);
+        EXPECT_LE(maxPower, phiPerPhoton * (1 + 1e-5)) << "Γ " << gamma;
+        EXPECT_EQ(stats.cappedPaths, 0u) << "Γ " << gamma;
+        EXPECT_EQ(stats.nonFinite, 0u) << "Γ " << gamma;
+        stored[gamma > 0.f] = photons.size();
+    }
+    // At Γ = 1 an absorption no longer ends a photon: its walk goes on and stores more.
+    EXPECT_GT(stored[1], stored[0]);
+}
+
 // ---- Grids: bad voxels, empty, one voxel, voxel sizes, transforms -----------------------
 
 TEST(Extremes, GridsWithNanInfNegativeAndHugeVoxelsRenderFinite) {

@@ -2,6 +2,7 @@
 // table is read through TableReader, so unknown keys, wrong types and out-of-range values are
 // errors naming the file, line and column.
 #include <cstdio>
+#include <functional>
 #include <filesystem>
 #include <sstream>
 
@@ -212,19 +213,11 @@ static std::unique_ptr<Medium> buildMedium(const ShaderDesc& shader, VolumeRecor
     }
 }
 
-Scene loadScene(const std::string& path, const LoadOptions& options, const ColorPipeline& color) {
-    if (isVolumeFile(path)) return sceneFromVdb(path, options, color);
-    toml::table doc = parseTomlFile(path);
-    for (const auto& o : options.overrides) applyOverride(doc, o);
-    std::string dir = fs::path(path).parent_path().string();
-    auto resolve = [&](const std::string& p) {
-        return fs::path(p).is_relative() && !dir.empty() ? (fs::path(dir) / p).string() : p;
-    };
-
-    Scene scene;
-    scene.source = path;
-    TableReader top(doc, path, "");
-
+// [film], [render] and [output]: the settings a bare VDB takes from --set as well.
+static void readSettings(const TableReader& top,
+                         const std::function<std::string(const std::string&)>& resolve,
+                         Scene* out) {
+    Scene& scene = *out;
     if (auto f = top.optionalTable("film")) {
         if (f->has("resolution")) {
             auto r = f->getNumbers("resolution", 2, 2);
@@ -272,6 +265,22 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
         scene.output.view = o->getString("view", "Standard");
         o->finish();
     }
+}
+
+Scene loadScene(const std::string& path, const LoadOptions& options, const ColorPipeline& color) {
+    if (isVolumeFile(path)) return sceneFromVdb(path, options, color);
+    toml::table doc = parseTomlFile(path);
+    for (const auto& o : options.overrides) applyOverride(doc, o);
+    std::string dir = fs::path(path).parent_path().string();
+    auto resolve = [&](const std::string& p) {
+        return fs::path(p).is_relative() && !dir.empty() ? (fs::path(dir) / p).string() : p;
+    };
+
+    Scene scene;
+    scene.source = path;
+    TableReader top(doc, path, "");
+
+    readSettings(top, resolve, &scene);
 
     for (const auto& v : top.tables("volume")) {
         VolumeRecord rec;
@@ -339,6 +348,15 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
     rec.file = expandFramePattern(path, options.frame);
     if (!fs::exists(rec.file)) throw MirageError("volume file not found: " + rec.file);
     rec.shader = "smoke";
+    if (!options.overrides.empty()) {
+        // No scene file: --set reaches the settings tables only; anything else (a light, a
+        // volume, a typo) is an unknown key rather than silently ignored.
+        toml::table doc;
+        for (const auto& o : options.overrides) applyOverride(doc, o);
+        TableReader top(doc, "--set (bare volume " + path + ")", "");
+        readSettings(top, [](const std::string& p) { return p; }, &scene);
+        top.finish();
+    }
     ShaderDesc shader = loadShader("smoke", "");
     scene.render.media.push_back(
         buildMedium(shader, rec, {}, Transform(), scene.majorantResolution, FileLoc{rec.file, 0, 0}));
@@ -350,7 +368,9 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
     scene.render.lights.push_back(makeDistantLight(
         Vec3(1.f, -1.2f, -0.8f), kUnitWhiteIrradiance,
         rgbIlluminantSpectrum(Vec3(1.f, 1.f, 1.f), color.xyzToWorking())));
-    scene.output.path = (fs::path(rec.file).stem().string() + ".exr");
+    bool pathSet = std::any_of(options.overrides.begin(), options.overrides.end(),
+                               [](const std::string& o) { return o.rfind("output.path=", 0) == 0; });
+    if (!pathSet) scene.output.path = (fs::path(rec.file).stem().string() + ".exr");
     return scene;
 }
 

@@ -329,3 +329,25 @@ TEST_F(BadInput, CommandExitsNonZeroWithOneBoundedLine) {
     for (const char* out : {"a", "b", "c", "d"})
         EXPECT_FALSE(std::filesystem::exists(dir + "/" + out + ".exr")) << out;
 }
+
+// A bare VDB has no scene file: --set reaches [film], [render] and [output] and nothing else.
+// (It used to be ignored altogether: `render smoke.vdb --set film.spp=0` rendered at 16 spp.)
+TEST_F(BadInput, SetOnABareVolumeIsAppliedOrRefused) {
+    ColorPipeline color;
+    Scene s = loadScene(good, LoadOptions{1, {"film.spp=3", "render.integrator=volpath"}}, color);
+    EXPECT_EQ(s.settings.spp, 3);
+    EXPECT_EQ(s.integrator, "volpath");
+    EXPECT_EQ(s.output.path, "good.exr");
+    auto error = [&](const std::string& o) {
+        try {
+            loadScene(good, LoadOptions{1, {o}}, color);
+        } catch (const MirageError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    expectClearMessage(error("film.spp=0"), {"--set", "good.vdb", "spp", "1 to"}, "spp 0");
+    expectClearMessage(error("nope.key=1"), {"--set", "unknown key 'nope'", "film, render, output"},
+                       "unknown key");
+    expectClearMessage(error("light.0.color=[1,0,0]"), {"unknown key 'light'"}, "light");
+}

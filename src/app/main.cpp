@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
     render->add_option("--spp", ro.spp, "Samples per pixel")->check(CLI::Range(1, 1 << 20));
     render->add_option("--threads", ro.threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 4096));
-    render->add_option("--seed", ro.seed, "Random seed")->check(CLI::NonNegativeNumber);
+    render->add_option("--seed", ro.seed, "Random seed")->check(CLI::Range(int64_t(0), INT64_MAX));
     render->add_option("--turntable", ro.turntable, "Render N frames orbiting the volume")
         ->check(CLI::Range(1, 100000));
     render->add_option("--integrator", ro.integrator,
@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
     tradeoff->add_option("--integrator", to.integrator, "single, volpath or photon unless varied");
     tradeoff->add_option("--threads", to.threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 4096));
-    tradeoff->add_option("--seed", to.seed, "Random seed")->check(CLI::NonNegativeNumber);
+    tradeoff->add_option("--seed", to.seed, "Random seed")->check(CLI::Range(int64_t(0), INT64_MAX));
     tradeoff->add_option("--repeats", to.repeats, "Renders per setting; the median time is kept")
         ->check(CLI::Range(1, 1000));
     tradeoff->add_option("-o,--output", to.prefix,

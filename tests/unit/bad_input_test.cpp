@@ -328,6 +328,12 @@ TEST_F(BadInput, CommandExitsNonZeroWithOneBoundedLine) {
     }
     for (const char* out : {"a", "b", "c", "d"})
         EXPECT_FALSE(std::filesystem::exists(dir + "/" + out + ".exr")) << out;
+    // Command-line syntax: exit 2, and a range that fits on a line (a negative seed used to
+    // print the 309-digit maximum of a double).
+    std::string log;
+    EXPECT_EQ(test::runMirage("render '" + ok + "' --seed -5 -o '" + dir + "/e.exr'", &log), 2);
+    EXPECT_NE(log.find("--seed"), std::string::npos) << log;
+    EXPECT_LT(log.size(), 200u) << log;
 }
 
 // A bare VDB has no scene file: --set reaches [film], [render] and [output] and nothing else.

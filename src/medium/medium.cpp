@@ -175,6 +175,29 @@ void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantRes
         throw MirageError("shader '" + mShader.name + "': its components sum to σt up to " +
                           formatNumber(sigmaMax) + " 1/m, above the limit of " +
                           formatNumber(kMaxSigma) + " 1/m; lower density_scale");
+    checkEmissionBound(sigmaMax);
+}
+
+// The emission term σa·Le (W·m⁻³·sr⁻¹·nm⁻¹) at the hottest voxel, bounded by σt·max_λ B(λ, T):
+// refused above kMaxSigma as well, where a hot grid (voxels up to kMaxVoxelValue K), a large
+// intensity and a dense medium would multiply past float's range and every emitting sample
+// would be dropped as non-finite.
+void Medium::checkEmissionBound(double sigmaMax) const {
+    if (!mShader.emission || mGrids.empty()) return;
+    const EmissionSpec& e = *mShader.emission;
+    auto slots = mShader.gridSlots();
+    size_t slot = std::find(slots.begin(), slots.end(), e.temperatureGrid) - slots.begin();
+    if (slot >= mGrids.size()) return;
+    double T = double(mGrids[slot].maxValue()) * e.temperatureScale + e.temperatureOffset;
+    double leMax = 0.0;  // Planck's maximum over the visible: sampled every 5 nm
+    for (float l = kLambdaMin; l <= kLambdaMax; l += 5.f)
+        leMax = std::max(leMax, planck(l, T) * 1e-9 * e.intensity);
+    if (!(sigmaMax * leMax <= kMaxSigma))
+        throw MirageError("shader '" + mShader.name + "': emission σa·Le up to " +
+                          formatNumber(sigmaMax * leMax) + " W/(m³·sr·nm) at " +
+                          formatNumber(T) + " K (grid '" + mGrids[slot].name() +
+                          "') is above the limit of " + formatNumber(kMaxSigma) +
+                          "; lower the temperature scale, intensity or density");
 }
 
 // The largest σt = σa + σs of one component anywhere in the medium, in double so that the

@@ -110,6 +110,7 @@ public:
 private:
     void buildMajorantAndPhases(const Bounds3& objectBounds, int majorantResolution);
     double checkedSigmaMax(const MediumComponent& c, const FloatGrid* grid, float k) const;
+    void checkEmissionBound(double sigmaMax) const;
     // A chlorophyll component's σa (added to *sigmaA) and σs (written) at grid value c.
     void powerLawAt(const Context& ctx, int i, float gridValue, SampledSpectrum* sigmaA,
                     SampledSpectrum* sigmaS) const;

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "film/color.h"
+#include "medium/medium.h"
 #include "scene/scene.h"
 #include "test_support.h"
 #include "volume/asset_writer.h"
@@ -356,4 +357,36 @@ TEST_F(BadInput, SetOnABareVolumeIsAppliedOrRefused) {
     expectClearMessage(error("nope.key=1"), {"--set", "unknown key 'nope'", "film, render, output"},
                        "unknown key");
     expectClearMessage(error("light.0.color=[1,0,0]"), {"unknown key 'light'"}, "light");
+}
+
+// Emission: a temperature grid clamped at the voxel ceiling (1e10 K), intensity 1e12 and a
+// dense medium multiply σa·Le past 1e30: refused naming the temperature grid, instead of every
+// emitting sample overflowing to ∞ and being dropped.
+TEST(BadInputLibrary, OverflowingEmissionIsRefusedNamingTheTemperatureGrid) {
+    ShaderDesc s;
+    s.name = "furnace";
+    MediumComponent c;
+    c.name = "soot";
+    c.grid = "density";
+    c.sigmaA = Spectrum(1.f);
+    s.components.push_back(c);
+    EmissionSpec e;
+    e.temperatureGrid = "temperature";
+    e.intensity = 1e12f;
+    s.emission = e;
+    auto dense = [](int, int, int) { return 1e6f; };
+    auto hot = [](int, int, int) { return kMaxVoxelValue; };
+    std::vector<FloatGrid> grids{test::makeGrid(dense, 0, 3, 0.1, Vec3d(0.0), "density"),
+                                 test::makeGrid(hot, 0, 3, 0.1, Vec3d(0.0), "temperature")};
+    try {
+        Medium m(s, grids, Transform(), 1.f, 4);
+        ADD_FAILURE() << "σa·Le beyond float range was accepted";
+    } catch (const MirageError& err) {
+        expectClearMessage(err.what(), {"shader 'furnace'", "emission", "grid 'temperature'"},
+                           "emission overflow");
+    }
+    // The same medium at 1e5 K is legal.
+    grids[1] = test::makeGrid([](int, int, int) { return 1e5f; }, 0, 3, 0.1, Vec3d(0.0),
+                              "temperature");
+    EXPECT_NO_THROW(Medium(s, grids, Transform(), 1.f, 4));
 }

@@ -164,7 +164,15 @@ std::vector<std::pair<std::string, std::string>> bindGrids(
                 bound = true;
             }
         bool isIndex = !target.empty() && target[0] == '#';
-        bool found = isIndex || nano ||
+        // "#N" must name one of the file's grids (checked here, where the scene line is known).
+        bool indexInRange = false;
+        if (isIndex && !nano) {
+            const std::string digits = target.substr(1);
+            indexInRange = !digits.empty() && digits.size() < 10 &&
+                           digits.find_first_not_of("0123456789") == std::string::npos &&
+                           std::stoul(digits) < names.size();
+        }
+        bool found = (isIndex && (nano || indexInRange)) || nano ||
                      std::find(names.begin(), names.end(), target) != names.end();
         if (!found && !bound && slots.size() == 1 && names.size() == 1) {
             target = names[0].empty() ? "#0" : names[0];  // the file's only grid
@@ -291,7 +299,8 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
         rec.shader = v.getString("shader", "smoke");
         ShaderDesc shader;
         try {
-            shader = loadShader(rec.shader, dir);
+            // A scene in the working directory has dir "": its neighbours are in ".".
+            shader = loadShader(rec.shader, dir.empty() ? "." : dir);
         } catch (const MirageError& e) {
             if (e.location().line > 0) throw;  // an error inside the shader file itself
             v.fail("shader", e.what());

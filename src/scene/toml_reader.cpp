@@ -1,6 +1,7 @@
 #include "scene/toml_reader.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -213,6 +214,10 @@ toml::table parseTomlText(const std::string& text, const std::string& name) {
 }
 
 toml::table parseTomlFile(const std::string& path) {
+    // A directory opens as an empty stream on Linux: it would parse as an empty scene.
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw MirageError(FileLoc{path, 0, 0}, "is a directory, expected a scene file (.toml)");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw MirageError(FileLoc{path, 0, 0}, "cannot open the file (missing or unreadable)");
     std::stringstream ss;

@@ -390,3 +390,27 @@ TEST(BadInputLibrary, OverflowingEmissionIsRefusedNamingTheTemperatureGrid) {
                               "temperature");
     EXPECT_NO_THROW(Medium(s, grids, Transform(), 1.f, 4));
 }
+
+// Defects the matrix found in the scene loader: a directory parsed as an empty scene and
+// rendered black; "#N" bindings past the file's grids failed later without the scene line; a
+// shader file next to a scene given relative to the working directory was not found.
+TEST_F(BadInput, DirectoriesOutOfRangeIndicesAndShadersNextToARelativeScene) {
+    std::filesystem::create_directories(dir + "/folder");
+    expectClearMessage(sceneError(dir + "/folder"), {dir + "/folder", "is a directory"},
+                       "directory as scene");
+    for (const std::string index : {"#1", "#-1", "#99999999999999999999"}) {
+        std::string s = scene("index.toml",
+                              sceneFor("good.vdb", "bind = { density = \"" + index + "\" }\n"));
+        expectClearMessage(sceneError(s), {s + ":6:8", "no grid '" + index + "'", "'density'"},
+                           index);
+    }
+    scene("grey.toml", "name = \"grey\"\n[[component]]\nname = \"soot\"\ngrid = \"density\"\n"
+                       "sigma_a = 0.5\nsigma_s = 0.5\n");
+    scene("grey_scene.toml", sceneFor("good.vdb", "", "grey"));
+    std::string log;
+    EXPECT_EQ(test::runCommand("cd '" + dir + "' && '" MIRAGE_BINARY "' info grey_scene.toml",
+                               &log),
+              0)
+        << log;
+    EXPECT_NE(log.find("shader 'grey'"), std::string::npos) << log;
+}

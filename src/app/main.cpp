@@ -28,7 +28,7 @@ int main(int argc, char** argv) {
     render->add_option("--spp", ro.spp, "Samples per pixel")->check(CLI::Range(1, 1 << 20));
     render->add_option("--threads", ro.threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 4096));
-    render->add_option("--seed", ro.seed, "Random seed")->check(CLI::NonNegativeNumber);
+    render->add_option("--seed", ro.seed, "Random seed")->check(CLI::Range(int64_t(0), INT64_MAX));
     render->add_option("--turntable", ro.turntable, "Render N frames orbiting the volume")
         ->check(CLI::Range(1, 100000));
     render->add_option("--integrator", ro.integrator,
@@ -75,21 +75,22 @@ int main(int argc, char** argv) {
         ->take_all();
     slab->add_option("--thickness", so.thickness,
                      "With --shader: slab thickness in metres (default: a deep column)")
-        ->check(CLI::PositiveNumber);
+        ->check(CLI::Range(1e-9, 1e9));
     slab->add_flag("--spectral", so.spectral,
                    "Flat 380–780 nm source: reflectance/transmittance per 5 nm bin");
     slab->add_option("--g", so.g, "Henyey–Greenstein asymmetry")
         ->check(CLI::Range(-0.9999, 0.9999));
-    slab->add_option("--n", so.n, "Refractive index of the slab")->check(CLI::PositiveNumber);
+    slab->add_option("--n", so.n, "Refractive index of the slab")->check(CLI::Range(0.01, 100.0));
     slab->add_option("--n-outside", so.nOutside, "Refractive index around the slab (default 1)")
-        ->check(CLI::PositiveNumber);
+        ->check(CLI::Range(0.01, 100.0));
     slab->add_option("--incidence", so.incidence, "normal (collimated) or diffuse (Lambertian)")
         ->check(CLI::IsMember({"normal", "diffuse"}));
-    slab->add_option("--photons", so.photons, "Photons to trace")->check(CLI::PositiveNumber);
+    slab->add_option("--photons", so.photons, "Photons to trace")
+        ->check(CLI::Range(uint64_t(1), uint64_t(1) << 40));
     slab->add_option("--seed", so.seed, "Random seed");
     slab->add_option("--max-events", so.maxEvents,
                      "Cap on scatterings + internal reflections per photon (capped: reported)")
-        ->check(CLI::PositiveNumber);
+        ->check(CLI::Range(int64_t(1), int64_t(1) << 40));
     slab->add_option("--threads", so.threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 4096));
     slab->add_flag("--json", so.json, "Print the result as JSON");
@@ -118,7 +119,7 @@ int main(int argc, char** argv) {
     tradeoff->add_option("--integrator", to.integrator, "single, volpath or photon unless varied");
     tradeoff->add_option("--threads", to.threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 4096));
-    tradeoff->add_option("--seed", to.seed, "Random seed")->check(CLI::NonNegativeNumber);
+    tradeoff->add_option("--seed", to.seed, "Random seed")->check(CLI::Range(int64_t(0), INT64_MAX));
     tradeoff->add_option("--repeats", to.repeats, "Renders per setting; the median time is kept")
         ->check(CLI::Range(1, 1000));
     tradeoff->add_option("-o,--output", to.prefix,

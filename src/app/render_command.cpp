@@ -208,6 +208,10 @@ int runRender(const RenderOptions& o) {
             return interruptExitCode();
         }
         const Integrator* integrator = rendered.integrator.get();
+        // Every sample or photon the guards dropped, and every path a cap cut, both passes.
+        const uint64_t nonFinitePhotons = integrator->nonFinitePhotons();
+        const uint64_t cappedPaths =
+            integrator->cappedPaths() + stats.cappedFlights + integrator->cappedPhotonPaths();
         Image& image = rendered.image;
 
         auto tWrite = std::chrono::steady_clock::now();
@@ -231,8 +235,9 @@ int runRender(const RenderOptions& o) {
                         {"frame", std::to_string(frame)},
                         {"integrator", integrator->name()},
                         {"render_seconds", std::to_string(stats.seconds)},
-                        {"nonfinite_samples", std::to_string(stats.nonFiniteSamples)},
-                        {"capped_paths", std::to_string(integrator->cappedPaths())},
+                        {"nonfinite_render", std::to_string(stats.nonFiniteSamples)},
+                        {"nonfinite_photons", std::to_string(nonFinitePhotons)},
+                        {"capped_paths", std::to_string(cappedPaths)},
                         {"version", MIRAGE_VERSION},
                         {"ocio_config", color.configDescription()}};
         exr.metadata["complete"] = "true";  // --skip-existing trusts only this
@@ -250,12 +255,13 @@ int runRender(const RenderOptions& o) {
             double mlps = stats.seconds > 0 ? stats.mediumLookups / stats.seconds / 1e6 : 0;
             std::fprintf(stderr,
                          "frame %d: %dx%d, %d spp, %llu samples | load %.2fs, render %.2fs, "
-                         "write %.2fs | %.1f M medium lookups/s | non-finite samples %llu | "
-                         "paths cut at max_depth %llu | peak memory %s\n",
+                         "write %.2fs | %.1f M medium lookups/s | non-finite dropped: %llu "
+                         "samples, %llu photons | capped paths %llu | peak memory %s\n",
                          frame, s.width, s.height, s.spp, (unsigned long long)stats.samples,
                          loadSeconds, stats.seconds, writeSeconds, mlps,
                          (unsigned long long)stats.nonFiniteSamples,
-                         (unsigned long long)integrator->cappedPaths(), formatBytes(peakMemoryBytes()).c_str());
+                         (unsigned long long)nonFinitePhotons, (unsigned long long)cappedPaths,
+                         formatBytes(peakMemoryBytes()).c_str());
             if (partial.writes() > 0)
                 std::fprintf(
                     stderr, "frame %d: partial file: %d writes, %.3fs (%.2f %% of render)\n",

@@ -9,6 +9,12 @@ namespace mirage {
 
 namespace {
 
+std::string formatNumber(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    return buf;
+}
+
 void checkComponentCount(const ShaderDesc& shader) {
     if (shader.components.empty() || int(shader.components.size()) > kMaxComponents)
         throw MirageError("shader '" + shader.name + "': expected 1 to " +
@@ -138,11 +144,13 @@ void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantRes
     auto slots = mShader.gridSlots();
     mMajorant = MajorantGrid(objectBounds, majorantResolution);
     bool greyAll = true;
+    double sigmaMax = 0.0;  // the largest σt anywhere, summed over components, 1/m
     for (const auto& c : mShader.components) {
         const float k = c.concentration * mDensityScale;
         const FloatGrid* grid = nullptr;
         if (!c.grid.empty())
             grid = &mGrids[std::find(slots.begin(), slots.end(), c.grid) - slots.begin()];
+        sigmaMax += checkedSigmaMax(c, grid, k);
         if (c.kind == ComponentKind::Chlorophyll) {
             // σ is non-linear in C: bound it at each cell's largest C = k × grid max.
             PowerLawBound bound(c);
@@ -167,6 +175,54 @@ void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantRes
                                                 : FluorescenceEmission());
     }
     mGreyCoefficients = greyAll;
+    if (!(sigmaMax <= kMaxSigma))
+        throw MirageError("shader '" + mShader.name + "': its components sum to σt up to " +
+                          formatNumber(sigmaMax) + " 1/m, above the limit of " +
+                          formatNumber(kMaxSigma) + " 1/m; lower density_scale");
+    checkEmissionBound(sigmaMax);
+}
+
+// The emission term σa·Le (W·m⁻³·sr⁻¹·nm⁻¹) at the hottest voxel, bounded by σt·max_λ B(λ, T):
+// refused above kMaxSigma as well, where a hot grid (voxels up to kMaxVoxelValue K), a large
+// intensity and a dense medium would multiply past float's range and every emitting sample
+// would be dropped as non-finite.
+void Medium::checkEmissionBound(double sigmaMax) const {
+    if (!mShader.emission || mGrids.empty()) return;
+    const EmissionSpec& e = *mShader.emission;
+    auto slots = mShader.gridSlots();
+    size_t slot = std::find(slots.begin(), slots.end(), e.temperatureGrid) - slots.begin();
+    if (slot >= mGrids.size()) return;
+    double T = double(mGrids[slot].maxValue()) * e.temperatureScale + e.temperatureOffset;
+    double leMax = 0.0;  // Planck's maximum over the visible: sampled every 5 nm
+    for (float l = kLambdaMin; l <= kLambdaMax; l += 5.f)
+        leMax = std::max(leMax, planck(l, T) * 1e-9 * e.intensity);
+    if (!(sigmaMax * leMax <= kMaxSigma))
+        throw MirageError("shader '" + mShader.name + "': emission σa·Le up to " +
+                          formatNumber(sigmaMax * leMax) + " W/(m³·sr·nm) at " +
+                          formatNumber(T) + " K (grid '" + mGrids[slot].name() +
+                          "') is above the limit of " + formatNumber(kMaxSigma) +
+                          "; lower the temperature scale, intensity or density");
+}
+
+// The largest σt = σa + σs of one component anywhere in the medium, in double so that the
+// product cannot overflow before it is compared. Refuses (MirageError naming the shader,
+// component and grid) a product above kMaxSigma: beyond it, float sums of σ, optical depths
+// and σa·Le overflow to ∞ and every estimate that touches the medium is lost.
+double Medium::checkedSigmaMax(const MediumComponent& c, const FloatGrid* grid, float k) const {
+    const double gridMax = grid ? double(grid->maxValue()) : 1.0;
+    double sigma = c.kind == ComponentKind::Chlorophyll
+                       ? double(PowerLawBound(c)(float(std::min(double(k) * gridMax, 3e38))))
+                       : double(k) * gridMax * (double(c.sigmaA.maxValue()) + c.sigmaS.maxValue());
+    if (!(sigma <= kMaxSigma))
+        throw MirageError("shader '" + mShader.name + "': component '" + c.name + "'" +
+                          (grid ? " on grid '" + grid->name() + "' (max value " +
+                                      formatNumber(gridMax) + ")"
+                                : std::string()) +
+                          ": σt up to " + formatNumber(sigma) +
+                          " 1/m (concentration × density_scale × grid × cross-section) is above "
+                          "the limit of " + formatNumber(kMaxSigma) +
+                          " 1/m; lower density_scale, concentration or the cross-sections");
+    return sigma;
 }
 
 Medium::Context::Context(const Medium& m) : mMedium(&m) {

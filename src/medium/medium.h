@@ -29,6 +29,10 @@ struct MediumPoint {
     std::array<SampledSpectrum, kMaxComponents> sigmaSComponent;  // for the phase mixture
 };
 
+// The largest σt (1/m) a medium may reach: a mean free path of 1e-30 m is beyond any physics,
+// and above it float sums of σ and products like σa·Le overflow. Larger products are refused.
+constexpr double kMaxSigma = 1e30;
+
 class Medium {
 public:
     // `grids` holds one grid per entry of shader.gridSlots(), in that order.
@@ -145,6 +149,8 @@ public:
 
 private:
     void buildMajorantAndPhases(const Bounds3& objectBounds, int majorantResolution);
+    double checkedSigmaMax(const MediumComponent& c, const FloatGrid* grid, float k) const;
+    void checkEmissionBound(double sigmaMax) const;
     // A chlorophyll component's σa (added to *sigmaA) and σs (written) at grid value c.
     void powerLawAt(const Context& ctx, int i, float gridValue, SampledSpectrum* sigmaA,
                     SampledSpectrum* sigmaS) const;

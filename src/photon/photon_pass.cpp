@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <optional>
 
 #include "photon/medium_emitter.h"
@@ -65,7 +66,14 @@ struct PhotonPath {
     bool capped = false;
     bool fromMedium = false;  // emitted by an emissive medium
     double power = 0.0;       // W the photon left its source with
+    bool nonFinite = false;  // a photon with non-finite power or position was dropped
 };
+
+// A photon reaches a map only if everything an estimate reads from it is finite: one NaN or ∞
+// power would poison every estimate whose search finds it. The path ends at such a photon.
+bool finitePhoton(const Photon& ph) {
+    return std::isfinite(ph.power) && isFinite(ph.p) && isFinite(ph.wi) && std::isfinite(ph.lambda);
+}
 
 // Photon `index`: emission, then flights until it leaves every medium, is absorbed, or has
 // scattered maxBounces times. Appends its stored photons to *out.
@@ -91,7 +99,8 @@ PhotonPath tracePhoton(uint64_t index, const std::vector<const Light*>& lights,
         return path;
     }
     float power = photonPower * em.weight;
-    if (!(power > 0.f)) return path;
+    if (!std::isfinite(power)) path.nonFinite = true;
+    if (!(power > 0.f) || path.nonFinite) return path;
     path.power = power;
     walk.setWavelength(em.lambda);
 
@@ -117,9 +126,14 @@ PhotonPath tracePhoton(uint64_t index, const std::vector<const Light*>& lights,
                 power *= bs.weight[0];
                 wiL = bs.wi;
             } else {
-                if (!direct)
-                    (specularOnly ? out->surfaceCaustic : out->surfaceGlobal)
-                        .push_back(Photon{hit->p, ray.d, walk.wavelength(), power});
+                if (!direct) {
+                    Photon ph{hit->p, ray.d, walk.wavelength(), power};
+                    if (!finitePhoton(ph)) {
+                        path.nonFinite = true;
+                        return path;
+                    }
+                    (specularOnly ? out->surfaceCaustic : out->surfaceGlobal).push_back(ph);
+                }
                 // Albedo roulette: bounce with probability ρ(λ), power unchanged (f cos/pdf = ρ).
                 if (sampler.get1D() >= mat.albedo(walk.wavelength())) return path;
                 wiL = sampleCosineHemisphere(sampler.get1D(), sampler.get1D());
@@ -127,7 +141,8 @@ PhotonPath tracePhoton(uint64_t index, const std::vector<const Light*>& lights,
                 specularOnly = false;
             }
             direct = false;
-            if (!(power > 0.f)) return path;
+            path.nonFinite = !std::isfinite(power);
+            if (!(power > 0.f) || path.nonFinite) return path;
             if (++bounces >= settings.maxBounces) {
                 path.capped = true;
                 return path;
@@ -140,13 +155,20 @@ PhotonPath tracePhoton(uint64_t index, const std::vector<const Light*>& lights,
         // A fluorescent re-emission is not stored: its light leaves isotropically at a new
         // wavelength, which the estimates' elastic phase lobes do not describe. The photon goes
         // on at walk.wavelength() with power × λi/λo (photon_walk.h), and its later events are.
-        if (ev.end == FlightEnd::Scattered && (!direct || settings.storeFirstInteraction))
-            out->volume.push_back(Photon{ev.p, ev.wi, walk.wavelength(), power});
+        if (ev.end == FlightEnd::Scattered && (!direct || settings.storeFirstInteraction)) {
+            Photon ph{ev.p, ev.wi, walk.wavelength(), power};
+            if (!finitePhoton(ph)) {
+                path.nonFinite = true;
+                return path;
+            }
+            out->volume.push_back(ph);
+        }
         direct = false;
         specularOnly = false;
         ++bounces;
         power *= ev.weight;
-        if (!(power > 0.f)) return path;
+        path.nonFinite = !std::isfinite(power);
+        if (!(power > 0.f) || path.nonFinite) return path;
         if (bounces >= settings.maxBounces) {
             path.capped = true;
             return path;
@@ -191,7 +213,8 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
         const float photonPower = float(chooser.totalPower() / double(n));
         const uint64_t blocks = (n + kBlockPhotons - 1) / kBlockPhotons;
         std::vector<PhotonMapLists> blockPhotons(blocks);
-        std::vector<uint64_t> blockCapped(blocks, 0), blockFromMedia(blocks, 0);
+        std::vector<uint64_t> blockCapped(blocks, 0), blockFromMedia(blocks, 0),
+            blockNonFinite(blocks, 0);
         std::vector<double> blockPower(blocks, 0.0);
         Progress progress("photons", n, "photons", settings.progress);
 
@@ -201,10 +224,14 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
                 for (uint64_t b = r.begin(); b != r.end(); ++b) {
                     uint64_t first = b * kBlockPhotons, last = std::min(n, first + kBlockPhotons);
                     for (uint64_t i = first; i < last; ++i) {
+                        uint64_t flightsCut = walk.tracking().cappedFlights;
                         PhotonPath path =
                             tracePhoton(i, lights, emitters, emitterMedium, chooser, bounds,
                                         photonPower, settings, geometry, walk, &blockPhotons[b]);
-                        blockCapped[b] += path.capped;
+                        // A flight cut at the collision cap (tracking.h) caps the path too.
+                        blockCapped[b] +=
+                            path.capped || walk.tracking().cappedFlights != flightsCut;
+                        blockNonFinite[b] += path.nonFinite;
                         blockFromMedia[b] += path.fromMedium;
                         blockPower[b] += path.power;
                     }
@@ -231,6 +258,7 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
             local.cappedPaths += blockCapped[b];
             local.fromMedia += blockFromMedia[b];
             local.emittedPower += blockPower[b];
+            local.nonFinite += blockNonFinite[b];
         }
         local.emitted = n;
     }

@@ -40,10 +40,12 @@ struct PhotonPassSettings {
 };
 
 struct PhotonPassStats {
-    uint64_t emitted = 0, stored = 0, cappedPaths = 0;
-    uint64_t fromMedia = 0;   // photons emitted by emissive media (fire)
-    double mediumPower = 0;   // W over 360–830 nm, the media emitters' tabulated power
-    double emittedPower = 0;  // W, Σ of every photon's power as it left its source
+    uint64_t emitted = 0, stored = 0;
+    uint64_t cappedPaths = 0;  // cut at maxBounces or at the collision cap of one flight
+    uint64_t nonFinite = 0;    // photons dropped for a non-finite power/position (path ended)
+    uint64_t fromMedia = 0;    // photons emitted by emissive media (fire)
+    double mediumPower = 0;    // W over 360–830 nm, the media emitters' tabulated power
+    double emittedPower = 0;   // W, Σ of every photon's power as it left its source
     double seconds = 0;
 };
 

@@ -21,6 +21,7 @@ FlightEvent PhotonWalk::fly(const Ray& ray, float tMax, Sampler& sampler) {
     ev.end = FlightEnd::Escaped;
     ev.p = ray.o;
     ev.wi = ray.d;
+    const uint64_t capped = mTracking.cappedFlights;
     trackCollisions(mTracking, ray, tMax, sampler, [&](const Collision& c) {
         // All four wavelengths are the photon's, so the means eventProbabilities takes are
         // the probabilities at index 0: P_a = σa(λ)/σ̄, P_s = σs(λ)/σ̄, P_n = σn(λ)/σ̄.
@@ -56,6 +57,9 @@ FlightEvent PhotonWalk::fly(const Ray& ray, float tMax, Sampler& sampler) {
         }
         return Track::Continue;
     });
+    // A flight cut at the collision cap ends the photon where it stands (counted by the caller
+    // through tracking().cappedFlights).
+    if (mTracking.cappedFlights != capped) ev.end = FlightEnd::Absorbed;
     // The new wavelength, once tracking no longer uses the contexts' old one.
     if (ev.end == FlightEnd::Reemitted) setWavelength(ev.lambdaOut);
     return ev;

@@ -55,6 +55,10 @@ public:
                               ThreadState& ts) const = 0;
     // Paths cut at the depth cap so far (a bias, reported in the summary).
     virtual uint64_t cappedPaths() const { return 0; }
+    // Photon pass (photon integrator only): photons dropped for a non-finite power or position,
+    // and photon paths cut at the bounce or collision cap.
+    virtual uint64_t nonFinitePhotons() const { return 0; }
+    virtual uint64_t cappedPhotonPaths() const { return 0; }
     // One line of integrator-specific figures for the render summary ("" for none).
     virtual std::string summary() const { return ""; }
     // The photon integrator's figures; null for the others.

@@ -41,6 +41,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "core/error.h"
 #include "photon/beam_estimate.h"
 #include "photon/photon_pass.h"
 #include "photon/surface_estimate.h"
@@ -197,6 +198,8 @@ public:
     }
 
     uint64_t cappedPaths() const override { return mSingle->cappedPaths(); }
+    uint64_t nonFinitePhotons() const override { return mPassStats.nonFinite; }
+    uint64_t cappedPhotonPaths() const override { return mPassStats.cappedPaths; }
 
 private:
     static constexpr int kMaxSpecularBounces = 16;
@@ -270,6 +273,11 @@ private:
 }  // namespace
 
 std::unique_ptr<Integrator> makePhotonIntegrator(const PhotonIntegratorSettings& settings) {
+    // The scene loader refuses k = 1 with its location; callers of the library get the same
+    // message instead of the estimators' internal check.
+    if (settings.k == 1)
+        throw MirageError("photon integrator: k = 1: expected 0 (the default for the estimate) "
+                          "or at least 2 photons per estimate");
     return std::make_unique<PhotonMapIntegrator>(settings);
 }
 

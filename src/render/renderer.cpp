@@ -40,7 +40,7 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
 
     Progress progress("render", uint64_t(tiles), "tiles", s.progress);
     if (resumed > 0) progress.advance(uint64_t(resumed));
-    std::atomic<uint64_t> lookups{0};
+    std::atomic<uint64_t> lookups{0}, cappedFlights{0};
     std::atomic<int64_t> finishedNow{0};
     std::mutex checkpointMutex;
     tbb::enumerable_thread_specific<ThreadState> states([&] { return ThreadState(scene); });
@@ -51,7 +51,7 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
         tbb::blocked_range<int>(0, tiles, 1),
         [&](const tbb::blocked_range<int>& r) {
             ThreadState& ts = states.local();
-            uint64_t before = ts.tracking.lookups;
+            uint64_t before = ts.tracking.lookups, cappedBefore = ts.tracking.cappedFlights;
             for (int tile = r.begin(); tile < r.end(); ++tile) {
                 if (done[tile].load(std::memory_order_relaxed) || interruptRequested()) continue;
                 int x0 = (tile % tilesX) * s.tileSize, y0 = (tile / tilesX) * s.tileSize;
@@ -84,6 +84,7 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
                 }
             }
             lookups += ts.tracking.lookups - before;
+            cappedFlights += ts.tracking.cappedFlights - cappedBefore;
         },
         tbb::simple_partitioner());
     progress.finish();
@@ -108,6 +109,7 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
         stats->tilesDone = tilesDone;
         stats->tilesResumed = resumed;
         stats->interrupted = tilesDone < tiles;
+        stats->cappedFlights = cappedFlights.load();
     }
     return film;
 }

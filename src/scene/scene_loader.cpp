@@ -2,6 +2,7 @@
 // table is read through TableReader, so unknown keys, wrong types and out-of-range values are
 // errors naming the file, line and column.
 #include <cstdio>
+#include <functional>
 #include <filesystem>
 #include <sstream>
 
@@ -121,6 +122,15 @@ Transform readTransform(const TableReader& t) {
         const toml::node* n = t.node("scale");
         Vec3d s = n->is_number() ? Vec3d(t.getNumber("scale")) : Vec3d(t.getVec3("scale"));
         if (s.x == 0 || s.y == 0 || s.z == 0) t.fail("scale", "a zero scale collapses the volume");
+        // Grids already span 1e-5 m to 1e4 m voxels; a scale beyond 1e±6 on top of that leaves
+        // single-precision ray parameters and bounds (float) without a useful digit.
+        for (double c : {s.x, s.y, s.z})
+            if (!(std::abs(c) >= 1e-6 && std::abs(c) <= 1e6)) {
+                char found[32];
+                std::snprintf(found, sizeof found, "%g", c);
+                t.fail("scale", std::string("expected each scale factor's magnitude from 1e-6 "
+                                            "to 1e6, found ") + found);
+            }
         xf = Transform::scale(s) * xf;
     }
     if (t.has("rotate")) {
@@ -148,12 +158,24 @@ std::vector<std::pair<std::string, std::string>> bindGrids(
     std::vector<std::pair<std::string, std::string>> out;
     for (const auto& slot : slots) {
         std::string target = slot;
+        bool bound = false;  // named by the scene's bind table: never replaced by a guess
         for (const auto& [s, g] : explicitBind)
-            if (s == slot) target = g;
+            if (s == slot) {
+                target = g;
+                bound = true;
+            }
         bool isIndex = !target.empty() && target[0] == '#';
-        bool found = isIndex || nano ||
+        // "#N" must name one of the file's grids (checked here, where the scene line is known).
+        bool indexInRange = false;
+        if (isIndex && !nano) {
+            const std::string digits = target.substr(1);
+            indexInRange = !digits.empty() && digits.size() < 10 &&
+                           digits.find_first_not_of("0123456789") == std::string::npos &&
+                           std::stoul(digits) < names.size();
+        }
+        bool found = (isIndex && (nano || indexInRange)) || nano ||
                      std::find(names.begin(), names.end(), target) != names.end();
-        if (!found && slots.size() == 1 && names.size() == 1) {
+        if (!found && !bound && slots.size() == 1 && names.size() == 1) {
             target = names[0].empty() ? "#0" : names[0];  // the file's only grid
             found = true;
         }
@@ -200,25 +222,22 @@ static std::unique_ptr<Medium> buildMedium(const ShaderDesc& shader, VolumeRecor
         }
         grids.push_back(loadFloatGrid(rec.file, gridName));
     }
-    return std::make_unique<Medium>(shader, std::move(grids), xf, rec.densityScale, majorantRes);
+    try {
+        return std::make_unique<Medium>(shader, std::move(grids), xf, rec.densityScale,
+                                        majorantRes);
+    } catch (const MirageError& e) {
+        // The medium names shader, component and grid; the scene names where it was asked for.
+        if (e.location().line > 0) throw;
+        if (where.line == 0) throw MirageError(rec.file + ": " + e.what());
+        throw MirageError(where, rec.file + ": " + e.what());
+    }
 }
 
-Scene loadScene(const std::string& path, const LoadOptions& options, const ColorPipeline& color) {
-    if (isVolumeFile(path)) return sceneFromVdb(path, options, color);
-    toml::table doc = parseTomlFile(path);
-    for (const auto& o : options.overrides) applyOverride(doc, o);
-    // A scene given as a bare file name lives in the working directory: its relative paths
-    // (shaders, volumes, meshes) resolve from "." like any other scene's from its folder.
-    std::string dir = fs::path(path).parent_path().string();
-    if (dir.empty()) dir = ".";
-    auto resolve = [&](const std::string& p) {
-        return fs::path(p).is_relative() && !dir.empty() ? (fs::path(dir) / p).string() : p;
-    };
-
-    Scene scene;
-    scene.source = path;
-    TableReader top(doc, path, "");
-
+// [film], [render] and [output]: the settings a bare VDB takes from --set as well.
+static void readSettings(const TableReader& top,
+                         const std::function<std::string(const std::string&)>& resolve,
+                         Scene* out) {
+    Scene& scene = *out;
     if (auto f = top.optionalTable("film")) {
         if (f->has("resolution")) {
             auto r = f->getNumbers("resolution", 2, 2);
@@ -266,6 +285,25 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
         scene.output.view = o->getString("view", "Standard");
         o->finish();
     }
+}
+
+Scene loadScene(const std::string& path, const LoadOptions& options, const ColorPipeline& color) {
+    if (isVolumeFile(path)) return sceneFromVdb(path, options, color);
+    toml::table doc = parseTomlFile(path);
+    for (const auto& o : options.overrides) applyOverride(doc, o);
+    // A scene given as a bare file name lives in the working directory: its relative paths
+    // (shaders, volumes, meshes) resolve from "." like any other scene's from its folder.
+    std::string dir = fs::path(path).parent_path().string();
+    if (dir.empty()) dir = ".";
+    auto resolve = [&](const std::string& p) {
+        return fs::path(p).is_relative() && !dir.empty() ? (fs::path(dir) / p).string() : p;
+    };
+
+    Scene scene;
+    scene.source = path;
+    TableReader top(doc, path, "");
+
+    readSettings(top, resolve, &scene);
 
     for (const auto& v : top.tables("volume")) {
         VolumeRecord rec;
@@ -276,7 +314,8 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
         rec.shader = v.getString("shader", "smoke");
         ShaderDesc shader;
         try {
-            shader = loadShader(rec.shader, dir);
+            // A scene in the working directory has dir "": its neighbours are in ".".
+            shader = loadShader(rec.shader, dir.empty() ? "." : dir);
         } catch (const MirageError& e) {
             if (e.location().line > 0) throw;  // an error inside the shader file itself
             v.fail("shader", e.what());
@@ -357,18 +396,21 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
 }
 
 Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const ColorPipeline& color) {
-    // A bare VDB has no scene document for --set to edit; ignoring the overrides silently would
-    // render something other than what the user asked for.
-    if (!options.overrides.empty())
-        throw MirageError("--set " + options.overrides.front() + ": " + path +
-                          " is a bare volume file with no scene keys to set; write a scene .toml "
-                          "that references it (README, \"Scene files (TOML)\") and use --set on that");
     Scene scene;
     scene.source = path;
     VolumeRecord rec;
     rec.file = expandFramePattern(path, options.frame);
     if (!fs::exists(rec.file)) throw MirageError("volume file not found: " + rec.file);
     rec.shader = "smoke";
+    if (!options.overrides.empty()) {
+        // No scene file: --set reaches the settings tables only; anything else (a light, a
+        // volume, a typo) is an unknown key rather than silently ignored.
+        toml::table doc;
+        for (const auto& o : options.overrides) applyOverride(doc, o);
+        TableReader top(doc, "--set (bare volume " + path + ")", "");
+        readSettings(top, [](const std::string& p) { return p; }, &scene);
+        top.finish();
+    }
     ShaderDesc shader = loadShader("smoke", "");
     scene.render.media.push_back(
         buildMedium(shader, rec, {}, Transform(), scene.majorantResolution,
@@ -381,7 +423,9 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
     scene.render.lights.push_back(makeDistantLight(
         Vec3(1.f, -1.2f, -0.8f), kUnitWhiteIrradiance,
         rgbIlluminantSpectrum(Vec3(1.f, 1.f, 1.f), color.xyzToWorking())));
-    scene.output.path = (fs::path(rec.file).stem().string() + ".exr");
+    bool pathSet = std::any_of(options.overrides.begin(), options.overrides.end(),
+                               [](const std::string& o) { return o.rfind("output.path=", 0) == 0; });
+    if (!pathSet) scene.output.path = (fs::path(rec.file).stem().string() + ".exr");
     return scene;
 }
 

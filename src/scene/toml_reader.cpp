@@ -1,6 +1,7 @@
 #include "scene/toml_reader.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -135,7 +136,10 @@ std::vector<double> TableReader::getNumbers(const std::string& key, size_t minCo
 
 Vec3 TableReader::getVec3(const std::string& key) const {
     auto v = getNumbers(key, 3, 3);
-    return Vec3(float(v[0]), float(v[1]), float(v[2]));
+    Vec3 out{float(v[0]), float(v[1]), float(v[2])};
+    // Finite as a double is not enough: positions and directions are single precision.
+    if (!isFinite(out)) fail(key, "expected numbers within ±3.4e38 (single precision)");
+    return out;
 }
 
 Vec3 TableReader::getVec3(const std::string& key, const Vec3& def) const {
@@ -210,6 +214,10 @@ toml::table parseTomlText(const std::string& text, const std::string& name) {
 }
 
 toml::table parseTomlFile(const std::string& path) {
+    // A directory opens as an empty stream on Linux: it would parse as an empty scene.
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw MirageError(FileLoc{path, 0, 0}, "is a directory, expected a scene file (.toml)");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw MirageError(FileLoc{path, 0, 0}, "cannot open the file (missing or unreadable)");
     std::stringstream ss;

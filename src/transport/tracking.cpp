@@ -83,6 +83,7 @@ SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float t
     // Poisson stream, so skipping the homogeneous media's collisions leaves an unbiased
     // estimate of the heterogeneous media's transmittance alone (it still pays for sampling
     // them; trackCollisions has no per-medium mask).
+    const uint64_t capped = ctx.cappedFlights;
     trackCollisions(ctx, worldRay, tMax, sampler, [&](const Collision& c) {
         if (ctx.medium(size_t(c.medium)).closedFormTransmittance()) return Track::Continue;
         // Ratio tracking: multiply by the null-collision probability σn/σ̄ per wavelength.
@@ -104,6 +105,8 @@ SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float t
         }
         return Track::Continue;
     });
+    // A flight cut at the collision cap has an unfinished estimate: treated as opaque.
+    if (ctx.cappedFlights != capped) return SampledSpectrum(0.f);
     return T;
 }
 

@@ -17,6 +17,12 @@
 
 namespace mirage {
 
+// Tentative collisions per free flight before it is cut (~10 ms of one core): far above what
+// a majorant within a factor 100 of σt needs (a flight meets a real collision after ~100
+// tentative ones), low enough that a degenerate one ends. A hot voxel (σ = 1e10/m) makes its
+// whole majorant cell that dense: every ray through the cell would otherwise take ~1e9 steps.
+constexpr uint64_t kMaxCollisionsPerFlight = uint64_t(1) << 16;
+
 // Per-thread tracking state: one Medium::Context per medium, plus counters for the summary.
 class TrackingContext {
 public:
@@ -28,6 +34,11 @@ public:
     Medium::Context& context(size_t i) { return mContexts[i]; }
 
     uint64_t lookups = 0;  // medium evaluations (each reads every grid of the shader)
+    // Free flights cut at maxCollisions tentative collisions (a bias, reported as capped
+    // paths). The cap bounds time where the majorant dwarfs σt over long distances, e.g. one
+    // voxel of σ = 1e6/m inside a kilometre-wide majorant cell (1e9 null collisions per ray).
+    uint64_t cappedFlights = 0;
+    uint64_t maxCollisions = kMaxCollisionsPerFlight;
 
 private:
     std::vector<const Medium*> mMedia;
@@ -54,7 +65,8 @@ struct Collision {
 
 // Calls f(const Collision&) at every tentative collision along worldRay in (0, tMax), in
 // increasing t, until f returns Track::Stop. Returns true when the ray got through to tMax
-// without being stopped.
+// without being stopped; false too when the flight hit ctx.maxCollisions (ctx.cappedFlights
+// is then incremented: callers treat the flight as absorbed).
 template <typename F>
 bool trackCollisions(TrackingContext& ctx, const Ray& worldRay, float tMax, Sampler& sampler,
                      F&& f);

@@ -26,7 +26,11 @@ bool trackCollisions(TrackingContext& ctx, const Ray& worldRay, float tMax, Samp
                                     &s.tNext, &s.sigmaMaj))
             s.tNext = kInfinity;
     }
-    for (;;) {
+    for (uint64_t collisions = 0;; ++collisions) {
+        if (collisions >= ctx.maxCollisions) {
+            ++ctx.cappedFlights;
+            return false;
+        }
         size_t m = n;
         float tMin = kInfinity;
         for (size_t i = 0; i < n; ++i)

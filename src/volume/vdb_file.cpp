@@ -228,16 +228,26 @@ nanovdb::GridHandle<nanovdb::HostBuffer> readNanoVdbGrid(const std::string& path
     return handle;
 }
 
-// Sets values that are negative or not finite to 0, in leaves (active and inactive values: the
-// sampler reads both) and tiles, and returns how many voxels that touched. Fog volumes are
-// densities; a negative σ would make free-flight sampling meaningless and a NaN poisons
-// every pixel it reaches.
-uint64_t sanitize(nanovdb::FloatGrid& grid) {
-    uint64_t count = 0;
+// The voxel rule (README "Input rules"), in leaves (active and inactive values: the sampler
+// reads both) and tiles: NaN and negative values (−∞ included) become 0, +∞ and values above
+// kMaxVoxelValue become kMaxVoxelValue. Fog volumes are densities: a negative σ would make
+// free-flight sampling meaningless, a NaN poisons every pixel it reaches, and an unbounded
+// value overflows σ = scale × value × cross-section. Counts are of voxels (a tile counts all
+// of its voxels).
+struct SanitizeCounts {
+    uint64_t zeroed = 0, clamped = 0;
+    uint64_t total() const { return zeroed + clamped; }
+};
+
+SanitizeCounts sanitize(nanovdb::FloatGrid& grid) {
+    SanitizeCounts count;
     auto fix = [&count](float& v, uint64_t voxels) {
-        if (!(v >= 0.f) || !std::isfinite(v)) {
+        if (!(v >= 0.f)) {  // NaN or negative
             v = 0.f;
-            count += voxels;
+            count.zeroed += voxels;
+        } else if (v > kMaxVoxelValue) {  // +∞ included
+            v = kMaxVoxelValue;
+            count.clamped += voxels;
         }
     };
     auto& tree = grid.tree();
@@ -256,7 +266,7 @@ uint64_t sanitize(nanovdb::FloatGrid& grid) {
     auto* root = tree.root().data();
     for (uint32_t t = 0; t < root->mTableSize; ++t)
         if (!root->tile(t)->isChild()) fix(root->tile(t)->value, uint64_t(4096) * 4096 * 4096);
-    if (count > 0) {
+    if (count.total() > 0) {
         // The node statistics (min/max) and the checksum describe the old values.
         nanovdb::gridStats(grid, nanovdb::StatsMode::All);
         nanovdb::updateChecksum(grid, nanovdb::ChecksumMode::Partial);
@@ -264,15 +274,20 @@ uint64_t sanitize(nanovdb::FloatGrid& grid) {
     return count;
 }
 
-void warnSanitizedOnce(const std::string& path, const std::string& label, uint64_t count) {
+void warnSanitizedOnce(const std::string& path, const std::string& label,
+                       const SanitizeCounts& count) {
     static std::mutex mutex;
     static std::set<std::string> warned;
     std::lock_guard<std::mutex> lock(mutex);
     if (!warned.insert(path + '\n' + label).second) return;
-    std::fprintf(stderr,
-                 "warning: %s: grid %s: %llu voxels were negative or not finite and were set "
-                 "to 0\n",
-                 path.c_str(), label.c_str(), static_cast<unsigned long long>(count));
+    std::string what;
+    if (count.zeroed > 0)
+        what = std::to_string(count.zeroed) + " voxels were negative or NaN and were set to 0";
+    if (count.clamped > 0)
+        what += (what.empty() ? "" : "; ") + std::to_string(count.clamped) +
+                " voxels were +inf or above " + fmt(kMaxVoxelValue) + " and were clamped to it";
+    std::fprintf(stderr, "warning: %s: grid %s: %s\n", path.c_str(), label.c_str(),
+                 what.c_str());
 }
 
 GridInfo openVdbGridInfo(const std::string& path, const FileLayout& layout, int index) {
@@ -410,10 +425,10 @@ FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName) {
                  "could not convert grid " + label + " to NanoVDB: " + boundedMessage(e.what()));
         }
     }
-    uint64_t sanitized = sanitize(*handle.grid<float>());
-    if (sanitized > 0) warnSanitizedOnce(path, label, sanitized);
+    const SanitizeCounts sanitized = sanitize(*handle.grid<float>());
+    if (sanitized.total() > 0) warnSanitizedOnce(path, label, sanitized);
     std::string name = record.name.empty() ? "#" + std::to_string(index) : record.name;
-    return FloatGrid(std::move(handle), std::move(name), sanitized);
+    return FloatGrid(std::move(handle), std::move(name), sanitized.total());
 }
 
 std::vector<double> openvdbSampleForTest(const std::string& path, const std::string& gridName,

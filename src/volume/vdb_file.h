@@ -16,6 +16,11 @@
 
 namespace mirage {
 
+// The largest voxel value a grid keeps (grid units: density, K, mg/m³). Far above any physical
+// density or temperature, and low enough that scale × value × cross-section stays finite in
+// float for any sane shader (Medium refuses the products that do not).
+constexpr float kMaxVoxelValue = 1e10f;
+
 struct GridInfo {
     std::string name;       // may be empty: unnamed grids are addressed as "#<index>"
     std::string valueType;  // "float", "half" (stored as half), "double", "vec3s", "bool", ...
@@ -48,8 +53,9 @@ VdbFileInfo inspectVdbFile(const std::string& path);
 
 // Reads one scalar grid — by name, or "#N" for the N-th grid (0-based) — from an OpenVDB file
 // (float, half or double storage; Blosc/zip) or a NanoVDB file (.nvdb) and returns it as a
-// NanoVDB float grid. Voxels that are not finite or are negative are set to 0 and reported by
-// a warning naming the file, grid and count (the documented rule, see README "Input rules").
+// NanoVDB float grid. Voxels that are NaN or negative are set to 0, voxels that are +inf or
+// above kMaxVoxelValue are clamped to it, and both are reported by one warning per grid naming
+// the file, grid and counts (the documented rule, see README "Input rules").
 // Throws MirageError if the file or grid is missing, or the grid is not a scalar fog volume
 // (level set, vector, bool or integer grid, background other than 0, non-affine transform).
 FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName);

@@ -343,7 +343,7 @@ TEST(VolumeFile, WrongGridKindsAreRejectedByName) {
     expectFileError([&] { loadFloatGrid(p, "nope"); }, p, "no grid 'nope' (grids: density)");
 }
 
-TEST(VolumeFile, NonFiniteAndNegativeVoxelsAreSetToZeroWithOneWarning) {
+TEST(VolumeFile, VoxelRuleZeroesNanAndNegativeClampsHugeWithOneWarning) {
     const std::string dir = test::tempDir();
     const float inf = std::numeric_limits<float>::infinity();
     TestGridSpec spec;
@@ -356,18 +356,19 @@ TEST(VolumeFile, NonFiniteAndNegativeVoxelsAreSetToZeroWithOneWarning) {
     FloatGrid g = loadFloatGrid(path, "density");
     FloatGrid again = loadFloatGrid(path, "density");
     const std::string err = testing::internal::GetCapturedStderr();
-    EXPECT_EQ(g.sanitizedVoxels(), 4u);
-    EXPECT_EQ(again.sanitizedVoxels(), 4u);
+    EXPECT_EQ(g.sanitizedVoxels(), 5u);
+    EXPECT_EQ(again.sanitizedVoxels(), 5u);
     const std::string warning = "warning: " + path +
-                                ": grid 'density': 4 voxels were negative or not finite and "
-                                "were set to 0\n";
+                                ": grid 'density': 3 voxels were negative or NaN and were set to "
+                                "0; 2 voxels were +inf or above 1e+10 and were clamped to it\n";
     EXPECT_EQ(err, warning);  // once, although loaded twice
-    for (int i = 0; i < 4; ++i) EXPECT_EQ(nanoValue(g, i, 0, 0), 0.f) << i;
-    EXPECT_EQ(nanoValue(g, 4, 0, 0), 1e30f);  // finite and positive: a legal, if odd, density
+    for (int i : {0, 2, 3}) EXPECT_EQ(nanoValue(g, i, 0, 0), 0.f) << i;
+    EXPECT_EQ(nanoValue(g, 1, 0, 0), kMaxVoxelValue);  // +inf
+    EXPECT_EQ(nanoValue(g, 4, 0, 0), kMaxVoxelValue);  // 1e30
     EXPECT_EQ(nanoValue(g, 5, 0, 0), 0.5f);
-    EXPECT_EQ(g.maxValue(), 1e30f);
+    EXPECT_EQ(g.maxValue(), kMaxVoxelValue);
 
-    // Stored as half, 1e30 overflows to +inf on disk and is sanitized too.
+    // Stored as half, 1e30 overflows to +inf on disk and is clamped the same way.
     spec.saveAsHalf = true;
     const std::string halfPath = dir + "/bad_values_half.vdb";
     writeTestGrid(halfPath, spec);

@@ -4,7 +4,8 @@
 // emits with the light's own PhotonEmission::weight w (mean 1), so a photon carries
 // Φ_l / (N Φ_l/Φ) × w = (Φ/N) w watts: every photon of every light starts with the same
 // power when the lights sample their emission exactly. The albedo roulette keeps that power
-// through the walk (photon_walk.h); only a spectral phase mixture could change it, by p/pdf.
+// through the walk (photon_walk.h); only a spectral phase mixture could change it, by p/pdf,
+// and a fluorescent re-emission, by λi/λo (energy: Γ counts photons, Mobley 1994 §5.13).
 //
 // Not yet emitted: photons from emissive media (fire), which would leave the grid ∝ σa·Le.
 #include "photon/photon_pass.h"
@@ -111,11 +112,16 @@ PhotonPath tracePhoton(uint64_t index, const std::vector<const Light*>& lights,
         }
         if (ev.end != FlightEnd::Scattered && ev.end != FlightEnd::Reemitted) return path;
         // The first interaction is direct light; the render pass may compute it itself.
-        // A fluorescent re-emission is not stored: its light leaves isotropically at a new
-        // wavelength, which the estimates' elastic phase lobes do not describe. The photon goes
-        // on at walk.wavelength() with power × λi/λo (photon_walk.h), and its later events are.
-        if (ev.end == FlightEnd::Scattered && (!direct || settings.storeFirstInteraction))
+        // A fluorescent re-emission is stored always, first interaction or not (no render
+        // pass computes light that changes wavelength by shadow rays), at the new wavelength
+        // with the power after re-emission, Φ λi/λo (photon_walk.h), flagged by its absorbed
+        // λi so that the estimates give it the isotropic lobe of re-emission.
+        if (ev.end == FlightEnd::Reemitted) {
+            out->volume.push_back(
+                Photon{ev.p, ev.wi, ev.lambdaOut, power * ev.weight, ev.lambdaIn});
+        } else if (!direct || settings.storeFirstInteraction) {
             out->volume.push_back(Photon{ev.p, ev.wi, walk.wavelength(), power});
+        }
         direct = false;
         specularOnly = false;
         ++bounces;

@@ -33,21 +33,33 @@ bool nextTentativeCollision(const MajorantGrid& majorant, const Ray& objectRay, 
     return found;
 }
 
-EventProbabilities eventProbabilities(const Collision& c) {
+EventProbabilities eventProbabilities(const Collision& c, const SampledSpectrum& beta) {
     EventProbabilities e;
     SampledSpectrum sigmaMaj(c.sigmaMaj);
     e.sigmaN = sigmaMaj - c.mp.sigmaA - c.mp.sigmaS;
-    float inv = 1.f / c.sigmaMaj;
-    e.pAbsorb = c.mp.sigmaA.average() * inv;
-    e.pScatter = c.mp.sigmaS.average() * inv;
     // A majorant that underestimates σt (it must not; see majorant tests) would make σn
-    // negative: the null probability is clamped so the walk still ends.
-    e.pNull = std::max(0.f, e.sigmaN.average() * inv);
-    float sum = e.pAbsorb + e.pScatter + e.pNull;
+    // negative: it is clamped here so the walk still ends.
+    float a = 0.f, s = 0.f, n = 0.f;
+    for (int i = 0; i < kSpectrumSamples; ++i) {
+        const float b = std::abs(beta[i]);
+        a = std::max(a, b * c.mp.sigmaA[i]);
+        s = std::max(s, b * c.mp.sigmaS[i]);
+        n = std::max(n, b * std::max(0.f, e.sigmaN[i]));
+    }
+    if (!(a + s + n > 0.f)) {
+        // A dead path (β = 0): any choice will do, every weight is 0.
+        a = c.mp.sigmaA.average();
+        s = c.mp.sigmaS.average();
+        n = std::max(0.f, e.sigmaN.average());
+    }
+    const float sum = a + s + n;
     if (sum > 0.f) {
-        e.pAbsorb /= sum;
-        e.pScatter /= sum;
-        e.pNull /= sum;
+        e.pAbsorb = a / sum;
+        e.pScatter = s / sum;
+        e.pNull = n / sum;
+    } else {
+        e.pAbsorb = e.pScatter = 0.f;
+        e.pNull = 1.f;
     }
     return e;
 }

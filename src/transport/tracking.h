@@ -66,13 +66,21 @@ SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float t
                               Sampler& sampler);
 
 // Null-collision weight factors for the three events of one tentative collision: the
-// per-wavelength σ/σ̄ and the probabilities (their mean over wavelengths, so that an event
-// with any non-zero σ at any wavelength can be chosen and every estimator stays unbiased).
+// per-wavelength σ/σ̄ and the probabilities of choosing each event. Spectral tracking (Kutz et
+// al. 2017, history-aware): P_x ∝ max_i β_i σ_x(λ_i) over the path's wavelengths, x ∈
+// {absorption, scattering, null}, β the path's throughput so far. Every event with a non-zero
+// σ at a live wavelength can be chosen, so every estimator stays unbiased, and the weights
+// β_i σ_x(λ_i) / (σ̄ P_x) stay bounded. With plain means over wavelengths, a wavelength far
+// below the grey majorant (blue light in water, whose σ̄ is set by its 2.7 1/m absorption at
+// 780 nm) gains a factor σn,i / mean σn > 1 at every null collision, and its variance grows
+// exponentially with the distance tracked. With equal wavelengths (a photon) the probabilities
+// are σ_x/σ̄ as before.
 struct EventProbabilities {
     SampledSpectrum sigmaN;  // σ̄ − σa − σs, per wavelength
     float pAbsorb, pScatter, pNull;
 };
-EventProbabilities eventProbabilities(const Collision& c);
+EventProbabilities eventProbabilities(const Collision& c,
+                                      const SampledSpectrum& beta = SampledSpectrum(1.f));
 
 }  // namespace mirage
 

@@ -401,7 +401,8 @@ std::vector<PhysicsTerm> Scene::physics() const {
                           c.quantumEfficiency, c.emissionPeakNm, c.emissionFwhmNm,
                           c.antiStokes ? ", anti-Stokes allowed" : "");
             fluorescenceWhy = "shader '" + s.name + "' component '" + c.name + buf +
-                              ": Γ roulette after absorption, spectral transport";
+                              ": Γ roulette after absorption, re-emissions stored as "
+                              "isotropic photons, spectral transport";
         }
         if (!fluorescenceWhy.empty() && spectralWhy.empty())
             spectralWhy = "fluorescence changes wavelengths (" + s.name + ")";

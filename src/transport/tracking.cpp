@@ -5,17 +5,32 @@ namespace mirage {
 TrackingContext::TrackingContext(const std::vector<const Medium*>& media) : mMedia(media) {
     mContexts.reserve(media.size());
     for (const Medium* m : media) mContexts.emplace_back(*m);
+    mPathMajorant.assign(media.size(), -1.f);
 }
 
 void TrackingContext::setWavelengths(const SampledWavelengths& w) {
     mLambda = w;
-    for (auto& c : mContexts) c.setWavelengths(w);
+    for (size_t i = 0; i < mContexts.size(); ++i) {
+        mContexts[i].setWavelengths(w);
+        const Medium& m = *mMedia[i];
+        if (!m.homogeneous()) continue;
+        MediumPoint mp;
+        m.eval(m.objectBounds().center(), mContexts[i], &mp);
+        float sigmaT = 0.f;
+        for (int k = 0; k < kSpectrumSamples; ++k)
+            sigmaT = std::max(sigmaT, mp.sigmaA[k] + mp.sigmaS[k]);
+        // Never above the grid's value (its maximum over all wavelengths); a hair above σt so
+        // that rounding cannot make σn negative.
+        mPathMajorant[i] = std::min(m.majorant().maxValue(), sigmaT * (1.f + 1e-6f));
+    }
 }
 
 bool nextTentativeCollision(const MajorantGrid& majorant, const Ray& objectRay, float t,
-                            float tEnd, float tau, float* tHit, float* sigmaMaj) {
+                            float tEnd, float tau, float* tHit, float* sigmaMaj,
+                            float pathMajorant) {
     bool found = false;
     majorant.traverse(objectRay.o, objectRay.d, t, tEnd, [&](float t0, float t1, float s) {
+        if (pathMajorant >= 0.f) s = pathMajorant;
         if (!(s > 0.f)) return true;  // empty cell: no collisions
         float dt = t1 - t0;
         float need = tau / s;  // distance at which the majorant's optical depth reaches tau

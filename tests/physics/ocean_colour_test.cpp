@@ -93,9 +93,9 @@ Colour slabColour(const std::string& sets, double photons) {
 
 TEST(OceanColour, ChlorophyllMovesTheSeaFromBlueTowardsGreen) {
     // CDOM fixed at the open-ocean default of the ocean shader (a_y(440) = 0.02 1/m).
-    Colour c005 = slabColour("--set chlorophyll=0.05", 1.2e6);
-    Colour c01 = slabColour("--set chlorophyll=0.1", 1.2e6);
-    Colour c5 = slabColour("--set chlorophyll=5", 1.2e6);
+    Colour c005 = slabColour("--set chlorophyll=0.05", 5e6);
+    Colour c01 = slabColour("--set chlorophyll=0.1", 5e6);
+    Colour c5 = slabColour("--set chlorophyll=5", 5e6);
     auto above = [](const Colour& hi, const Colour& lo) {
         return hi.ratio - lo.ratio > 3 * std::hypot(hi.ratioSe, lo.ratioSe);
     };
@@ -107,8 +107,8 @@ TEST(OceanColour, ChlorophyllMovesTheSeaFromBlueTowardsGreen) {
 }
 
 TEST(OceanColour, HighCdomDarkensTheBlueMost) {
-    Colour clear = slabColour("--set chlorophyll=0.1", 4e5);
-    Colour yellow = slabColour("--set chlorophyll=0.1 --set cdom=1", 4e5);
+    Colour clear = slabColour("--set chlorophyll=0.1", 1e6);
+    Colour yellow = slabColour("--set chlorophyll=0.1 --set cdom=1", 1e6);
     double blueDrop = yellow.blue.r / clear.blue.r, greenDrop = yellow.green.r / clear.green.r;
     std::printf("a_y(440) 0.02 → 1 1/m: R(440) × %.3f, R(550) × %.3f\n", blueDrop, greenDrop);
     EXPECT_LT(yellow.blue.r + 3 * yellow.blue.se, clear.blue.r - 3 * clear.blue.se);

@@ -47,7 +47,10 @@ int runInfo(const InfoOptions& o) {
     for (size_t i = 0; i < scene.volumes.size(); ++i) {
         const VolumeRecord& v = scene.volumes[i];
         const Medium& m = *scene.render.media[i];
-        printGrids(v.file);
+        if (v.file.empty())
+            std::printf("  homogeneous box (no grids)\n");
+        else
+            printGrids(v.file);
         std::printf("  shader '%s' (%s), density_scale %g\n", v.shader.c_str(),
                     m.shader().source.c_str(), v.densityScale);
         for (size_t b = 0; b < v.bindings.size(); ++b) {

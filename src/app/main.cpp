@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
 
     AssetOptions ao;
     auto* asset = app.add_subcommand("make-asset", "Write a procedural VDB cache");
-    asset->add_option("kind", ao.kind, "smoke | fire | fog-sphere")->required();
+    asset->add_option("kind", ao.kind, "smoke | fire | fog-sphere | ocean")->required();
     asset->add_option("-o,--output", ao.output, "Output .vdb")->required();
     asset->add_option("--resolution", ao.resolution, "Voxels along the tallest axis")
         ->check(CLI::Range(4, 2048));

@@ -13,8 +13,16 @@ namespace mirage {
 struct Photon {
     Vec3 p;         // position of the scattering event, world metres
     Vec3 wi;        // unit direction the photon travelled *before* the event
-    float lambda;   // wavelength, nm
-    float power;    // flux carried, W (already divided by the number of emitted photons)
+    float lambda;   // wavelength, nm (for a re-emission: the new wavelength λo)
+    float power;    // flux carried, W (already divided by the number of emitted photons; for a
+                    // re-emission: the power after it, × λi/λo)
+    // A fluorescent re-emission (Gutierrez et al. 2005) rather than an elastic scattering: the
+    // absorbed wavelength λi in nm, 0 for an elastic event. The light of such a photon leaves
+    // isotropically (phase 1/4π, whatever the medium's lobes) at `lambda`, and the density of
+    // such events is Σ_c Γ_c σa,c(x, λi), not σs(x, λ) (photon/volume_estimate.h).
+    float lambdaIn = 0.f;
+
+    bool reemitted() const { return lambdaIn > 0.f; }
 };
 
 using PhotonList = std::vector<Photon>;

@@ -4,7 +4,8 @@
 // emits with the light's own PhotonEmission::weight w (mean 1), so a photon carries
 // Φ_l / (N Φ_l/Φ) × w = (Φ/N) w watts: every photon of every light starts with the same
 // power when the lights sample their emission exactly. The albedo roulette keeps that power
-// through the walk (photon_walk.h); only a spectral phase mixture could change it, by p/pdf.
+// through the walk (photon_walk.h); only a spectral phase mixture could change it, by p/pdf,
+// and a fluorescent re-emission, by λi/λo (energy: Γ counts photons, Mobley 1994 §5.13).
 //
 // Emissive media (fire) are sources beside the lights: a MediumEmitter (medium_emitter.h) of
 // tabulated power Φ_m is chosen with probability Φ_m/Φ, Φ now summing lights and media, and its
@@ -152,11 +153,14 @@ PhotonPath tracePhoton(uint64_t index, const std::vector<const Light*>& lights,
         }
         if (ev.end != FlightEnd::Scattered && ev.end != FlightEnd::Reemitted) return path;
         // The first interaction is direct light; the render pass may compute it itself.
-        // A fluorescent re-emission is not stored: its light leaves isotropically at a new
-        // wavelength, which the estimates' elastic phase lobes do not describe. The photon goes
-        // on at walk.wavelength() with power × λi/λo (photon_walk.h), and its later events are.
-        if (ev.end == FlightEnd::Scattered && (!direct || settings.storeFirstInteraction)) {
-            Photon ph{ev.p, ev.wi, walk.wavelength(), power};
+        // A fluorescent re-emission is stored always, first interaction or not (no render
+        // pass computes light that changes wavelength by shadow rays), at the new wavelength
+        // with the power after re-emission, Φ λi/λo (photon_walk.h), flagged by its absorbed
+        // λi so that the estimates give it the isotropic lobe of re-emission.
+        const bool reemitted = ev.end == FlightEnd::Reemitted;
+        if (reemitted || !direct || settings.storeFirstInteraction) {
+            Photon ph = reemitted ? Photon{ev.p, ev.wi, ev.lambdaOut, power * ev.weight, ev.lambdaIn}
+                                  : Photon{ev.p, ev.wi, walk.wavelength(), power};
             if (!finitePhoton(ph)) {
                 path.nonFinite = true;
                 return path;

@@ -16,6 +16,11 @@
 // stored. The volume-photon rule is the same: a medium event is stored unless it is the first
 // interaction of the photon (NEE computes that one) — light → glass → fog (a volume caustic) is
 // stored, since no shadow ray passes through glass.
+//
+// Fluorescence: a re-emission (photon_walk.h) is stored as a volume photon at the new
+// wavelength, with the power after it and the absorbed wavelength as its flag (Photon::
+// lambdaIn), first interaction or not: it is the inelastic source term of the transfer
+// equation, which no shadow ray computes.
 #pragma once
 
 #include <cstdint>

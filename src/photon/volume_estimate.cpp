@@ -15,7 +15,9 @@ ScatteringProbe::ScatteringProbe(const std::vector<const Medium*>& media) : mMed
         mWorldToObject.push_back(m->objectToWorld().inverse());
         mContexts.emplace_back(*m);
         for (const MediumComponent& c : m->shader().components) mGrey &= c.sigmaS.isConstant();
+        mGrey &= !m->fluorescent();
     }
+    mSigmaA.resize(kMaxComponents);
 }
 
 float ScatteringProbe::sigmaS(const Vec3& worldP, float lambdaNm) {
@@ -31,6 +33,24 @@ float ScatteringProbe::sigmaS(const Vec3& worldP, float lambdaNm) {
     return sigmaS;
 }
 
+float ScatteringProbe::reemissionDensity(const Vec3& worldP, float lambdaInNm) {
+    float density = 0.f;
+    for (size_t i = 0; i < mMedia.size(); ++i) {
+        const Medium& m = *mMedia[i];
+        if (!m.fluorescent()) continue;
+        Vec3 p = mWorldToObject[i].point(worldP);
+        Bounds3 box = m.objectBounds();
+        if (!(p.x >= box.lo.x && p.y >= box.lo.y && p.z >= box.lo.z && p.x <= box.hi.x &&
+              p.y <= box.hi.y && p.z <= box.hi.z))
+            continue;
+        m.sigmaAComponentsAt(p, mContexts[i], lambdaInNm, mSigmaA.data());
+        const auto& comps = m.shader().components;
+        for (size_t c = 0; c < comps.size(); ++c)
+            if (comps[c].fluorescent()) density += comps[c].quantumEfficiency * mSigmaA[c];
+    }
+    return density;
+}
+
 VolumePhotons::VolumePhotons(PhotonList photons, const std::vector<const Medium*>& media)
     : mMap(std::move(photons)) {
     const size_t n = mMap.size();
@@ -42,7 +62,7 @@ VolumePhotons::VolumePhotons(PhotonList photons, const std::vector<const Medium*
                       [&](const tbb::blocked_range<size_t>& r) {
                           ScatteringProbe probe(media);
                           for (size_t i = r.begin(); i < r.end(); ++i)
-                              mSigmaS[i] = probe.sigmaS(mMap[i].p, mMap[i].lambda);
+                              mSigmaS[i] = probe.eventDensity(mMap[i].p, mMap[i]);
                       });
 
     // The lobes of every component of every medium, in order. One lobe, or lobes that are all
@@ -66,6 +86,7 @@ VolumePhotons::VolumePhotons(PhotonList photons, const std::vector<const Medium*
         std::vector<Medium::Context> contexts;
         for (const Medium* m : media) contexts.emplace_back(*m);
         for (size_t i = r.begin(); i < r.end(); ++i) {
+            if (mMap[i].reemitted()) continue;  // isotropic: phase() needs no weights
             SampledWavelengths w;
             w.lambda.fill(mMap[i].lambda);
             w.pdf.fill(1.f);
@@ -102,6 +123,7 @@ VolumePhotons::VolumePhotons(PhotonList photons, const std::vector<const Medium*
 }
 
 float VolumePhotons::phase(size_t slot, const Vec3& wo) const {
+    if (mMap[slot].reemitted()) return kInv4Pi;
     float cosTheta = dot(mMap[slot].wi, wo);
     if (mLobeWeights.empty()) return mLobes[0].eval(cosTheta);
     const size_t L = mLobes.size();
@@ -157,11 +179,11 @@ Vec3 pointEstimateAlongRay(const VolumePhotons& photons, const Ray& ray,
         float greySigmaS = probe.grey() ? probe.sigmaS(x, 550.f) : 0.f;
         if (probe.grey() && greySigmaS == 0.f) continue;  // nothing in-scatters here
         sum += gather(photons, x, wo, k, maxRadius, buffer, [&](uint32_t slot) {
-            float lambda = photons.map()[slot].lambda;
+            const Photon& p = photons.map()[slot];
             float atPhoton = photons.sigmaS(slot);
             if (!(atPhoton > 0.f)) return 0.f;
-            float here = probe.grey() ? greySigmaS : probe.sigmaS(x, lambda);
-            return depth.transmittance(t, lambda) * here / atPhoton;
+            float here = probe.grey() ? greySigmaS : probe.eventDensity(x, p);
+            return depth.transmittance(t, p.lambda) * here / atPhoton;
         });
     }
     return sum * step;

@@ -29,18 +29,33 @@ class ScatteringProbe {
 public:
     explicit ScatteringProbe(const std::vector<const Medium*>& media);
     float sigmaS(const Vec3& worldP, float lambdaNm);
-    // True when no medium's σs varies with wavelength: σs(x) may then be taken once per point.
+    // The density of fluorescent re-emission events at x for light absorbed at λi (1/m):
+    // Σ_media Σ_c Γ_c σa,c(x, λi) over the fluorescent components (transport/reemission.h).
+    float reemissionDensity(const Vec3& worldP, float lambdaInNm);
+    // The density of the events photon p stands for at x: σs(x, λ_p) for a scattering,
+    // reemissionDensity(x, λi) for a re-emission.
+    float eventDensity(const Vec3& worldP, const Photon& p) {
+        return p.reemitted() ? reemissionDensity(worldP, p.lambdaIn) : sigmaS(worldP, p.lambda);
+    }
+    // True when no medium's σs varies with wavelength and none fluoresces: σs(x) may then be
+    // taken once per point.
     bool grey() const { return mGrey; }
 
 private:
     std::vector<const Medium*> mMedia;
     std::vector<Transform> mWorldToObject;
     std::vector<Medium::Context> mContexts;
+    std::vector<float> mSigmaA;  // scratch: one medium's σa per component
     bool mGrey = true;
 };
 
 // The kd-tree plus, per slot, what every estimate needs of a photon: its flux as XYZ, its
-// phase function and the scattering coefficient where it was stored.
+// phase function and the density of its kind of event where it was stored.
+//
+// Fluorescent re-emissions (Photon::reemitted) are photons of the same map: the inelastic
+// source term of the transfer equation (Gutierrez et al. 2005), S(x, ω, λo) = (1/4π) ×
+// the power re-emitted per unit volume and wavelength, is estimated by the same kernels as the
+// elastic σs L_s, with the isotropic lobe 1/(4π) in place of the medium's phase function.
 class VolumePhotons {
 public:
     VolumePhotons() = default;
@@ -53,9 +68,11 @@ public:
     size_t size() const { return mMap.size(); }
     // Φ_p cmf(λ_p) / ∫ȳ, W (see above).
     const Vec3& fluxXyz(size_t slot) const { return mFluxXyz[slot]; }
-    // p(wi_p, wo) in 1/sr: the photon arrived along wi_p and leaves towards the camera along wo.
+    // p(wi_p, wo) in 1/sr: the photon arrived along wi_p and leaves towards the camera along wo;
+    // 1/(4π) for a re-emission.
     float phase(size_t slot, const Vec3& wo) const;
-    // σs(x_p, λ_p), 1/m: the density of scattering events that the photon samples.
+    // The density of the events the photon samples at x_p (1/m): σs(x_p, λ_p), or for a
+    // re-emission Σ_c Γ_c σa,c(x_p, λi) (ScatteringProbe::eventDensity).
     float sigmaS(size_t slot) const { return mSigmaS[slot]; }
 
 private:
@@ -87,7 +104,9 @@ Vec3 pointEstimate(const VolumePhotons& photons, const Vec3& x, const Vec3& wo, 
 // photon samples the fluence where it was stored as ΔΦ/σs(x_p) per unit volume, and the march
 // point in-scatters it with its own σs(x). In a uniform medium the ratio is 1 (the paper's
 // form); in a heterogeneous one, without it, the kNN ball carries light from dense smoke into
-// thin smoke and empty space (measured +15 % on the mean of smoke1.vdb against volpath).
+// thin smoke and empty space (measured +15 % on the mean of smoke1.vdb against volpath). A
+// re-emitted photon is weighted likewise by the ratio of re-emission densities, Σ Γ σa,c(λi)
+// at x over the same at x_p (a chlorophyll plume re-emits where its chlorophyll is).
 Vec3 pointEstimateAlongRay(const VolumePhotons& photons, const Ray& ray,
                            const RayOpticalDepth& depth, int k, float maxRadius, float step,
                            float u, PhotonNeighbour* buffer, ScatteringProbe& probe);

@@ -47,7 +47,7 @@ public:
                 const Medium& m = ts.tracking.medium(c.medium);
                 if (m.emissive()) out.L += beta * c.mp.sigmaA * c.mp.Le / c.sigmaMaj;
 
-                EventProbabilities e = eventProbabilities(c);
+                EventProbabilities e = eventProbabilities(c, beta);
                 float u = sampler.get1D();
                 if (u < e.pAbsorb) {
                     beta = SampledSpectrum(0.f);

@@ -24,7 +24,9 @@
 // Fluorescence: a path carries the wavelength light *leaves* with, so at an absorption event of
 // a fluorescent medium it asks where that light could have come from: sampleInelasticAdjoint
 // (transport/reemission.h) draws a component, its Γ roulette, a shorter λi and an isotropic
-// direction, and returns w = n_f σa,c(λi) η(λi → λo) / q(λi). The absorption branch was chosen
+// direction, and returns w = n_f σa,c(λi) η(λi → λo) (λi/λo) / q(λi) — λi/λo because η counts
+// photons and radiance counts energy, the adjoint of the photon walk's power × λi/λo (Mobley
+// 1994 §5.13). The absorption branch was chosen
 // with density σ̄ P_a, so
 //   fluorescence  β₀ ← β₀ w / (σ̄ P_a),  β₁…₃ ← 0 (hero only, as dispersion), path goes on at λi
 // with next-event estimation through the isotropic lobe (render/inelastic_light.h). Needs
@@ -65,7 +67,7 @@ public:
                 const Medium& m = ts.tracking.medium(c.medium);
                 if (m.emissive()) out.L += beta * c.mp.sigmaA * c.mp.Le / c.sigmaMaj;
 
-                EventProbabilities e = eventProbabilities(c);
+                EventProbabilities e = eventProbabilities(c, beta);
                 float u = sampler.get1D();
                 if (u < e.pAbsorb) {
                     InelasticAdjoint in;

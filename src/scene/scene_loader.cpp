@@ -1,6 +1,7 @@
 // Scene files (TOML) → Scene. The schema is documented in README.md ("Scene files"); every
 // table is read through TableReader, so unknown keys, wrong types and out-of-range values are
 // errors naming the file, line and column.
+#include <algorithm>
 #include <cstdio>
 #include <functional>
 #include <filesystem>
@@ -307,10 +308,14 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
 
     for (const auto& v : top.tables("volume")) {
         VolumeRecord rec;
-        FileLoc where = v.loc("file");
-        rec.file = resolve(expandFramePattern(v.getString("file"), options.frame));
-        if (!fs::exists(rec.file))
-            v.fail("file", "volume file not found: " + rec.file);
+        // `box` instead of `file`: a homogeneous medium (a shader without grids) filling a box.
+        const bool boxed = v.has("box");
+        if (boxed && v.has("file")) v.fail("box", "give either 'file' or 'box', not both");
+        FileLoc where = v.loc(boxed ? "box" : "file");
+        if (!boxed) {
+            rec.file = resolve(expandFramePattern(v.getString("file"), options.frame));
+            if (!fs::exists(rec.file)) v.fail("file", "volume file not found: " + rec.file);
+        }
         rec.shader = v.getString("shader", "smoke");
         ShaderDesc shader;
         try {
@@ -319,6 +324,23 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
         } catch (const MirageError& e) {
             if (e.location().line > 0) throw;  // an error inside the shader file itself
             v.fail("shader", e.what());
+        }
+        // concentration = { name = value, … }: the named components' concentrations (what
+        // `mirage slab --set name=value` sets), e.g. --set volume.0.concentration.chlorophyll=5.
+        if (auto c = v.optionalTable("concentration")) {
+            for (const auto& k : c->keys()) {
+                auto& comps = shader.components;
+                auto it = std::find_if(comps.begin(), comps.end(),
+                                       [&](const MediumComponent& mc) { return mc.name == k; });
+                if (it == comps.end()) {
+                    std::string list;
+                    for (const auto& mc : comps) list += (list.empty() ? "" : ", ") + mc.name;
+                    c->fail(k, "shader '" + shader.name + "' has no component '" + k +
+                                   "'; its components are: " + list);
+                }
+                it->concentration = float(c->getNumber(k, 0.0, 0.0, 1e12));
+            }
+            c->finish();
         }
         rec.densityScale = float(v.getNumber("density_scale", 1.0, 0.0, 1e12));
         // Per-volume exposure of the blackbody emission: multiplies the shader's `intensity`
@@ -346,9 +368,32 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
         }
         Transform xf;
         if (auto t = v.optionalTable("transform")) xf = readTransform(*t);
+        Bounds3 box;
+        if (boxed) {
+            TableReader b = v.table("box");
+            Vec3 lo = b.getVec3("min"), hi = b.getVec3("max");
+            if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
+                b.fail("max", "expected every coordinate of 'max' above that of 'min' (metres)");
+            b.finish();
+            box.expand(lo);
+            box.expand(hi);
+            auto slots = shader.gridSlots();
+            if (!slots.empty()) {
+                std::string list;
+                for (const auto& sl : slots) list += (list.empty() ? "'" : ", '") + sl + "'";
+                v.fail("box", "a box volume is homogeneous, but shader '" + shader.name +
+                                  "' reads grid slot(s) " + list +
+                                  "; use a 'file', or a shader whose components have no grid");
+            }
+        }
         v.finish();
-        scene.render.media.push_back(
-            buildMedium(shader, rec, bind, xf, scene.majorantResolution, where, scene, options));
+        if (boxed)
+            scene.render.media.push_back(
+                std::make_unique<Medium>(shader, box, xf, rec.densityScale));
+        else
+            scene.render.media.push_back(
+                buildMedium(shader, rec, bind, xf, scene.majorantResolution, where,
+                            scene, options));
         scene.volumes.push_back(std::move(rec));
     }
 
@@ -453,7 +498,8 @@ std::vector<PhysicsTerm> Scene::physics() const {
                           c.quantumEfficiency, c.emissionPeakNm, c.emissionFwhmNm,
                           c.antiStokes ? ", anti-Stokes allowed" : "");
             fluorescenceWhy = "shader '" + s.name + "' component '" + c.name + buf +
-                              ": Γ roulette after absorption, spectral transport";
+                              ": Γ roulette after absorption, re-emissions stored as "
+                              "isotropic photons, spectral transport";
         }
         if (!fluorescenceWhy.empty() && spectralWhy.empty())
             spectralWhy = "fluorescence changes wavelengths (" + s.name + ")";

@@ -124,10 +124,10 @@ ShaderDesc loadShader(const std::string& nameOrPath, const std::string& sceneDir
         return fromFile(p);
     }
     std::vector<fs::path> candidates;
-    if (!sceneDir.empty()) {
-        candidates.push_back(fs::path(sceneDir) / (nameOrPath + ".toml"));
-        candidates.push_back(fs::path(sceneDir) / "shaders" / (nameOrPath + ".toml"));
-    }
+    // A scene given without a folder (`mirage render scene.toml`) lives in the working folder.
+    const fs::path dir = sceneDir.empty() ? fs::path(".") : fs::path(sceneDir);
+    candidates.push_back(dir / (nameOrPath + ".toml"));
+    candidates.push_back(dir / "shaders" / (nameOrPath + ".toml"));
     if (const char* env = std::getenv("MIRAGE_SHADER_PATH"))
         candidates.push_back(fs::path(env) / (nameOrPath + ".toml"));
     for (const auto& c : candidates)

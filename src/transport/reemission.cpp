@@ -72,7 +72,8 @@ bool sampleInelasticAdjoint(const Medium& m, Medium::Context& ctx, const Vec3& p
     std::array<float, kMaxComponents> sigmaA{};
     Vec3 pObject = m.toObject(Ray{pWorld, Vec3(0.f, 0.f, 1.f), 0.f}).o;
     m.sigmaAComponentsAt(pObject, ctx, lambdaIn, sigmaA.data());
-    out->weight = float(nf) * sigmaA[size_t(c)] * eta * range;
+    // λi/λo: η counts photons, the path carries energy (reemission.h).
+    out->weight = float(nf) * sigmaA[size_t(c)] * eta * (lambdaIn / lambdaOutNm) * range;
     return true;
 }
 

@@ -36,14 +36,18 @@ bool sampleReemission(const Medium& m, Medium::Context& ctx, const Vec3& pWorld,
                       float lambdaInNm, Sampler& sampler, Reemission* out);
 
 // The same event seen from a camera path (adjoint transport), which carries the wavelength λo
-// the light *leaves* with and must find the λi it was absorbed at. The inelastic source of the
-// radiative transfer equation (Gutierrez et al. 2005) is
-//   S(x, ω, λo) = Σ_c Γ_c ∫ σa,c(x, λi) η_c(λi → λo) (1/4π) ∫ L(x, ω', λi) dω' dλi,
-// η_c a density in λo (1/nm; zero for λo < λi under the Stokes rule). One sample: a fluorescent
-// component c uniformly (probability 1/n_f), the Γ_c roulette, λi uniform over the allowed
-// range [360 nm, λo] (density q = 1/(λo − 360)), ω' uniform (its density 1/4π cancels the
-// isotropic emission's). The path then continues at λi along wi with the weight
-//   n_f σa,c(x, λi) η_c(λi → λo) / q          (1/m; Γ_c cancels against its roulette),
+// the light *leaves* with and must find the λi it was absorbed at. Γ_c η_c(λi → λo) counts
+// photons (photons re-emitted per nm of λo per photon absorbed); radiance L counts energy, and
+// a photon of λ carries hc/λ, so the energy redistribution function is Γ_c η_c (λi/λo)
+// (Mobley 1994, "Light and Water" §5.13) and the inelastic source of the radiative
+// transfer equation (Gutierrez et al. 2005, in energy units) is
+//   S(x, ω, λo) = Σ_c Γ_c ∫ σa,c(x, λi) η_c(λi → λo) (λi/λo) (1/4π) ∫ L(x, ω', λi) dω' dλi,
+// η_c a density in λo (1/nm; zero for λo < λi under the Stokes rule). It is the adjoint of the
+// photon walk's power × λi/λo above. One sample: a fluorescent component c uniformly
+// (probability 1/n_f), the Γ_c roulette, λi uniform over the allowed range [360 nm, λo]
+// (density q = 1/(λo − 360)), ω' uniform (its density 1/4π cancels the isotropic emission's).
+// The path then continues at λi along wi with the weight
+//   n_f σa,c(x, λi) η_c(λi → λo) (λi/λo) / q  (1/m; Γ_c cancels against its roulette),
 // which the caller divides by its probability density of having chosen this collision's event
 // (σ̄ P for delta tracking). Returns false when the Γ roulette ends the path; true, possibly
 // with weight 0 (no λi can feed λo), when it passes. That decision does not depend on λo, which

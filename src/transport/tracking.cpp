@@ -5,17 +5,32 @@ namespace mirage {
 TrackingContext::TrackingContext(const std::vector<const Medium*>& media) : mMedia(media) {
     mContexts.reserve(media.size());
     for (const Medium* m : media) mContexts.emplace_back(*m);
+    mPathMajorant.assign(media.size(), -1.f);
 }
 
 void TrackingContext::setWavelengths(const SampledWavelengths& w) {
     mLambda = w;
-    for (auto& c : mContexts) c.setWavelengths(w);
+    for (size_t i = 0; i < mContexts.size(); ++i) {
+        mContexts[i].setWavelengths(w);
+        const Medium& m = *mMedia[i];
+        if (!m.homogeneous()) continue;
+        MediumPoint mp;
+        m.eval(m.objectBounds().center(), mContexts[i], &mp);
+        float sigmaT = 0.f;
+        for (int k = 0; k < kSpectrumSamples; ++k)
+            sigmaT = std::max(sigmaT, mp.sigmaA[k] + mp.sigmaS[k]);
+        // Never above the grid's value (its maximum over all wavelengths); a hair above σt so
+        // that rounding cannot make σn negative.
+        mPathMajorant[i] = std::min(m.majorant().maxValue(), sigmaT * (1.f + 1e-6f));
+    }
 }
 
 bool nextTentativeCollision(const MajorantGrid& majorant, const Ray& objectRay, float t,
-                            float tEnd, float tau, float* tHit, float* sigmaMaj) {
+                            float tEnd, float tau, float* tHit, float* sigmaMaj,
+                            float pathMajorant) {
     bool found = false;
     majorant.traverse(objectRay.o, objectRay.d, t, tEnd, [&](float t0, float t1, float s) {
+        if (pathMajorant >= 0.f) s = pathMajorant;
         if (!(s > 0.f)) return true;  // empty cell: no collisions
         float dt = t1 - t0;
         float need = tau / s;  // distance at which the majorant's optical depth reaches tau
@@ -33,21 +48,33 @@ bool nextTentativeCollision(const MajorantGrid& majorant, const Ray& objectRay, 
     return found;
 }
 
-EventProbabilities eventProbabilities(const Collision& c) {
+EventProbabilities eventProbabilities(const Collision& c, const SampledSpectrum& beta) {
     EventProbabilities e;
     SampledSpectrum sigmaMaj(c.sigmaMaj);
     e.sigmaN = sigmaMaj - c.mp.sigmaA - c.mp.sigmaS;
-    float inv = 1.f / c.sigmaMaj;
-    e.pAbsorb = c.mp.sigmaA.average() * inv;
-    e.pScatter = c.mp.sigmaS.average() * inv;
     // A majorant that underestimates σt (it must not; see majorant tests) would make σn
-    // negative: the null probability is clamped so the walk still ends.
-    e.pNull = std::max(0.f, e.sigmaN.average() * inv);
-    float sum = e.pAbsorb + e.pScatter + e.pNull;
+    // negative: it is clamped here so the walk still ends.
+    float a = 0.f, s = 0.f, n = 0.f;
+    for (int i = 0; i < kSpectrumSamples; ++i) {
+        const float b = std::abs(beta[i]);
+        a = std::max(a, b * c.mp.sigmaA[i]);
+        s = std::max(s, b * c.mp.sigmaS[i]);
+        n = std::max(n, b * std::max(0.f, e.sigmaN[i]));
+    }
+    if (!(a + s + n > 0.f)) {
+        // A dead path (β = 0): any choice will do, every weight is 0.
+        a = c.mp.sigmaA.average();
+        s = c.mp.sigmaS.average();
+        n = std::max(0.f, e.sigmaN.average());
+    }
+    const float sum = a + s + n;
     if (sum > 0.f) {
-        e.pAbsorb /= sum;
-        e.pScatter /= sum;
-        e.pNull /= sum;
+        e.pAbsorb = a / sum;
+        e.pScatter = s / sum;
+        e.pNull = n / sum;
+    } else {
+        e.pAbsorb = e.pScatter = 0.f;
+        e.pNull = 1.f;
     }
     return e;
 }

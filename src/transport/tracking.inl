@@ -23,7 +23,7 @@ bool trackCollisions(TrackingContext& ctx, const Ray& worldRay, float tMax, Samp
         s.objectRay = ctx.medium(i).toObject(worldRay);
         s.tEnd = tMax;
         if (!nextTentativeCollision(ctx.medium(i).majorant(), s.objectRay, 0.f, s.tEnd, exp1(),
-                                    &s.tNext, &s.sigmaMaj))
+                                    &s.tNext, &s.sigmaMaj, ctx.pathMajorant(i)))
             s.tNext = kInfinity;
     }
     for (uint64_t collisions = 0;; ++collisions) {
@@ -47,7 +47,7 @@ bool trackCollisions(TrackingContext& ctx, const Ray& worldRay, float tMax, Samp
         ++ctx.lookups;
         if (f(static_cast<const Collision&>(c)) == Track::Stop) return false;
         if (!nextTentativeCollision(ctx.medium(m).majorant(), s.objectRay, c.t, s.tEnd, exp1(),
-                                    &s.tNext, &s.sigmaMaj))
+                                    &s.tNext, &s.sigmaMaj, ctx.pathMajorant(m)))
             s.tNext = kInfinity;
     }
 }

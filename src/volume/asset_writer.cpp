@@ -267,6 +267,31 @@ AssetField fogSphereField() {
     return a;
 }
 
+// A phytoplankton plume in sea water: chlorophyll a (mg/m³) welling up from a patch on the
+// floor and spreading as it rises, its edge and interior broken up by noise (blooms are
+// patchy), over a clear-water background of 0 (the shader adds pure water everywhere). Peak
+// ~10 mg/m³, bloom waters; the plume's rim is ~0.1–1 mg/m³, open-ocean values.
+AssetField oceanField(uint64_t seed) {
+    auto plume = std::make_shared<Plume>(seed, 0.f, 0.3f, 0.7f);
+    auto patches = std::make_shared<Fbm>(seed, 9, 4);
+    AssetField a;
+    a.grids = {"chlorophyll"};
+    a.units = {"mg/m^3 (chlorophyll a)"};
+    a.lo = Vec3(-1.f, 0.f, -1.f);
+    a.hi = Vec3(1.f, 2.f, 1.f);
+    a.eval = [plume, patches](const Vec3& p, float* out) {
+        out[0] = 0.f;
+        float r2;
+        const float shape = plume->profile(p, &r2);
+        if (shape <= 0.f) return;
+        const float n = (*patches)(p * 3.f);
+        const float chl = 10.f * shape * clamp(0.55f + 1.2f * n, 0.f, 1.f) *
+                          (1.f - smoothstep(1.6f, 1.98f, p.y));
+        out[0] = chl >= 0.01f ? chl : 0.f;
+    };
+    return a;
+}
+
 // ---- Writing -----------------------------------------------------------------------------
 
 uint32_t compressionFlags(const std::string& name, const std::string& path) {
@@ -333,7 +358,7 @@ openvdb::GridBase::Ptr buildTestGrid(const TestGridSpec& s, typename GridT::Valu
 }  // namespace
 
 const std::vector<std::string>& proceduralAssetKinds() {
-    static const std::vector<std::string> kinds = {"smoke", "fire", "fog-sphere"};
+    static const std::vector<std::string> kinds = {"smoke", "fire", "fog-sphere", "ocean"};
     return kinds;
 }
 
@@ -346,6 +371,8 @@ void writeProceduralAsset(const std::string& kind, const std::string& path, int 
         field = fireField(seed);
     } else if (kind == "fog-sphere") {
         field = fogSphereField();
+    } else if (kind == "ocean") {
+        field = oceanField(seed);
     } else {
         std::string valid;
         for (const auto& k : proceduralAssetKinds()) valid += (valid.empty() ? "" : ", ") + k;

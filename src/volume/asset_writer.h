@@ -32,6 +32,9 @@ const std::vector<std::string>& proceduralAssetKinds();
 //   "fog-sphere" `density` of a soft sphere centred at (0, 1, 0) m: 1 within 0.6 m of the
 //                centre, falling smoothly (smoothstep) to 0 at 1 m. Analytic; the seed is
 //                unused.
+//   "ocean"      `chlorophyll` (mg/m³ of chlorophyll a, for the `ocean` shader's slot): a
+//                patchy phytoplankton plume rising from a 0.6 m wide patch on the floor and
+//                widening to ~1.4 m, up to ~10 mg/m³ in its core, 0 (clear water) outside.
 // Throws MirageError for an unknown kind (listing the valid ones), a bad resolution, or a file
 // that cannot be written.
 void writeProceduralAsset(const std::string& kind, const std::string& path, int resolution = 64,

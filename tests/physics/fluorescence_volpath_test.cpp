@@ -2,9 +2,12 @@
 // deep, uniform medium at temperature T whose only absorber fluoresces (Γ, Gaussian band η),
 // the radiance is uniform and isotropic, and the transfer equation reduces to a balance per
 // wavelength: absorption σa L(λ) = thermal emission σa Le(λ) + the inelastic source
-// Γ ∫ σa η(λi → λ) L(λi) dλi, i.e. the Volterra equation
-//   L(λ) = Le(λ) + Γ ∫_{360}^{λ} η(λi → λ) L(λi) dλi,   η(λi → λ) = η(λ) / A(λi),
-// A(λi) = ∫_{λ ≥ λi} η (the Stokes rule renormalises η over λ ≥ λi). It is solved here by the
+// Γ ∫ σa η(λi → λ) (λi/λ) L(λi) dλi, i.e. the Volterra equation
+//   L(λ) = Le(λ) + Γ ∫_{360}^{λ} η(λi → λ) (λi/λ) L(λi) dλi,   η(λi → λ) = η(λ) / A(λi),
+// A(λi) = ∫_{λ ≥ λi} η (the Stokes rule renormalises η over λ ≥ λi). λi/λ turns the photon
+// count Γ η into energy (radiance), a photon of λ carrying hc/λ (Mobley 1994, §5.13;
+// transport/reemission.h); an earlier version of this reference left it out, and so did
+// volpath, which then agreed with it while creating energy. It is solved here by the
 // trapezoid rule at 0.05 nm, and volpath must find it: ratio 1 within its standard error.
 #include <gtest/gtest.h>
 
@@ -56,11 +59,12 @@ public:
             double A = 1.0 - band.cdf(float(l));
             double invA = A > 1e-9 ? 1.0 / A : 0.0;  // as FluorescenceEmission: no band left
             double h = k > 0 ? kStep : 0.0;
-            // L = Le + Γ η (J + h/2 (L_prev/A_prev + L/A)), solved for L.
-            double L = (le + kGamma * eta * (J + 0.5 * h * prevTerm)) /
+            // L = Le + Γ η/λ (J + h/2 (λ_prev L_prev/A_prev + λ L/A)), J = ∫ λi L/A dλi so far,
+            // solved for L (the λ of the last node cancels).
+            double L = (le + kGamma * eta / l * (J + 0.5 * h * prevTerm)) /
                        (1.0 - kGamma * eta * 0.5 * h * invA);
-            J += 0.5 * h * (prevTerm + L * invA);
-            prevTerm = L * invA;
+            J += 0.5 * h * (prevTerm + l * L * invA);
+            prevTerm = l * L * invA;
             mL[size_t(k)] = L;
         }
     }

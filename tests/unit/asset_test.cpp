@@ -144,13 +144,32 @@ TEST(Asset, FogSphereIsTheDocumentedSoftSphere) {
     EXPECT_EQ(g.sample(acc, Vec3(0.9f, 1.f, 0.9f)), 0.f);
 }
 
+TEST(Asset, OceanIsAChlorophyllPlumeInMgPerCubicMetre) {
+    const std::string path = test::tempDir() + "/ocean.vdb";
+    writeProceduralAsset("ocean", path, 48, 1);
+    VdbFileInfo info = inspectVdbFile(path);
+    ASSERT_EQ(info.grids.size(), 1u);
+    EXPECT_EQ(info.grids[0].name, "chlorophyll");
+    EXPECT_EQ(info.grids[0].gridClass, "fog volume");
+    EXPECT_GT(info.grids[0].objectBounds.lo.y, -0.01f);
+    EXPECT_LT(info.grids[0].objectBounds.hi.y, 2.01f);
+    FloatGrid g = loadFloatGrid(path, "chlorophyll");
+    ValueRange c = activeRange(g);
+    // Bloom core to open-ocean rim: up to 10 mg/m³, nothing below 0.01 stored.
+    EXPECT_GE(c.lo, 0.01f);
+    EXPECT_GT(c.hi, 5.f);
+    EXPECT_LE(c.hi, 10.f);
+    EXPECT_GT(c.active, 1000u);
+    EXPECT_LT(c.active, uint64_t(48) * 48 * 48 / 2);  // a plume, not a filled box
+}
+
 TEST(Asset, BadKindListsTheValidKinds) {
     const std::string path = test::tempDir() + "/x.vdb";
     try {
         writeProceduralAsset("smokey", path, 32, 1);
         ADD_FAILURE() << "no error";
     } catch (const MirageError& e) {
-        EXPECT_NE(std::string(e.what()).find("'smokey' (valid kinds: smoke, fire, fog-sphere)"),
+        EXPECT_NE(std::string(e.what()).find("'smokey' (valid kinds: smoke, fire, fog-sphere, ocean)"),
                   std::string::npos)
             << e.what();
     }

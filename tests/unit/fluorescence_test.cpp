@@ -3,7 +3,9 @@
 // allowed), and the Γ roulette re-emits with probability Σ_c σa,c Γ_c / σa (binomial, 3σ).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "chi_square.h"
@@ -128,4 +130,72 @@ TEST(Fluorescence, GammaRouletteReemitsWithTheMeanQuantumYield) {
     Reemission r;
     EXPECT_FALSE(sampleReemission(plainMedium, plainCtx, Vec3(0.5f), 500.f, a, &r));
     EXPECT_EQ(a.get1D(), b.get1D());
+}
+
+TEST(Fluorescence, PhotonWalkAndAdjointConvertEnergyAlike) {
+    // Γ η counts photons; both transports carry energy, so a re-emission from λi to λo keeps
+    // the fraction λi/λo of the absorbed energy (Mobley 1994, §5.13). Photon walk: the power
+    // scale of a re-emission at λi = 450 nm has mean E_η[λi/λo]. Volpath's adjoint sample
+    // (sampleInelasticAdjoint) must give the same conversion: lit by L(λi) = 1 on
+    // [440, 460] nm, the re-emitted energy ∫ dλo Σ Γ ∫ σa η(λi → λo) (λi/λo) L(λi) dλi, over
+    // the absorbed energy σa ∫ L dλi, is Γ E[λi/λo] < Γ: no energy is created.
+    constexpr float kG = 0.5f, kSigmaA = 2.f;
+    ShaderDesc s;
+    s.name = "fluorescent";
+    MediumComponent f;
+    f.sigmaA = Spectrum(kSigmaA);
+    f.quantumEfficiency = kG;
+    s.components = {f};
+    Bounds3 box;
+    box.expand(Vec3(0.f));
+    box.expand(Vec3(1.f));
+    Medium m(s, box, Transform(), 1.f);
+    Medium::Context ctx(m);
+
+    // E_η[1/λo] by quadrature of the band (its whole mass lies above 460 nm, so the Stokes
+    // renormalisation is 1 for every λi in [440, 460]).
+    Spectrum band = gaussianBand(685.f, 25.f);
+    double mass = 0, inv = 0;
+    for (double l = kLambdaMin; l < kLambdaMax; l += 0.05) {
+        mass += band(float(l));
+        inv += band(float(l)) / l;
+    }
+    const double meanInvOut = inv / mass;
+    const double walkExpected = 450.0 * meanInvOut;  // E[λi/λo] at λi = 450 nm
+    const double adjointExpected = kG * 450.0 * meanInvOut;  // mean λi over [440, 460] is 450
+
+    Sampler sampler(43, 0, 0);
+    const int n = 400000;
+    double sum = 0, sum2 = 0;
+    int reemitted = 0;
+    for (int i = 0; i < n; ++i) {
+        Reemission r;
+        if (!sampleReemission(m, ctx, Vec3(0.5f), 450.f, sampler, &r)) continue;
+        ++reemitted;
+        sum += r.powerScale;
+        sum2 += double(r.powerScale) * r.powerScale;
+    }
+    double walkMean = sum / reemitted;
+    double walkSe = std::sqrt(std::max(0.0, sum2 / reemitted - walkMean * walkMean) / reemitted);
+    EXPECT_NEAR(walkMean, walkExpected, 3 * walkSe + 1e-5);
+
+    const double range = kLambdaMax - kLambdaMin;
+    sum = sum2 = 0;
+    for (int i = 0; i < n; ++i) {
+        float lambdaOut = kLambdaMin + float(range) * sampler.get1D();
+        InelasticAdjoint a;
+        double x = 0;
+        if (sampleInelasticAdjoint(m, ctx, Vec3(0.5f), lambdaOut, sampler, &a) &&
+            a.lambdaInNm >= 440.f && a.lambdaInNm <= 460.f)
+            x = a.weight * range / (kSigmaA * 20.0);  // ∫ dλo, over the absorbed σa ∫ L
+        sum += x;
+        sum2 += x * x;
+    }
+    double adjointMean = sum / n;
+    double adjointSe = std::sqrt(std::max(0.0, sum2 / n - adjointMean * adjointMean) / n);
+    EXPECT_NEAR(adjointMean, adjointExpected, 3 * adjointSe);
+    EXPECT_LT(adjointMean + 3 * adjointSe, kG);  // energy out < Γ × energy absorbed
+    std::printf("energy re-emitted / absorbed at 450 nm: walk %.4f ± %.4f, adjoint %.4f ± %.4f "
+                "(Γ E[λi/λo] = %.4f, Γ = %.2f)\n",
+                kG * walkMean, kG * walkSe, adjointMean, adjointSe, adjointExpected, kG);
 }

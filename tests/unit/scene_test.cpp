@@ -237,3 +237,43 @@ TEST(SceneLoad, SetOnABareVdbAppliesSettingsAndRefusesOtherKeys) {
         EXPECT_NE(std::string(e.what()).find("volume"), std::string::npos) << e.what();
     }
 }
+
+TEST(SceneLoad, BoxVolumeAndComponentConcentrations) {
+    // A homogeneous box of a grid-free shader; `concentration` sets a component by name, and
+    // --set reaches it as volume.N.concentration.NAME.
+    std::string dir = test::tempDir();
+    writeFile(dir, "water.toml",
+              "[[component]]\nname = \"water\"\nkind = \"water\"\n"
+              "[[component]]\nname = \"chlorophyll\"\nkind = \"chlorophyll\"\n"
+              "concentration = 0.1\n");
+    std::string scene = writeFile(dir, "sea.toml",
+                                  "[[volume]]\nbox = { min = [0, 0, 0], max = [2, 1, 3] }\n"
+                                  "shader = \"water\"\nconcentration = { chlorophyll = 0.5 }\n");
+    ColorPipeline color;
+    Scene s = loadScene(scene, LoadOptions{}, color);
+    ASSERT_EQ(s.render.media.size(), 1u);
+    const Medium& m = *s.render.media[0];
+    EXPECT_TRUE(m.homogeneous());
+    EXPECT_FLOAT_EQ(m.worldBounds().hi.z, 3.f);
+    EXPECT_FLOAT_EQ(m.shader().components[1].concentration, 0.5f);
+    Scene t = loadScene(scene, LoadOptions{1, {"volume.0.concentration.chlorophyll=5"}}, color);
+    EXPECT_FLOAT_EQ(t.render.media[0]->shader().components[1].concentration, 5.f);
+
+    // An unknown component names the ones there are; a shader with a grid cannot fill a box.
+    std::string bad = writeFile(dir, "bad.toml",
+                                "[[volume]]\nbox = { min = [0, 0, 0], max = [1, 1, 1] }\n"
+                                "shader = \"water\"\nconcentration = { chlorofyll = 1 }\n");
+    EXPECT_NE(loadError(bad).find("no component 'chlorofyll'; its components are: water, "
+                                  "chlorophyll"),
+              std::string::npos)
+        << loadError(bad);
+    std::string grid = writeFile(dir, "grid.toml",
+                                 "[[volume]]\nbox = { min = [0, 0, 0], max = [1, 1, 1] }\n"
+                                 "shader = \"ocean\"\n");
+    EXPECT_NE(loadError(grid).find("reads grid slot(s) 'chlorophyll'"), std::string::npos)
+        << loadError(grid);
+    std::string flat = writeFile(dir, "flat.toml",
+                                 "[[volume]]\nbox = { min = [0, 0, 0], max = [1, 0, 1] }\n"
+                                 "shader = \"water\"\n");
+    EXPECT_NE(loadError(flat).find("'max'"), std::string::npos) << loadError(flat);
+}

@@ -1,0 +1,117 @@
+// The colour of the sea as chlorophyll and CDOM grow, from `mirage slab --shader ocean
+// --spectral`: the deep-water reflectance spectrum that ocean-colour users compute, from the
+// renderer's own transport. Published behaviour (Morel & Maritorena 2001; Gutierrez et al.
+// 2005, figure 3; the band-ratio algorithms of ocean-colour remote sensing rest on it):
+//  - chlorophyll absorbs blue (Bricaud's a*_ph peaks at 440 nm) and its particles scatter, so
+//    the water-leaving light moves from blue towards green: R(550)/R(440) increases
+//    monotonically over 0.05 → 0.1 → 5 mg/m³;
+//  - CDOM absorbs exponentially more towards the blue (a_y ∝ exp(−0.014 (λ − 440))), so high
+//    CDOM darkens the sea, the blue most: R(440) falls by more than R(550) does.
+// Bands 405–475 nm and 515–585 nm (14 bins of 5 nm each, centred on 440 and 550 nm); their
+// standard errors are binomial (the slab's photons are equal, and no fluorescence reaches these
+// bands). Every step is asserted beyond 3 combined standard errors (taken as independent; the
+// runs share the slab's default seed, which only correlates them).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "test_support.h"
+
+namespace {
+
+
+std::vector<double> array(const std::string& json, const std::string& key) {
+    std::vector<double> v;
+    size_t at = json.find("\"" + key + "\": [");
+    if (at == std::string::npos) {
+        ADD_FAILURE() << "no array " << key << " in\n" << json;
+        return v;
+    }
+    const char* p = json.c_str() + json.find('[', at) + 1;
+    while (*p && *p != ']') {
+        char* end;
+        v.push_back(std::strtod(p, &end));
+        p = end;
+        while (*p == ',' || *p == ' ') ++p;
+    }
+    return v;
+}
+
+struct Band {
+    double r = 0, se = 0;
+};
+
+struct Colour {
+    Band blue, green;  // R over 405–475 nm and 515–585 nm
+    double ratio = 0, ratioSe = 0;
+};
+
+Band band(const std::vector<double>& lambda, const std::vector<double>& r, double lo, double hi,
+          double photons) {
+    Band b;
+    int bins = 0;
+    for (size_t i = 0; i < lambda.size(); ++i)
+        if (lambda[i] > lo && lambda[i] < hi) {
+            b.r += r[i];
+            ++bins;
+        }
+    b.r /= bins;
+    // Photons whose wavelength fell in the band: uniform over 380–780 nm.
+    double n = photons * (hi - lo) / 400.0;
+    b.se = std::sqrt(b.r * (1 - b.r) / n);
+    return b;
+}
+
+Colour slabColour(const std::string& sets, double photons) {
+    std::string out;
+    char count[32];
+    std::snprintf(count, sizeof count, "%.0f", photons);
+    int code = mirage::test::runMirage(
+        "slab --json -q --shader ocean --spectral --photons " + std::string(count) + " " + sets,
+        &out);
+    EXPECT_EQ(code, 0) << out;
+    auto lambda = array(out, "wavelength_nm"), r = array(out, "reflectance");
+    Colour c;
+    if (lambda.size() != 80 || r.size() != 80) {
+        ADD_FAILURE() << "expected 80 bins:\n" << out;
+        return c;
+    }
+    c.blue = band(lambda, r, 405, 475, photons);
+    c.green = band(lambda, r, 515, 585, photons);
+    c.ratio = c.green.r / c.blue.r;
+    c.ratioSe = c.ratio * std::hypot(c.green.se / c.green.r, c.blue.se / c.blue.r);
+    std::printf("%-34s R(440) %.4f ± %.4f  R(550) %.4f ± %.4f  R(550)/R(440) %.3f ± %.3f\n",
+                sets.c_str(), c.blue.r, c.blue.se, c.green.r, c.green.se, c.ratio, c.ratioSe);
+    return c;
+}
+
+}  // namespace
+
+TEST(OceanColour, ChlorophyllMovesTheSeaFromBlueTowardsGreen) {
+    // CDOM fixed at the open-ocean default of the ocean shader (a_y(440) = 0.02 1/m).
+    Colour c005 = slabColour("--set chlorophyll=0.05", 5e6);
+    Colour c01 = slabColour("--set chlorophyll=0.1", 5e6);
+    Colour c5 = slabColour("--set chlorophyll=5", 5e6);
+    auto above = [](const Colour& hi, const Colour& lo) {
+        return hi.ratio - lo.ratio > 3 * std::hypot(hi.ratioSe, lo.ratioSe);
+    };
+    EXPECT_TRUE(above(c01, c005)) << c01.ratio << " vs " << c005.ratio;
+    EXPECT_TRUE(above(c5, c01)) << c5.ratio << " vs " << c01.ratio;
+    // Clear water is blue (more light at 440 than at 550 nm); the bloom is not.
+    EXPECT_LT(c005.ratio, 0.5);
+    EXPECT_GT(c5.ratio, 0.7);
+}
+
+TEST(OceanColour, HighCdomDarkensTheBlueMost) {
+    Colour clear = slabColour("--set chlorophyll=0.1", 1e6);
+    Colour yellow = slabColour("--set chlorophyll=0.1 --set cdom=1", 1e6);
+    double blueDrop = yellow.blue.r / clear.blue.r, greenDrop = yellow.green.r / clear.green.r;
+    std::printf("a_y(440) 0.02 → 1 1/m: R(440) × %.3f, R(550) × %.3f\n", blueDrop, greenDrop);
+    EXPECT_LT(yellow.blue.r + 3 * yellow.blue.se, clear.blue.r - 3 * clear.blue.se);
+    EXPECT_LT(yellow.green.r + 3 * yellow.green.se, clear.green.r - 3 * clear.green.se);
+    EXPECT_LT(blueDrop, 0.5 * greenDrop);
+}

@@ -284,6 +284,13 @@ void Medium::eval(const Vec3& p, Context& ctx, MediumPoint* out) const {
         out->Le = SampledSpectrum(0.f);
         return;
     }
+    evalUnconfined(p, ctx, out);
+}
+
+void Medium::evalUnconfined(const Vec3& p, Context& ctx, MediumPoint* out) const {
+    out->sigmaA = SampledSpectrum(0.f);
+    out->sigmaS = SampledSpectrum(0.f);
+    out->components = int(mShader.components.size());
     if (ctx.mGrey) {
         // One number per component, broadcast to the path's wavelengths once.
         float sigmaA = 0.f, sigmaS = 0.f;

@@ -126,8 +126,11 @@ public:
         bool mGrey = false;  // the medium's grey path: σ set once, scalar eval
     };
 
-    // Coefficients at an object-space point.
+    // Coefficients at an object-space point (zero outside the region the medium is confined to).
     void eval(const Vec3& pObject, Context& ctx, MediumPoint* out) const;
+    // The same, ignoring confinement and exclusions: what the shader gives at the point. For a
+    // homogeneous medium it is its σ anywhere, which bounds it exactly as a majorant.
+    void evalUnconfined(const Vec3& pObject, Context& ctx, MediumPoint* out) const;
     // Scattering coefficient σs(x, λ) (1/m) at an object-space point for one wavelength —
     // a photon's — whatever the context's wavelengths: Σ_c c_c(x) σs,c(λ).
     float sigmaSAt(const Vec3& pObject, Context& ctx, float lambdaNm) const;

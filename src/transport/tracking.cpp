@@ -15,7 +15,8 @@ void TrackingContext::setWavelengths(const SampledWavelengths& w) {
         const Medium& m = *mMedia[i];
         if (!m.homogeneous()) continue;
         MediumPoint mp;
-        m.eval(m.objectBounds().center(), mContexts[i], &mp);
+        // Unconfined: the box's centre may lie in a shape the medium is cut out of.
+        m.evalUnconfined(m.objectBounds().center(), mContexts[i], &mp);
         float sigmaT = 0.f;
         for (int k = 0; k < kSpectrumSamples; ++k)
             sigmaT = std::max(sigmaT, mp.sigmaA[k] + mp.sigmaS[k]);

@@ -100,8 +100,34 @@ PhotonPath tracePhoton(uint64_t index, const std::vector<const Light*>& lights,
     bool specularOnly = !fromMedium;  // every interaction so far was a mirror or glass
     for (int bounces = 0;;) {
         std::optional<SurfaceHit> hit;
-        if (geometry) hit = geometry->intersect(ray);
-        FlightEvent ev = walk.fly(ray, hit ? hit->t : kInfinity, sampler);
+        FlightEvent ev;
+        bool straight = true;
+        if (settings.field) {
+            // The curved flight; the surface hit of the chord it ended on, if any, is kept.
+            ChordSurfaceTest surfaces = [&](const Ray& chord, float tMax) {
+                if (!geometry) return kInfinity;
+                hit = geometry->intersect(Ray{chord.o, chord.d, tMax});
+                return hit ? hit->t : kInfinity;
+            };
+            CurvedWalkEnd end;
+            ev = walk.flyCurved(*settings.field, settings.curvedPath, surfaces, ray.o, ray.d,
+                                settings.curvedMaxArc, sampler, &end);
+            if (end.kind == CurvedWalkEnd::Kind::Surface) {
+                ray = Ray{end.chord.o, end.chord.d, kInfinity};
+                straight = false;
+            } else if (ev.end != FlightEnd::Escaped) {
+                hit.reset();
+                straight = false;
+            } else {
+                // Beyond curvedMaxArc of path: straight on from where the path got to.
+                ray = Ray{end.p, end.direction, kInfinity};
+            }
+        }
+        if (straight) {
+            hit.reset();
+            if (geometry) hit = geometry->intersect(ray);
+            ev = walk.fly(ray, hit ? hit->t : kInfinity, sampler);
+        }
         if (ev.end == FlightEnd::Escaped && hit) {
             // A surface: reflect, refract or store and bounce.
             const Material& mat = geometry->materialAt(*hit);
@@ -120,6 +146,8 @@ PhotonPath tracePhoton(uint64_t index, const std::vector<const Light*>& lights,
                 if (!direct)
                     (specularOnly ? out->surfaceCaustic : out->surfaceGlobal)
                         .push_back(Photon{hit->p, ray.d, walk.wavelength(), power});
+                else if (settings.field && settings.storeFirstInteraction)
+                    out->surfaceGlobal.push_back(Photon{hit->p, ray.d, walk.wavelength(), power});
                 // Albedo roulette: bounce with probability ρ(λ), power unchanged (f cos/pdf = ρ).
                 if (sampler.get1D() >= mat.albedo(walk.wavelength())) return path;
                 wiL = sampleCosineHemisphere(sampler.get1D(), sampler.get1D());

@@ -98,7 +98,10 @@ public:
         if (photonsCurve(mSettings.field.get(), scene.bounds())) {
             pass.field = mSettings.field.get();
             pass.curvedPath = mSettings.curvedPath;
-            pass.curvedMaxArc = mSettings.curvedMaxArc;
+            // A photon's flight needs no more path than a few crossings of the scene: an
+            // escaping photon otherwise walks the whole max_distance in chords.
+            const Vec3 diag = scene.bounds().diagonal();
+            pass.curvedMaxArc = std::min(mSettings.curvedMaxArc, 2.f * length(diag));
             pass.storeFirstInteraction = true;
             mSingle = makeSingleScatterIntegrator(false);
             mCurved = true;

@@ -464,11 +464,10 @@ std::vector<PhysicsTerm> Scene::physics() const {
         // Which paths bend: camera rays always; photons when the photon integrator runs and the
         // field curves within the scene's bounds (photonsCurve), which then drops shadow rays.
         const Bounds3 b = render.bounds();
-        const Vec3 pad = b.empty() ? Vec3(0.f) : b.diagonal() * 0.1f;
         char bound[96] = "";
         if (!b.empty())
             std::snprintf(bound, sizeof bound, "; |grad n| <= %.3g /m over the scene's bounds",
-                          refraction->field->gradientBound(Vec3d(b.lo - pad), Vec3d(b.hi + pad)));
+                          refraction->field->gradientBound(Vec3d(b.lo), Vec3d(b.hi)));
         const bool photons = integrator == "photon" && photonsCurve(refraction->field.get(), b);
         terms.push_back(
             {"curved paths", true,

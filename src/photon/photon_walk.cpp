@@ -16,8 +16,7 @@ void PhotonWalk::setWavelength(float lambdaNm) {
     mTracking.setWavelengths(w);
 }
 
-Track PhotonWalk::collide(const Collision& c, const Vec3& dir, Sampler& sampler,
-                         FlightEvent* ev) {
+Track PhotonWalk::collide(const Collision& c, const Vec3& dir, Sampler& sampler, FlightEvent* ev) {
     // All four wavelengths are the photon's, so the means eventProbabilities takes are
     // the probabilities at index 0: P_a = σa(λ)/σ̄, P_s = σs(λ)/σ̄, P_n = σn(λ)/σ̄.
     EventProbabilities e = eventProbabilities(c);
@@ -80,10 +79,9 @@ FlightEvent PhotonWalk::flyCurved(const IndexField& field, const CurvedPathSetti
         chordDir = chord.d;
         return surfaces ? surfaces(chord, tMax) : kInfinity;
     };
-    *end = trackCurvedCollisions(mTracking, field, path, test, origin, dir, mLambda, maxArc,
-                                 sampler, [&](const Collision& c, float) {
-                                     return collide(c, chordDir, sampler, &ev);
-                                 });
+    *end = trackCurvedCollisions(
+        mTracking, field, path, test, origin, dir, mLambda, maxArc, sampler,
+        [&](const Collision& c, float) { return collide(c, chordDir, sampler, &ev); });
     if (ev.end == FlightEnd::Escaped) ev.wi = end->direction;
     if (ev.end == FlightEnd::Reemitted) setWavelength(ev.lambdaOut);
     return ev;

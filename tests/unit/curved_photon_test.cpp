@@ -65,8 +65,8 @@ TEST(CurvedPhotons, CollimatedBeamLandsOnTheCatenarysSpot) {
         meanX += p.p.x;
         meanZ += p.p.z;
         worst = std::max(worst, length(Vec3d(p.p) - exact.endPoint));
-        worstAngle = std::max(worstAngle, std::acos(std::min(1.0, dot(Vec3d(p.wi),
-                                                                     exact.endDirection))));
+        worstAngle =
+            std::max(worstAngle, std::acos(std::min(1.0, dot(Vec3d(p.wi), exact.endDirection))));
     }
     meanX /= double(maps.surfaceGlobal.size());
     meanZ /= double(maps.surfaceGlobal.size());
@@ -108,9 +108,8 @@ TEST(CurvedPhotons, WeakFieldGivesThePhotonMapImageOfStraightLight) {
     // maps alone: the same image within the noise, nothing counted twice or missed.
     const std::string dir = test::tempDir();
     std::string log;
-    ASSERT_EQ(test::runMirage("make-asset fog-sphere -o '" + dir + "/fog.vdb' --resolution 16",
-                              &log),
-              0)
+    ASSERT_EQ(
+        test::runMirage("make-asset fog-sphere -o '" + dir + "/fog.vdb' --resolution 16", &log), 0)
         << log;
     auto scene = [&](const std::string& name, const std::string& extra) {
         std::ofstream f(dir + "/" + name);
@@ -126,10 +125,10 @@ TEST(CurvedPhotons, WeakFieldGivesThePhotonMapImageOfStraightLight) {
         return dir + "/" + name;
     };
     const Image straight = renderScene(scene("straight.toml", ""), dir + "/straight.exr");
-    const Image curved = renderScene(
-        scene("curved.toml", "[refraction]\nprofile = \"linear\"\nk = 1e-9\n"
-                             "max_distance = 20\nmax_step = 0.5\n"),
-        dir + "/curved.exr");
+    const Image curved = renderScene(scene("curved.toml",
+                                           "[refraction]\nprofile = \"linear\"\nk = 1e-9\n"
+                                           "max_distance = 20\nmax_step = 0.5\n"),
+                                     dir + "/curved.exr");
     std::string info;
     ASSERT_EQ(test::runMirage("info '" + dir + "/curved.toml'", &info), 0) << info;
     EXPECT_NE(info.find("photons follow curved paths"), std::string::npos) << info;
@@ -158,9 +157,9 @@ TEST(CurvedPhotons, FlatFieldLeavesThePhotonRenderBitIdentical) {
         return dir + "/" + name;
     };
     const Image plain = renderScene(scene("plain.toml", ""), dir + "/plain.exr");
-    const Image flat = renderScene(
-        scene("flat.toml", "[refraction]\nprofile = \"linear\"\nn0 = 1.0003\nk = 0\n"),
-        dir + "/flat.exr");
+    const Image flat =
+        renderScene(scene("flat.toml", "[refraction]\nprofile = \"linear\"\nn0 = 1.0003\nk = 0\n"),
+                    dir + "/flat.exr");
     ASSERT_EQ(plain.rgba.size(), flat.rgba.size());
     EXPECT_TRUE(plain.rgba == flat.rgba);
     EXPECT_GT(meanOf(plain, 0), 0.0);

@@ -34,10 +34,10 @@ std::string sceneCopy(const std::string& name, const std::string& asset = "",
     fs::copy_file(shippedScene(name), dir + "/" + name);
     if (!asset.empty()) {
         std::string log;
-        EXPECT_EQ(test::runMirage("make-asset " + asset + " -o '" + dir + "/" + file +
-                                      "' --resolution 16",
-                                  &log),
-                  0)
+        EXPECT_EQ(
+            test::runMirage(
+                "make-asset " + asset + " -o '" + dir + "/" + file + "' --resolution 16", &log),
+            0)
             << log;
     }
     return dir + "/" + name;
@@ -49,10 +49,10 @@ TEST(CurvedScenes, EachRendersWithoutSharedData) {
         const char* asset;
         const char* file;
     };
-    for (const Case& c : {Case{"inferior_mirage.toml", "", ""},
-                          Case{"superior_mirage.toml", "", ""},
-                          Case{"heat_haze.toml", "fire", "fire_haze.vdb"},
-                          Case{"flattened_sun.toml", "fog-sphere", "fog_sphere.vdb"}}) {
+    for (const Case& c :
+         {Case{"inferior_mirage.toml", "", ""}, Case{"superior_mirage.toml", "", ""},
+          Case{"heat_haze.toml", "fire", "fire_haze.vdb"},
+          Case{"flattened_sun.toml", "fog-sphere", "fog_sphere.vdb"}}) {
         const std::string scene = sceneCopy(c.scene, c.asset, c.file);
         std::string out;
         ASSERT_EQ(test::runMirage("info '" + scene + "'", &out), 0) << out;
@@ -98,8 +98,8 @@ TEST(CurvedScenes, FlattenedSunSitsWhereSnellsInvariantPutsIt) {
         return std::acos(c) * 180 / kPi;
     };
     const double predictedTop = seen(0.765), predictedBottom = seen(0.235);
-    std::printf("sun seen %.3f°–%.3f° (predicted %.3f°–%.3f°), %.3f° wide\n", seenBottom,
-                seenTop, predictedBottom, predictedTop, seenWidth);
+    std::printf("sun seen %.3f°–%.3f° (predicted %.3f°–%.3f°), %.3f° wide\n", seenBottom, seenTop,
+                predictedBottom, predictedTop, seenWidth);
     // Within two pixels (the sun is 1e8 m away: its parallax from the paths' 20–40 km height at
     // 3000 km is ~0.01°).
     EXPECT_NEAR(seenTop, predictedTop, 2 * degPerPixel);

@@ -75,6 +75,11 @@ RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
     PhotonIntegratorSettings photon = scene.photon;
     photon.seed = s.seed;
     photon.progress = s.progress;
+    if (scene.refraction) {
+        photon.field = scene.refraction->field;
+        photon.curvedPath = scene.refraction->path;
+        photon.curvedMaxArc = scene.refraction->maxArc;
+    }
     frame.integrator =
         makeIntegrator(integrator.empty() ? scene.integrator : integrator, scene.maxDepth, photon);
     if (scene.refraction)

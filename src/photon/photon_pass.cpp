@@ -110,8 +110,34 @@ PhotonPath tracePhoton(uint64_t index, const std::vector<const Light*>& lights,
     bool specularOnly = !fromMedium;  // every interaction so far was a mirror or glass
     for (int bounces = 0;;) {
         std::optional<SurfaceHit> hit;
-        if (geometry) hit = geometry->intersect(ray);
-        FlightEvent ev = walk.fly(ray, hit ? hit->t : kInfinity, sampler);
+        FlightEvent ev;
+        bool straight = true;
+        if (settings.field) {
+            // The curved flight; the surface hit of the chord it ended on, if any, is kept.
+            ChordSurfaceTest surfaces = [&](const Ray& chord, float tMax) {
+                if (!geometry) return kInfinity;
+                hit = geometry->intersect(Ray{chord.o, chord.d, tMax});
+                return hit ? hit->t : kInfinity;
+            };
+            CurvedWalkEnd end;
+            ev = walk.flyCurved(*settings.field, settings.curvedPath, surfaces, ray.o, ray.d,
+                                settings.curvedMaxArc, sampler, &end);
+            if (end.kind == CurvedWalkEnd::Kind::Surface) {
+                ray = Ray{end.chord.o, end.chord.d, kInfinity};
+                straight = false;
+            } else if (ev.end != FlightEnd::Escaped) {
+                hit.reset();
+                straight = false;
+            } else {
+                // Beyond curvedMaxArc of path: straight on from where the path got to.
+                ray = Ray{end.p, end.direction, kInfinity};
+            }
+        }
+        if (straight) {
+            hit.reset();
+            if (geometry) hit = geometry->intersect(ray);
+            ev = walk.fly(ray, hit ? hit->t : kInfinity, sampler);
+        }
         if (ev.end == FlightEnd::Escaped && hit) {
             // A surface: reflect, refract or store and bounce.
             const Material& mat = geometry->materialAt(*hit);
@@ -127,13 +153,15 @@ PhotonPath tracePhoton(uint64_t index, const std::vector<const Light*>& lights,
                 power *= bs.weight[0];
                 wiL = bs.wi;
             } else {
-                if (!direct) {
+                // Where paths curve there are no shadow rays: the first diffuse hit is stored too.
+                if (!direct || (settings.field && settings.storeFirstInteraction)) {
                     Photon ph{hit->p, ray.d, walk.wavelength(), power};
                     if (!finitePhoton(ph)) {
                         path.nonFinite = true;
                         return path;
                     }
-                    (specularOnly ? out->surfaceCaustic : out->surfaceGlobal).push_back(ph);
+                    (!direct && specularOnly ? out->surfaceCaustic : out->surfaceGlobal)
+                        .push_back(ph);
                 }
                 // Albedo roulette: bounce with probability ρ(λ), power unchanged (f cos/pdf = ρ).
                 if (sampler.get1D() >= mat.albedo(walk.wavelength())) return path;

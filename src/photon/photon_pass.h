@@ -29,8 +29,10 @@
 #include "core/progress.h"
 #include "geometry/geometry_scene.h"
 #include "light/light.h"
+#include "medium/index_field.h"
 #include "medium/medium.h"
 #include "photon/photon.h"
+#include "transport/curved_path.h"
 
 namespace mirage {
 
@@ -41,6 +43,13 @@ struct PhotonPassSettings {
     // When the render pass computes single scattering by shadow rays, the first interaction
     // of each photon must not be stored, or direct light would be counted twice.
     bool storeFirstInteraction = false;
+    // Curved light (issue 5): with a field, every flight follows its Fermat path
+    // (PhotonWalk::flyCurved) over at most curvedMaxArc metres of path, then goes on straight.
+    // Shadow rays do not follow such paths, so the caller then sets storeFirstInteraction, and
+    // it also stores light arriving straight from a light at a diffuse surface (global map).
+    const IndexField* field = nullptr;
+    CurvedPathSettings curvedPath;
+    float curvedMaxArc = 1000.f;
     Progress::Mode progress = Progress::Mode::Auto;
 };
 

@@ -6,11 +6,9 @@
 // attenuates everything beyond; the wrapped integrator then takes the last chord (when it met a
 // surface) or the straight continuation. Radiance keeps L/n² along the path (the n² law).
 //
-// What it leaves out, until photons walk curved paths too (issue 5): paths scattered off the
-// camera ray, and shadow rays, stay straight (the seed takes direct light from the photon map
-// where paths curve). For a road mirage, or a sun behind a layered atmosphere seen across clear
-// air, that does not matter; for heat haze it bends what is seen through the hot air, not the
-// light that reaches it.
+// Paths scattered off the camera ray stay straight in the single and volpath integrators, and so
+// do their shadow rays. The photon integrator bends photons too (photon/photon_pass.h) and then
+// takes direct light from the photon maps, as the seed does where paths curve.
 #pragma once
 
 #include <memory>

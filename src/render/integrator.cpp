@@ -22,6 +22,12 @@ std::vector<std::pair<std::string, std::string>> PhotonStats::metadata() const {
             {"estimate_seconds", num(estimateSeconds)}};
 }
 
+bool photonsCurve(const IndexField* field, const Bounds3& b) {
+    if (!field || b.empty()) return false;
+    const Vec3 pad = b.diagonal() * 0.1f;
+    return field->gradientBound(Vec3d(b.lo - pad), Vec3d(b.hi + pad)) > 0.0;
+}
+
 std::vector<std::string> integratorNames() { return {"single", "volpath", "photon"}; }
 
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, int maxDepth,

@@ -10,7 +10,9 @@
 
 #include "core/progress.h"
 #include "core/rng.h"
+#include "medium/index_field.h"
 #include "render/render_scene.h"
+#include "transport/curved_path.h"
 #include "transport/tracking.h"
 
 namespace mirage {
@@ -67,8 +69,9 @@ public:
 
 // Single scattering plus emission: delta tracking along the camera ray, next-event estimation
 // to every light with ratio-tracked shadow rays at the real scattering event. Unbiased for the
-// single-scattered and emitted radiance.
-std::unique_ptr<Integrator> makeSingleScatterIntegrator();
+// single-scattered and emitted radiance. directLight = false leaves out the shadow rays (media
+// and diffuse surfaces): emission alone, for a photon map that holds the direct light too.
+std::unique_ptr<Integrator> makeSingleScatterIntegrator(bool directLight = true);
 
 // The reference spectral volumetric path tracer (volpath.cpp); paths longer than maxDepth
 // scattering events are cut and counted.
@@ -86,6 +89,11 @@ struct PhotonIntegratorSettings {
     uint64_t seed = 0;             // the render seed; the photon pass derives its own from it
     int maxBounces = 10000;        // scattering events per photon
     Progress::Mode progress = Progress::Mode::Auto;
+    // Curved light ([refraction]): photons follow Fermat paths in this field where it curves
+    // within the scene's bounds (photonsCurve); null: straight.
+    std::shared_ptr<const IndexField> field;
+    CurvedPathSettings curvedPath;
+    float curvedMaxArc = 1000.f;
 
     int kOrDefault() const { return k > 0 ? k : (estimate == PhotonEstimate::Beam ? 16 : 32); }
 };
@@ -94,6 +102,11 @@ struct PhotonIntegratorSettings {
 // (Jarosz et al. 2008) or the ray-marched point estimate for multiple scattering; single
 // scattering and emission as the single-scatter integrator computes them.
 std::unique_ptr<Integrator> makePhotonIntegrator(const PhotonIntegratorSettings& settings);
+
+// Whether photons follow curved paths: a field whose |∇n| bound over the scene's bounds (grown
+// by a tenth of their diagonal) is not 0. Then shadow rays do not exist (they would be straight)
+// and the photon integrator takes direct light from the photon maps (Gutierrez et al. 2005).
+bool photonsCurve(const IndexField* field, const Bounds3& sceneBounds);
 
 // By name ("single", "volpath", "photon"); throws MirageError listing the names for anything
 // else. `photon` configures the photon integrator and is ignored by the others.

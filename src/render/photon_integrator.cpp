@@ -17,6 +17,11 @@
 // computed for every camera sample, so pixel filtering and the spectral noise of the single-
 // scattered part average together.
 //
+// Curved light (issue 5): where a [refraction] field bends paths inside the scene
+// (photonsCurve), a straight shadow ray is no path of light. The photons then follow Fermat
+// paths (photon_pass.h), the maps hold every interaction, the first included, and light that
+// reaches a diffuse surface straight from a light; the single-scatter part keeps only emission.
+//
 // Transmittance from the camera to each photon is the deterministic march of
 // medium/ray_optical_depth.h at the photon's wavelength, done once per camera ray.
 //
@@ -87,6 +92,21 @@ public:
         pass.seed = hashCombine(mSettings.seed, 0x70686f746f6eull);  // "photon"
         pass.maxBounces = mSettings.maxBounces;
         pass.storeFirstInteraction = false;
+        // Curved light: where paths curve there are no (straight) shadow rays, so the maps hold
+        // the first interaction and the light arriving straight at diffuse surfaces too, and the
+        // single-scatter part keeps only emission (Gutierrez et al. 2005). Nothing is counted
+        // twice: each scattering of light is in exactly one of the two parts.
+        if (photonsCurve(mSettings.field.get(), scene.bounds())) {
+            pass.field = mSettings.field.get();
+            pass.curvedPath = mSettings.curvedPath;
+            // A photon's flight needs no more path than a few crossings of the scene: an
+            // escaping photon otherwise walks the whole max_distance in chords.
+            const Vec3 diag = scene.bounds().diagonal();
+            pass.curvedMaxArc = std::min(mSettings.curvedMaxArc, 2.f * length(diag));
+            pass.storeFirstInteraction = true;
+            mSingle = makeSingleScatterIntegrator(false);
+            mCurved = true;
+        }
         pass.progress = mSettings.progress;
         PhotonMapLists lists = tracePhotonMaps(
             lights, mMedia, scene.hasSurfaces() ? scene.geometry.get() : nullptr, pass,
@@ -191,6 +211,7 @@ public:
                       (unsigned long long)mPassStats.cappedPaths,
                       (unsigned long long)mPassStats.fromMedia, mPassStats.mediumPower);
         std::string line = buf;
+        if (mCurved) line += " | photons on curved paths (direct light from the photon maps)";
         if (mGlobal && mCaustic && (mGlobal->size() + mCaustic->size()) > 0)
             line += " | surface photons: " + std::to_string(mGlobal->size()) + " global, " +
                     std::to_string(mCaustic->size()) + " caustic";
@@ -260,6 +281,7 @@ private:
 
     PhotonIntegratorSettings mSettings;
     std::unique_ptr<Integrator> mSingle;
+    bool mCurved = false;  // photons on curved paths, direct light from the maps
     std::vector<const Medium*> mMedia;
     PhotonPassStats mPassStats;
     std::unique_ptr<VolumePhotons> mPhotons;

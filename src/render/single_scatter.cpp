@@ -27,6 +27,7 @@ namespace {
 
 class SingleScatterIntegrator : public Integrator {
 public:
+    explicit SingleScatterIntegrator(bool directLight) : mDirect(directLight) {}
     std::string name() const override { return "single"; }
 
     // Mirror and glass vertices followed before the path gives up (a glass sphere needs 2).
@@ -55,7 +56,7 @@ public:
                 }
                 if (u < e.pAbsorb + e.pScatter) {
                     SampledSpectrum weight = beta * c.mp.sigmaS / (c.sigmaMaj * e.pScatter);
-                    out.L += weight * directLightMedium(scene, c, -ray.d, sampler, ts);
+                    if (mDirect) out.L += weight * directLightMedium(scene, c, -ray.d, sampler, ts);
                     beta = SampledSpectrum(0.f);
                     return Track::Stop;
                 }
@@ -85,7 +86,7 @@ public:
             const Vec3 wo = -ray.d;
             if (mat.emissive()) out.L += beta * mat.emission(w);
             if (!mat.specular()) {
-                out.L += beta * directLightSurface(scene, *hit, mat, wo, sampler, ts);
+                if (mDirect) out.L += beta * directLightSurface(scene, *hit, mat, wo, sampler, ts);
                 break;
             }
             Frame frame(hit->ns);
@@ -105,12 +106,15 @@ public:
         }
         return out;
     }
+
+private:
+    bool mDirect;
 };
 
 }  // namespace
 
-std::unique_ptr<Integrator> makeSingleScatterIntegrator() {
-    return std::make_unique<SingleScatterIntegrator>();
+std::unique_ptr<Integrator> makeSingleScatterIntegrator(bool directLight) {
+    return std::make_unique<SingleScatterIntegrator>(directLight);
 }
 
 }  // namespace mirage

@@ -550,11 +550,27 @@ std::vector<PhysicsTerm> Scene::physics() const {
     terms.push_back({"fluorescence", !fluorescenceWhy.empty(),
                      fluorescenceWhy.empty() ? "no shader declares a quantum efficiency"
                                              : fluorescenceWhy});
-    if (refraction)
-        terms.push_back({"curved paths", true,
-                         "[refraction]: " + refraction->description +
-                             ": camera rays bend (Dormand-Prince RK5(4)), straight beyond " +
-                             std::to_string(int(refraction->maxArc)) + " m"});
+    if (refraction) {
+        // Which paths bend: camera rays always; photons when the photon integrator runs and the
+        // field curves within the scene's bounds (photonsCurve), which then drops shadow rays.
+        const Bounds3 b = render.bounds();
+        char bound[96] = "";
+        if (!b.empty())
+            std::snprintf(bound, sizeof bound, "; |grad n| <= %.3g /m over the scene's bounds",
+                          refraction->field->gradientBound(Vec3d(b.lo), Vec3d(b.hi)));
+        const bool photons = integrator == "photon" && photonsCurve(refraction->field.get(), b);
+        terms.push_back(
+            {"curved paths", true,
+             "[refraction]: " + refraction->description + bound +
+                 ". Camera rays bend (Dormand-Prince RK5(4)), straight beyond " +
+                 std::to_string(int(refraction->maxArc)) + " m of path; " +
+                 (photons ? "photons follow curved paths too, and direct light comes from the "
+                            "photon maps (no shadow rays)"
+                          : integrator == "photon"
+                                ? "photons straight (the field is flat within the scene)"
+                                : "scattered paths and shadow rays stay straight (integrator '" +
+                                      integrator + "'; 'photon' bends photons too)")});
+    }
     else
         terms.push_back({"curved paths", false, "no refractive-index field: straight-line tracking"});
     return terms;

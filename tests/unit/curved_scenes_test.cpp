@@ -1,0 +1,113 @@
+// The curved-light scenes shipped in assets/scenes/ load and render without ../shared (their
+// procedural caches made by `mirage make-asset` next to a copy of the scene), and the flattened
+// sun sits where Snell's invariant for a flat-layered atmosphere puts it: a true elevation e'
+// outside the air is seen at e with n(camera)·cos e = n(top)·cos e'.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "film/image_io.h"
+#include "medium/air_index.h"
+#include "test_support.h"
+
+namespace mirage {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A scene in the source tree (tests/unit/ → assets/scenes/), as smoke1_scene_test.cpp finds it.
+std::string shippedScene(const std::string& name) {
+    fs::path self(__FILE__);
+    if (self.is_relative()) self = fs::path(MIRAGE_BINARY).parent_path() / self;
+    return (self.parent_path().parent_path().parent_path() / "assets" / "scenes" / name)
+        .lexically_normal()
+        .string();
+}
+
+// Copies the scene into a fresh folder (with the cache it needs, if any) and returns the copy.
+std::string sceneCopy(const std::string& name, const std::string& asset = "",
+                      const std::string& file = "") {
+    const std::string dir = test::tempDir();
+    fs::copy_file(shippedScene(name), dir + "/" + name);
+    if (!asset.empty()) {
+        std::string log;
+        EXPECT_EQ(
+            test::runMirage(
+                "make-asset " + asset + " -o '" + dir + "/" + file + "' --resolution 16", &log),
+            0)
+            << log;
+    }
+    return dir + "/" + name;
+}
+
+TEST(CurvedScenes, EachRendersWithoutSharedData) {
+    struct Case {
+        const char* scene;
+        const char* asset;
+        const char* file;
+    };
+    for (const Case& c :
+         {Case{"inferior_mirage.toml", "", ""}, Case{"superior_mirage.toml", "", ""},
+          Case{"heat_haze.toml", "fire", "fire_haze.vdb"},
+          Case{"flattened_sun.toml", "fog-sphere", "fog_sphere.vdb"}}) {
+        const std::string scene = sceneCopy(c.scene, c.asset, c.file);
+        std::string out;
+        ASSERT_EQ(test::runMirage("info '" + scene + "'", &out), 0) << out;
+        EXPECT_NE(out.find("Camera rays bend"), std::string::npos) << c.scene << out;
+        ASSERT_EQ(test::runMirage("render '" + scene + "' -o '" + scene +
+                                      ".exr' --resolution 24x12 --spp 1 --threads 2 --quiet",
+                                  &out),
+                  0)
+            << c.scene << out;
+        EXPECT_TRUE(fs::exists(scene + ".exr")) << c.scene;
+    }
+}
+
+TEST(CurvedScenes, FlattenedSunSitsWhereSnellsInvariantPutsIt) {
+    const std::string scene = sceneCopy("flattened_sun.toml", "fog-sphere", "fog_sphere.vdb");
+    // 150×100 pixels over 3° × 2° (0.02° each; rows from +1.9° down), the fog off.
+    std::string log;
+    ASSERT_EQ(test::runMirage("render '" + scene + "' -o '" + scene +
+                                  ".exr' --resolution 150x100 --spp 2 --threads 2 --quiet "
+                                  "--set volume.0.density_scale=0",
+                              &log),
+              0)
+        << log;
+    const Image im = readExr(scene + ".exr");
+    int top = im.height, bottom = -1, left = im.width, right = -1;
+    for (int y = 0; y < im.height; ++y)
+        for (int x = 0; x < im.width; ++x)
+            if (im.pixel(x, y)[0] > 4.f) {  // the sun's red is 8, the sky's 0.25
+                top = std::min(top, y);
+                bottom = std::max(bottom, y);
+                left = std::min(left, x);
+                right = std::max(right, x);
+            }
+    ASSERT_GE(bottom, top) << "no sun in the frame";
+    const double degPerPixel = 2.0 / im.height;
+    const double seenTop = 1.9 - top * degPerPixel, seenBottom = 1.9 - (bottom + 1) * degPerPixel;
+    const double seenWidth = (right + 1 - left) * degPerPixel;
+    // The prediction: the sun's limbs at 0.5° ± 0.265° outside the air.
+    const AtmosphereIndexField air({});
+    const double nCam = air.index(Vec3d(0, 2, 0), 550), nTop = air.index(Vec3d(0, 84000, 0), 550);
+    auto seen = [&](double trueDeg) {
+        const double c = nTop * std::cos(trueDeg * kPi / 180) / nCam;
+        return std::acos(c) * 180 / kPi;
+    };
+    const double predictedTop = seen(0.765), predictedBottom = seen(0.235);
+    std::printf("sun seen %.3f°–%.3f° (predicted %.3f°–%.3f°), %.3f° wide\n", seenBottom, seenTop,
+                predictedBottom, predictedTop, seenWidth);
+    // Within two pixels (the sun is 1e8 m away: its parallax from the paths' 20–40 km height at
+    // 3000 km is ~0.01°).
+    EXPECT_NEAR(seenTop, predictedTop, 2 * degPerPixel);
+    EXPECT_NEAR(seenBottom, predictedBottom, 2 * degPerPixel);
+    EXPECT_NEAR(seenWidth, 0.53, 2 * degPerPixel);
+    // Straight, it would be 0.53° tall at 0.235°–0.765°: here it is lifted and flattened.
+    EXPECT_GT((seenWidth) / (seenTop - seenBottom), 2.0);
+}
+
+}  // namespace
+}  // namespace mirage

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "geometry/embree_ray.h"
 #include "geometry/shape_region.h"
 
 namespace mirage {
@@ -244,20 +245,7 @@ std::optional<SurfaceHit> GeometryScene::intersect(const Ray& ray) const {
     if (mShapes.empty()) return std::nullopt;
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
-    RTCRayHit rh;
-    rh.ray.org_x = ray.o.x;
-    rh.ray.org_y = ray.o.y;
-    rh.ray.org_z = ray.o.z;
-    rh.ray.dir_x = ray.d.x;
-    rh.ray.dir_y = ray.d.y;
-    rh.ray.dir_z = ray.d.z;
-    rh.ray.tnear = 0.f;
-    rh.ray.tfar = ray.tMax;
-    rh.ray.mask = ~0u;
-    rh.ray.flags = 0;
-    rh.ray.time = 0.f;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit rh = embreeRayHit(ray.o, ray.d, 0.f, ray.tMax);
     rtcIntersect1(mEmbree->scene, &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
 

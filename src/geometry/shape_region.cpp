@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "geometry/embree_ray.h"
 
 namespace mirage {
 
@@ -142,22 +143,7 @@ private:
         CrossingContext q;
         rtcInitIntersectContext(&q.base);
         q.hits = hits;
-        RTCRayHit rh;
-        rh.ray.org_x = ray.o.x;
-        rh.ray.org_y = ray.o.y;
-        rh.ray.org_z = ray.o.z;
-        rh.ray.dir_x = ray.d.x;
-        rh.ray.dir_y = ray.d.y;
-        rh.ray.dir_z = ray.d.z;
-        rh.ray.tnear = tMin;
-        rh.ray.tfar = tMax;
-        rh.ray.time = 0.f;
-        rh.ray.mask = 0xFFFFFFFFu;
-        rh.ray.id = 0;
-        rh.ray.flags = 0;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-        rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        RTCRayHit rh = embreeRayHit(ray.o, ray.d, tMin, tMax);
         rtcIntersect1(mScene, &q.base, &rh);
         std::sort(hits->begin(), hits->end());
         hits->erase(std::unique(hits->begin(), hits->end(),

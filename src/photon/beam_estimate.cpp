@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "geometry/embree_ray.h"
 
 namespace mirage {
 
@@ -120,23 +121,9 @@ void BeamEstimator::query(const Ray& ray, float tMin, float tMax,
     // shifted by backOff, widened by the largest radius' worth of rounding slack (the filter
     // applies the exact span).
     const float back = mBvh->backOff;
-    RTCRayHit rh;
-    Vec3 o = ray.o - ray.d * back;
-    rh.ray.org_x = o.x;
-    rh.ray.org_y = o.y;
-    rh.ray.org_z = o.z;
-    rh.ray.dir_x = ray.d.x;
-    rh.ray.dir_y = ray.d.y;
-    rh.ray.dir_z = ray.d.z;
-    rh.ray.tnear = std::max(0.f, back + tMin - 0.25f * back);
-    rh.ray.tfar = tMax < kInfinity ? back + tMax + 0.25f * back : kInfinity;
-    rh.ray.time = 0.f;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    RTCRayHit rh = embreeRayHit(ray.o - ray.d * back, ray.d,
+                                std::max(0.f, back + tMin - 0.25f * back),
+                                tMax < kInfinity ? back + tMax + 0.25f * back : kInfinity);
     rtcIntersect1(mBvh->scene, &q.base, &rh);
 
     // Slot order makes the sum below independent of the traversal order; a disc reported twice

@@ -297,7 +297,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
     std::string dir = fs::path(path).parent_path().string();
     if (dir.empty()) dir = ".";
     auto resolve = [&](const std::string& p) {
-        return fs::path(p).is_relative() && !dir.empty() ? (fs::path(dir) / p).string() : p;
+        return fs::path(p).is_relative() ? (fs::path(dir) / p).string() : p;
     };
 
     Scene scene;
@@ -319,8 +319,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
         rec.shader = v.getString("shader", "smoke");
         ShaderDesc shader;
         try {
-            // A scene in the working directory has dir "": its neighbours are in ".".
-            shader = loadShader(rec.shader, dir.empty() ? "." : dir);
+            shader = loadShader(rec.shader, dir);
         } catch (const MirageError& e) {
             if (e.location().line > 0) throw;  // an error inside the shader file itself
             v.fail("shader", e.what());

@@ -124,10 +124,12 @@ ShaderDesc loadShader(const std::string& nameOrPath, const std::string& sceneDir
         return fromFile(p);
     }
     std::vector<fs::path> candidates;
-    // A scene given without a folder (`mirage render scene.toml`) lives in the working folder.
-    const fs::path dir = sceneDir.empty() ? fs::path(".") : fs::path(sceneDir);
-    candidates.push_back(dir / (nameOrPath + ".toml"));
-    candidates.push_back(dir / "shaders" / (nameOrPath + ".toml"));
+    // No folder (a bare VDB has no scene): only MIRAGE_SHADER_PATH and the built-ins. A scene in
+    // the working folder passes "." (scene_loader.cpp).
+    if (!sceneDir.empty()) {
+        candidates.push_back(fs::path(sceneDir) / (nameOrPath + ".toml"));
+        candidates.push_back(fs::path(sceneDir) / "shaders" / (nameOrPath + ".toml"));
+    }
     if (const char* env = std::getenv("MIRAGE_SHADER_PATH"))
         candidates.push_back(fs::path(env) / (nameOrPath + ".toml"));
     for (const auto& c : candidates)

@@ -22,6 +22,7 @@
 #include <cmath>
 #include <optional>
 
+#include "core/interrupt.h"
 #include "photon/medium_emitter.h"
 #include "photon/photon_walk.h"
 
@@ -254,6 +255,9 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
             tbb::blocked_range<uint64_t>(0, blocks, 1), [&](const tbb::blocked_range<uint64_t>& r) {
                 PhotonWalk walk(media);
                 for (uint64_t b = r.begin(); b != r.end(); ++b) {
+                    // Ctrl-C or SIGTERM during a long pass: the remaining blocks are skipped
+                    // (one block is a few ms of work), so the process exits promptly.
+                    if (interruptRequested()) continue;
                     uint64_t first = b * kBlockPhotons, last = std::min(n, first + kBlockPhotons);
                     for (uint64_t i = first; i < last; ++i) {
                         uint64_t flightsCut = walk.tracking().cappedFlights;
@@ -293,6 +297,7 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
             local.nonFinite += blockNonFinite[b];
         }
         local.emitted = n;
+        local.interrupted = interruptRequested();
     }
     local.stored = maps.volume.size() + maps.surfaceGlobal.size() + maps.surfaceCaustic.size();
     local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

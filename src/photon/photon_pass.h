@@ -61,6 +61,9 @@ struct PhotonPassStats {
     double mediumPower = 0;    // W over 360–830 nm, the media emitters' tabulated power
     double emittedPower = 0;   // W, Σ of every photon's power as it left its source
     double seconds = 0;
+    // An interrupt (core/interrupt.h) stopped the pass between blocks of photons: the maps hold
+    // only the blocks that finished, and the render that follows stops before its first tile.
+    bool interrupted = false;
 };
 
 struct PhotonMapLists {

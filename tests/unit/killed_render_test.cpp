@@ -1,7 +1,7 @@
 // Renders that survive being killed, in-process: the interrupt flag and its exit codes, the
 // partial file's exact round trip of the film's sums, a render stopped after some tiles and
 // resumed from its partial file equal bit for bit to one rendered in one go, and the memory
-// budget's size parsing and refusal.
+// budget's size parsing and refusal; a photon pass stops between blocks when interrupted.
 #include <gtest/gtest.h>
 
 #include <csignal>
@@ -12,6 +12,7 @@
 #include "core/interrupt.h"
 #include "core/rng.h"
 #include "film/partial_film.h"
+#include "photon/photon_pass.h"
 #include "render/renderer.h"
 #include "scene/memory_budget.h"
 #include "test_support.h"
@@ -201,4 +202,25 @@ TEST(MemoryBudget, RefusesAnEstimateOverBudgetNamingWhatDominates) {
         EXPECT_NE(m.find("1.00 GiB"), std::string::npos) << m;
     }
     EXPECT_GT(currentMemoryBytes(), 0u);
+}
+
+TEST(Interrupt, PhotonPassStopsBetweenBlocks) {
+    // Ctrl-C during a long photon pass: the remaining blocks are skipped, so the pass returns
+    // at once with the flag recorded, instead of tracing every photon first.
+    RenderScene scene = smokeBox();
+    std::vector<const Light*> lights{scene.lights[0].get()};
+    std::vector<const Medium*> media{scene.media[0].get()};
+    PhotonPassSettings ps;
+    ps.photons = 200000;
+    ps.seed = 3;
+    ps.progress = Progress::Mode::Quiet;
+    PhotonPassStats full, stopped;
+    PhotonList all = tracePhotons(lights, media, ps, &full);
+    EXPECT_FALSE(full.interrupted);
+    ASSERT_GT(all.size(), 1000u);
+    requestInterrupt(SIGINT);
+    PhotonList none = tracePhotons(lights, media, ps, &stopped);
+    clearInterrupt();
+    EXPECT_TRUE(stopped.interrupted);
+    EXPECT_TRUE(none.empty());  // the flag was up before the first block
 }

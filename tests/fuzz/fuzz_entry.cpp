@@ -2,10 +2,9 @@
 #include "fuzz_entry.h"
 
 #include <cstdlib>
+#include <stdexcept>
 #include <filesystem>
 #include <fstream>
-#include <memory>
-#include <mutex>
 #include <system_error>
 
 #include "core/error.h"
@@ -28,25 +27,25 @@ constexpr const char* kVdbName = "input.vdb";
 // A corrupt index could list thousands of grids; a few cover every code path.
 constexpr size_t kMaxGridsLoaded = 4;
 
-void removeScratch();
-
-std::string makeScratch() {
-    std::string pattern = (fs::temp_directory_path() / "mirage-fuzz-XXXXXX").string();
-    if (!mkdtemp(pattern.data())) throw MirageError("cannot create a folder under /tmp");
-    std::atexit(removeScratch);
-    const fs::path dir(pattern);
-    // The caches the shipped scenes (assets/scenes, tests/bench) name, as tiny procedural grids.
-    writeProceduralAsset("fog-sphere", (dir / "fog_sphere.vdb").string(), kAssetResolution);
-    writeProceduralAsset("smoke", (dir / "demo_smoke.vdb").string(), kAssetResolution);
-    writeProceduralAsset("smoke", (dir / "smoke1.vdb").string(), kAssetResolution);
-    writeProceduralAsset("fire", (dir / "fire_smoke.vdb").string(), kAssetResolution);
-    return pattern;
-}
-
-void removeScratch() {
-    std::error_code ec;
-    fs::remove_all(scratchFolder(), ec);
-}
+// The private folder: made on first use with tiny caches under the names the shipped scenes
+// (assets/scenes, tests/bench) give their grids, removed when the program exits.
+struct Scratch {
+    Scratch() {
+        std::string pattern = (fs::temp_directory_path() / "mirage-fuzz-XXXXXX").string();
+        if (!mkdtemp(pattern.data())) throw std::runtime_error("fuzz harness: cannot mkdtemp");
+        dir = pattern;
+        const fs::path d(dir);
+        writeProceduralAsset("fog-sphere", (d / "fog_sphere.vdb").string(), kAssetResolution);
+        writeProceduralAsset("smoke", (d / "demo_smoke.vdb").string(), kAssetResolution);
+        writeProceduralAsset("smoke", (d / "smoke1.vdb").string(), kAssetResolution);
+        writeProceduralAsset("fire", (d / "fire_smoke.vdb").string(), kAssetResolution);
+    }
+    ~Scratch() {
+        std::error_code ec;
+        fs::remove_all(dir, ec);
+    }
+    std::string dir;
+};
 
 std::string writeInput(const char* name, const uint8_t* data, size_t size) {
     const std::string path = (fs::path(scratchFolder()) / name).string();
@@ -65,8 +64,8 @@ const ColorPipeline& colorPipeline() {
 }  // namespace
 
 const std::string& scratchFolder() {
-    static const std::string dir = makeScratch();
-    return dir;
+    static const Scratch scratch;
+    return scratch.dir;
 }
 
 bool runSceneInput(const uint8_t* data, size_t size) {

@@ -24,7 +24,7 @@ configure() {  # build-dir, extra cmake args…
   local dir=$1
   shift
   CC=clang CXX=clang++ cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    "${LAUNCHER[@]}" -DMIRAGE_BUILD_BENCH=OFF "$@" >/dev/null
+    "${LAUNCHER[@]}" -DMIRAGE_BUILD_TESTS=ON -DMIRAGE_BUILD_BENCH=OFF "$@" >/dev/null
 }
 
 timed() {  # label, command…

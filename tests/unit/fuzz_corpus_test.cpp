@@ -14,9 +14,28 @@
 
 #include "../fuzz/fuzz_entry.h"
 
+#if defined(__SANITIZE_ADDRESS__)
+#define MIRAGE_FUZZ_REPLAY_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define MIRAGE_FUZZ_REPLAY_ASAN 1
+#endif
+#endif
+
 namespace {
 
 namespace fs = std::filesystem;
+
+// Inputs on which OpenVDB allocates what a corrupt file claims (terabytes): a normal build gets
+// std::bad_alloc and Mirage's message, but ASan's operator new aborts instead of throwing.
+bool abortsUnderAsan(const fs::path& file) {
+#ifdef MIRAGE_FUZZ_REPLAY_ASAN
+    return file.filename() == "blosc_size_3tb.vdb";
+#else
+    (void)file;
+    return false;
+#endif
+}
 
 std::vector<fs::path> corpusFiles(const std::string& kind) {
     const fs::path dir = fs::path(MIRAGE_SOURCE_DIR) / "tests" / "fuzz" / "corpus" / kind;
@@ -39,6 +58,7 @@ int replay(const std::string& kind, Entry entry, int& count) {
     count = 0;
     for (const fs::path& file : corpusFiles(kind)) {
         SCOPED_TRACE(file.string());
+        if (abortsUnderAsan(file)) continue;
         const std::vector<uint8_t> bytes = readBytes(file);
         bool ok = false;
         EXPECT_NO_THROW(ok = entry(bytes.data(), bytes.size()));

@@ -1,5 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages Mirage needs, only those missing. Root or sudo.
+# Usage: pipeline/install-deps.sh [fuzz]   "fuzz" adds clang 14 with its libFuzzer, ASan, UBSan
+# and TSan runtimes (libclang-rt-14-dev) and llvm (llvm-symbolizer for readable sanitizer
+# reports), which pipeline/fuzz.sh and pipeline/sanitize.sh need; the default build is g++.
 set -euo pipefail
 
 PACKAGES=(
@@ -13,6 +16,9 @@ PACKAGES=(
   libgtest-dev libbenchmark-dev
   python3
 )
+if [ "${1:-}" = "fuzz" ]; then
+  PACKAGES+=(clang clang-14 libclang-rt-14-dev llvm)
+fi
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -121,7 +121,15 @@ openvdb::GridBase::Ptr readOpenVdbGrid(const std::string& path, const GridRecord
         openvdb::GridBase::Ptr grid =
             metadataOnly ? file.readGridMetadata(name) : file.readGrid(name);
         file.close();
+        // A singular index → object map (a zero or denormal voxel size in a corrupt file) reads
+        // without complaint, but OpenVDB throws ArithmeticError wherever the map is later
+        // inverted or turned affine: build the affine form now, inside this handler.
+        const openvdb::math::MapBase::ConstPtr map = grid->transform().baseMap();
+        if (map->isLinear()) map->getAffineMap();
         return grid;
+    } catch (const openvdb::ArithmeticError& e) {
+        fail(path, "grid " + label + " has a singular index → object transform (" +
+                       boundedMessage(e.what()) + "); expected a non-zero voxel size");
     } catch (const std::bad_alloc&) {
         // OpenVDB allocates whatever size the file claims for a compressed block.
         fail(path,

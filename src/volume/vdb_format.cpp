@@ -184,6 +184,15 @@ void scanOpenVdb(const std::string& path, Reader& r, FileLayout& L) {
         if (r.pos() > g.blockPos)
             fail(path, "corrupt: the metadata of grid " + label + " runs past its data (byte " +
                            num(g.blockPos) + ")");
+        // The transform follows (file version 216 on, io/Archive.cc): OpenVDB allocates its
+        // map type name at whatever length the file claims (4 GiB in an input fuzz_vdb found)
+        // before reading it, so the length is checked here.
+        if (v >= 216) {
+            r.str("transform type of grid " + label);
+            if (r.pos() > g.blockPos)
+                fail(path, "corrupt: the transform of grid " + label +
+                               " runs past its data (byte " + num(g.blockPos) + ")");
+        }
         r.seek(g.endPos);
         L.grids.push_back(std::move(g));
     }

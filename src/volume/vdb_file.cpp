@@ -170,6 +170,39 @@ openvdb::FloatGrid::Ptr readFogVolume(const std::string& path, const GridRecord&
     return grid;
 }
 
+// True when the grid's fixed-size parts, the root's tile table and each level's node array lie
+// within the `bytes` of its buffer. Unsigned arithmetic: an offset or count from a corrupt file
+// cannot wrap the comparisons (each product is at most 2^32 × a node's size).
+bool nanoLayoutFits(const nanovdb::FloatGrid& grid, uint64_t bytes) {
+    using TreeT = nanovdb::FloatTree;
+    const auto* base = reinterpret_cast<const uint8_t*>(&grid);
+    auto fits = [&](const void* p, uint64_t size) {
+        const auto* q = reinterpret_cast<const uint8_t*>(p);
+        if (q < base) return false;
+        const uint64_t at = uint64_t(q - base);
+        return at <= bytes && size <= bytes - at;
+    };
+    const TreeT& tree = grid.tree();
+    if (!fits(&tree, sizeof(TreeT))) return false;
+    const auto* data = tree.data();
+    if (data->mNodeOffset[3] > bytes) return false;
+    const auto* root = reinterpret_cast<const uint8_t*>(data) + data->mNodeOffset[3];
+    if (!fits(root, sizeof(nanovdb::FloatTree::RootType))) return false;
+    if (!fits(root, tree.root().memUsage())) return false;
+    // The checksum's first span: grid, tree and root as one contiguous run.
+    if (grid.memUsage() + tree.memUsage() + tree.root().memUsage() > bytes) return false;
+    const uint64_t nodeBytes[3] = {sizeof(nanovdb::FloatTree::LeafNodeType),
+                                   sizeof(nanovdb::FloatTree::Node1),
+                                   sizeof(nanovdb::FloatTree::Node2)};
+    for (int level = 0; level < 3; ++level) {
+        if (data->mNodeCount[level] == 0) continue;
+        if (data->mNodeOffset[level] > bytes) return false;
+        const auto* first = reinterpret_cast<const uint8_t*>(data) + data->mNodeOffset[level];
+        if (!fits(first, uint64_t(data->mNodeCount[level]) * nodeBytes[level])) return false;
+    }
+    return true;
+}
+
 // Reads a NanoVDB grid's bytes, decompressing with OpenVDB's Blosc/zip readers: their stream
 // format (an int64 byte count, then the compressed bytes) is the one nanovdb::io writes, and it
 // spares Mirage a direct dependency on libblosc.
@@ -229,7 +262,14 @@ nanovdb::GridHandle<nanovdb::HostBuffer> readNanoVdbGrid(const std::string& path
         fail(path, "corrupt: NanoVDB grid " + label + " does not hold a valid grid");
     nanovdb::FloatGrid* grid = handle.grid<float>();
     if (!grid) fail(path, "corrupt: NanoVDB grid " + label + " is not the float grid it claims");
-    // Checksum first, then every node pointer against the buffer's extent.
+    // NanoVDB's validator computes the checksum first, walking the root's tile table and the
+    // node arrays by the counts and offsets the file states: bound those by the buffer before
+    // it reads a byte through them (a corrupt table size sent it far past the buffer).
+    if (!nanoLayoutFits(*grid, record.nanoGridBytes))
+        fail(path, "corrupt: NanoVDB grid " + label +
+                       " has node tables that do not fit in its " +
+                       std::to_string(record.nanoGridBytes) + " bytes");
+    // Checksum, then every node pointer against the buffer's extent.
     std::string problem = nanovdb::GridValidator<float>::check(*grid, /*detailed=*/true);
     if (!problem.empty())
         fail(path, "corrupt: NanoVDB grid " + label + ": " + boundedMessage(problem));

@@ -13,14 +13,7 @@
 #include <vector>
 
 #include "../fuzz/fuzz_entry.h"
-
-#if defined(__SANITIZE_ADDRESS__)
-#define MIRAGE_FUZZ_REPLAY_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define MIRAGE_FUZZ_REPLAY_ASAN 1
-#endif
-#endif
+#include "test_support.h"
 
 namespace {
 
@@ -29,12 +22,7 @@ namespace fs = std::filesystem;
 // Inputs on which OpenVDB allocates what a corrupt file claims (terabytes): a normal build gets
 // std::bad_alloc and Mirage's message, but ASan's operator new aborts instead of throwing.
 bool abortsUnderAsan(const fs::path& file) {
-#ifdef MIRAGE_FUZZ_REPLAY_ASAN
-    return file.filename() == "blosc_size_3tb.vdb";
-#else
-    (void)file;
-    return false;
-#endif
+    return mirage::test::kAddressSanitizer && file.filename() == "blosc_size_3tb.vdb";
 }
 
 std::vector<fs::path> corpusFiles(const std::string& kind) {

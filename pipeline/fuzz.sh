@@ -6,7 +6,9 @@
 # FUZZ_MERGE=1 merges those that add coverage into tests/fuzz/corpus/ (the corpus in the
 # repository, which ctest replays with the normal build: tests/unit/fuzz_corpus_test.cpp).
 # Environment: FUZZ_SECONDS (default 60 per target), FUZZ_TARGETS (default "scene vdb"),
-# FUZZ_RSS_MB (default 2048), MIRAGE_JOBS (build jobs, default: cores).
+# FUZZ_RSS_MB (default 2048), MIRAGE_JOBS (build jobs, default: cores). FUZZ_RUNS=N with
+# FUZZ_SEED=S (default 1) runs N inputs from seed S instead of a time: the same inputs on every
+# machine, so a CI run is reproducible here (.ci/run uses it for the scene target).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 pipeline/install-deps.sh fuzz
@@ -25,12 +27,18 @@ CC=clang CXX=clang++ cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelW
 ninja -C "$BUILD_DIR" -j "${MIRAGE_JOBS:-$(nproc)}" $(for t in $TARGETS; do echo "fuzz_$t"; done)
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/tests/fuzz/lsan.supp}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 export ASAN_SYMBOLIZER_PATH=${ASAN_SYMBOLIZER_PATH:-$(command -v llvm-symbolizer || true)}
 status=0
 for t in $TARGETS; do
   mkdir -p "$OUT/corpus/$t" "$OUT/findings"
-  args=(-max_total_time="$SECONDS_PER_TARGET" -timeout=10 -rss_limit_mb="$RSS_MB"
+  if [ -n "${FUZZ_RUNS:-}" ]; then
+    budget=(-runs="$FUZZ_RUNS" -seed="${FUZZ_SEED:-1}")
+  else
+    budget=(-max_total_time="$SECONDS_PER_TARGET")
+  fi
+  args=("${budget[@]}" -timeout=30 -rss_limit_mb="$RSS_MB"
         -malloc_limit_mb="$RSS_MB" -print_final_stats=1
         -artifact_prefix="$OUT/findings/$t-")
   # Scene files are text: the dictionary of TOML syntax and Mirage's keys speeds the search.
@@ -44,9 +52,12 @@ for t in $TARGETS; do
     if [ "${FUZZ_IGNORE_OOMS:-1}" = 1 ]; then args+=(-fork=1 -ignore_ooms=1); fi
   fi
   log="$OUT/fuzz_$t.log"
-  echo "fuzz: $t for ${SECONDS_PER_TARGET} s (log: $log)"
+  echo "fuzz: $t for ${FUZZ_RUNS:-$SECONDS_PER_TARGET s} ${FUZZ_RUNS:+inputs from seed ${FUZZ_SEED:-1}} (log: $log)"
   # The first corpus folder receives new inputs; the repository's seeds are only read.
-  if "$BUILD_DIR/tests/fuzz/fuzz_$t" "${args[@]}" "$OUT/corpus/$t" "tests/fuzz/corpus/$t" \
+  # A counted run starts from the repository's corpus alone, so it is the same run everywhere.
+  grow="$OUT/corpus/$t"
+  if [ -n "${FUZZ_RUNS:-}" ]; then grow=$(mktemp -d); fi
+  if "$BUILD_DIR/tests/fuzz/fuzz_$t" "${args[@]}" "$grow" "tests/fuzz/corpus/$t" \
        >"$log" 2>&1; then
     grep -E "stat::(number_of_executed_units|average_exec_per_sec|peak_rss_mb)|^#[0-9]+: cov" "$log" | tail -4 || true
     if ls "$OUT/findings/$t-"* >/dev/null 2>&1; then

@@ -314,7 +314,13 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
         FileLoc where = v.loc(boxed ? "box" : "file");
         if (!boxed) {
             rec.file = resolve(expandFramePattern(v.getString("file"), options.frame));
-            if (!fs::exists(rec.file)) v.fail("file", "volume file not found: " + rec.file);
+            // The shipped scenes use procedural caches that Mirage writes itself (no downloads):
+            // say how, since a fresh checkout has none of them.
+            if (!fs::exists(rec.file))
+                v.fail("file", "volume file not found: " + rec.file +
+                                   " (a procedural cache? `mirage make-asset smoke|fire|fog-sphere|"
+                                   "ocean -o " + rec.file + "` writes one; the scene's header "
+                                   "comment says which)");
         }
         rec.shader = v.getString("shader", "smoke");
         ShaderDesc shader;

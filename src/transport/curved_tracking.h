@@ -45,15 +45,25 @@ inline float radianceIndexScale(double nFrom, double nTo) {
     return float((nTo / nFrom) * (nTo / nFrom));
 }
 
-// Calls f(const Collision&, float arc) at every tentative collision along the curved path from
-// origin along the unit dir, over arc length maxArc (Collision::t is the arc length within the
-// chord, Collision::p lies on the chord). f returns Track::Stop to end the walk there.
-template <typename F>
-CurvedWalkEnd trackCurvedCollisions(TrackingContext& ctx, const IndexField& field,
-                                    const CurvedPathSettings& settings,
-                                    const ChordSurfaceTest& surfaces, const Vec3& origin,
-                                    const Vec3& dir, float lambdaNm, float maxArc,
-                                    Sampler& sampler, F&& f) {
+// One chord of a curved path as the trackers see it: `arcRay` starts at the chord's start with
+// direction unit/scale, so its parameter is arc length (scale = arc per metre of chord, ≥ 1),
+// tracked over [0, tStop] (the chord's arc h, or up to the surface found on it).
+struct CurvedChord {
+    Ray arcRay;
+    float tStop = 0, h = 0, arcStart = 0, scale = 1;
+    Vec3 unit, pEnd;            // chord direction (unit) and end point
+    bool surfaceAhead = false;  // a surface cuts the chord at tStop
+};
+
+// The chord walk shared by the curved trackers: each accepted step of the path stepper is a
+// chord, tested against the surfaces, then handed to step(chord, &end), which tracks the media
+// along it and returns false when the walk ends inside it (having filled end). A surface on the
+// chord ends the walk there; otherwise the walk ends where the path does (Reached) or at the
+// stepper's cap (Capped).
+template <typename Step>
+CurvedWalkEnd walkCurvedChords(const IndexField& field, const CurvedPathSettings& settings,
+                               const ChordSurfaceTest& surfaces, const Vec3& origin,
+                               const Vec3& dir, float lambdaNm, float maxArc, Step&& step) {
     CurvedWalkEnd end;
     auto visit = [&](const PathState& a, const PathState& b, bool) {
         ++end.chords;
@@ -63,27 +73,21 @@ CurvedWalkEnd trackCurvedCollisions(TrackingContext& ctx, const IndexField& fiel
         const Vec3 unit = (pb - pa) / len;
         end.chord = Ray{pa, unit};
         const float tSurface = surfaces ? surfaces(end.chord, len) : kInfinity;
-        // The tracked chord: parameter = arc length (direction of length len/h ≤ 1).
-        const float scale = h / len;
-        Ray arcRay{pa, unit / scale};
-        const float tStop = std::min(h, tSurface * scale);
-        bool stopped = false;
-        trackCollisions(ctx, arcRay, tStop, sampler, [&](const Collision& c) {
-            if (f(c, float(a.arc) + c.t) == Track::Continue) return Track::Continue;
-            stopped = true;
-            end.kind = CurvedWalkEnd::Kind::Stopped;
-            end.p = c.p;
-            end.direction = unit;
-            end.arc = float(a.arc) + c.t;
-            end.chordT = c.t / scale;
-            return Track::Stop;
-        });
-        if (stopped) return false;
-        if (tSurface < len) {
+        CurvedChord c;
+        c.scale = h / len;
+        c.arcRay = Ray{pa, unit / c.scale};
+        c.h = h;
+        c.tStop = std::min(h, tSurface * c.scale);
+        c.arcStart = float(a.arc);
+        c.unit = unit;
+        c.pEnd = pb;
+        c.surfaceAhead = tSurface < len;
+        if (!step(c, &end)) return false;
+        if (c.surfaceAhead) {
             end.kind = CurvedWalkEnd::Kind::Surface;
             end.p = end.chord.at(tSurface);
             end.direction = unit;
-            end.arc = float(a.arc) + tSurface * scale;
+            end.arc = c.arcStart + tSurface * c.scale;
             end.chordT = tSurface;
             return false;
         }
@@ -97,6 +101,33 @@ CurvedWalkEnd trackCurvedCollisions(TrackingContext& ctx, const IndexField& fiel
     end.direction = Vec3(r.end.direction());
     end.arc = float(r.end.arc);
     return end;
+}
+
+// Calls f(const Collision&, float arc) at every tentative collision along the curved path from
+// origin along the unit dir, over arc length maxArc (Collision::t is the arc length within the
+// chord, Collision::p lies on the chord). f returns Track::Stop to end the walk there.
+template <typename F>
+CurvedWalkEnd trackCurvedCollisions(TrackingContext& ctx, const IndexField& field,
+                                    const CurvedPathSettings& settings,
+                                    const ChordSurfaceTest& surfaces, const Vec3& origin,
+                                    const Vec3& dir, float lambdaNm, float maxArc,
+                                    Sampler& sampler, F&& f) {
+    return walkCurvedChords(
+        field, settings, surfaces, origin, dir, lambdaNm, maxArc,
+        [&](const CurvedChord& chord, CurvedWalkEnd* end) {
+            bool stopped = false;
+            trackCollisions(ctx, chord.arcRay, chord.tStop, sampler, [&](const Collision& c) {
+                if (f(c, chord.arcStart + c.t) == Track::Continue) return Track::Continue;
+                stopped = true;
+                end->kind = CurvedWalkEnd::Kind::Stopped;
+                end->p = c.p;
+                end->direction = chord.unit;
+                end->arc = chord.arcStart + c.t;
+                end->chordT = c.t / chord.scale;
+                return Track::Stop;
+            });
+            return !stopped;
+        });
 }
 
 // Transmittance along the curved path over arc length maxArc, up to the first surface (the walk

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -84,6 +85,51 @@ std::unique_ptr<Medium> gridMedium(const std::function<float(int, int, int)>& va
     std::vector<FloatGrid> grids{makeGrid(value, lo, hi, h)};
     return std::make_unique<Medium>(greyShader(sigmaA, sigmaS, g), std::move(grids),
                                     objectToWorld, 1.f, 16);
+}
+
+RenderSettings smallRenderSettings(int spp, uint64_t seed, int width, int height) {
+    RenderSettings rs;
+    rs.width = width;
+    rs.height = height;
+    rs.tileSize = 8;
+    rs.spp = spp;
+    rs.seed = seed;
+    rs.progress = Progress::Mode::Quiet;
+    return rs;
+}
+
+ImageError compareImages(const Image& image, const Image& ref) {
+    constexpr int B = 4;
+    double sumR = 0, sumI = 0, sq = 0, blockSq = 0;
+    int n = 0, blocks = 0;
+    for (int by = 0; by < ref.height / B; ++by)
+        for (int bx = 0; bx < ref.width / B; ++bx) {
+            double blockI[3] = {0, 0, 0}, blockR[3] = {0, 0, 0};
+            bool covered = true;
+            for (int y = by * B; y < (by + 1) * B; ++y)
+                for (int x = bx * B; x < (bx + 1) * B; ++x) {
+                    const float* r = ref.pixel(x, y);
+                    const float* v = image.pixel(x, y);
+                    covered &= r[3] >= 0.5f;
+                    if (r[3] < 0.5f) continue;
+                    for (int c = 0; c < 3; ++c) {
+                        sumR += r[c];
+                        sumI += v[c];
+                        sq += (v[c] - r[c]) * (v[c] - r[c]);
+                        blockR[c] += r[c];
+                        blockI[c] += v[c];
+                        ++n;
+                    }
+                }
+            if (!covered) continue;
+            for (int c = 0; c < 3; ++c) {
+                double d = (blockI[c] - blockR[c]) / (B * B);
+                blockSq += d * d;
+                ++blocks;
+            }
+        }
+    const double mean = sumR / n;
+    return {std::sqrt(sq / n) / mean, std::sqrt(blockSq / blocks) / mean, (sumI - sumR) / sumR};
 }
 
 }  // namespace mirage::test

@@ -43,7 +43,9 @@ int runCommand(const std::string& cmd, std::string* output = nullptr);
 
 #include <functional>
 
+#include "film/film.h"
 #include "medium/medium.h"
+#include "render/renderer.h"
 #include "volume/grid.h"
 
 namespace mirage::test {
@@ -62,5 +64,17 @@ ShaderDesc greyShader(float sigmaA, float sigmaS, float g = 0.f);
 std::unique_ptr<Medium> gridMedium(const std::function<float(int, int, int)>& value, int lo,
                                    int hi, double h, float sigmaA, float sigmaS, float g = 0.f,
                                    const Transform& objectToWorld = Transform());
+
+// Small test renders: width × height pixels in 8-pixel tiles, quiet.
+RenderSettings smallRenderSettings(int spp, uint64_t seed, int width = 32, int height = 32);
+
+// An image against a reference over the pixels the reference covers (alpha ≥ 0.5: background
+// and fringes excluded), in scene-linear RGB, relative to the reference's mean.
+struct ImageError {
+    double relRmse;    // √(mean (I − R)²) / mean R over the covered pixels and channels
+    double blockRmse;  // the same on the means of 4×4-pixel blocks wholly covered
+    double bias;       // (mean I − mean R) / mean R over the covered pixels
+};
+ImageError compareImages(const Image& image, const Image& ref);
 
 }  // namespace mirage::test

@@ -46,50 +46,14 @@ RenderScene glowingBox() {
     return scene;
 }
 
-RenderSettings settings(int spp, uint64_t seed) {
-    RenderSettings rs;
-    rs.width = rs.height = 32;
-    rs.tileSize = 8;
-    rs.spp = spp;
-    rs.seed = seed;
-    rs.progress = Progress::Mode::Quiet;
-    return rs;
-}
+RenderSettings settings(int spp, uint64_t seed) { return test::smallRenderSettings(spp, seed); }
 
-// Over the pixels the reference covers (alpha ≥ 0.5): relative bias of the mean and relative
-// RMS error of 4×4-pixel block means, in scene-linear RGB.
+// Over the pixels the reference covers: relative bias of the mean and relative RMS error of
+// 4×4-pixel block means (test_support.h).
 void compare(const Image& image, const Image& ref, double* bias, double* blockRmse) {
-    constexpr int B = 4;
-    double sumR = 0, sumI = 0, sq = 0;
-    int n = 0, blocks = 0;
-    for (int by = 0; by < ref.height / B; ++by)
-        for (int bx = 0; bx < ref.width / B; ++bx) {
-            double bI[3] = {0, 0, 0}, bR[3] = {0, 0, 0};
-            bool covered = true;
-            for (int y = by * B; y < (by + 1) * B; ++y)
-                for (int x = bx * B; x < (bx + 1) * B; ++x) {
-                    const float* r = ref.pixel(x, y);
-                    const float* v = image.pixel(x, y);
-                    covered &= r[3] >= 0.5f;
-                    for (int c = 0; c < 3; ++c) {
-                        bR[c] += r[c];
-                        bI[c] += v[c];
-                        if (r[3] >= 0.5f) {
-                            sumR += r[c];
-                            sumI += v[c];
-                            ++n;
-                        }
-                    }
-                }
-            if (!covered) continue;
-            for (int c = 0; c < 3; ++c) {
-                double d = (bI[c] - bR[c]) / (B * B);
-                sq += d * d;
-                ++blocks;
-            }
-        }
-    *bias = (sumI - sumR) / sumR;
-    *blockRmse = std::sqrt(sq / blocks) / (sumR / n);
+    const test::ImageError e = test::compareImages(image, ref);
+    *bias = e.bias;
+    *blockRmse = e.blockRmse;
 }
 
 double secondsSince(std::chrono::steady_clock::time_point t0) {

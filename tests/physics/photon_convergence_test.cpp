@@ -37,55 +37,10 @@ RenderScene fogBox() {
     return scene;
 }
 
-RenderSettings settings(int spp, uint64_t seed) {
-    RenderSettings rs;
-    rs.width = rs.height = 32;
-    rs.tileSize = 8;
-    rs.spp = spp;
-    rs.seed = seed;
-    rs.progress = Progress::Mode::Quiet;
-    return rs;
-}
+RenderSettings settings(int spp, uint64_t seed) { return test::smallRenderSettings(spp, seed); }
 
-struct ImageError {
-    double relRmse;    // √(mean (I − R)²) / mean R over the pixels and channels the box covers
-    double blockRmse;  // the same on the means of 4×4-pixel blocks
-    double bias;       // (mean I − mean R) / mean R over the covered pixels
-};
-
-ImageError compare(const Image& image, const Image& ref) {
-    constexpr int B = 4;
-    double sumR = 0, sumI = 0, sq = 0, blockSq = 0;
-    int n = 0, blocks = 0;
-    for (int by = 0; by < ref.height / B; ++by)
-        for (int bx = 0; bx < ref.width / B; ++bx) {
-            double blockI[3] = {0, 0, 0}, blockR[3] = {0, 0, 0};
-            bool covered = true;
-            for (int y = by * B; y < (by + 1) * B; ++y)
-                for (int x = bx * B; x < (bx + 1) * B; ++x) {
-                    const float* r = ref.pixel(x, y);
-                    const float* v = image.pixel(x, y);
-                    covered &= r[3] >= 0.5f;
-                    if (r[3] < 0.5f) continue;  // background and the box's fringe
-                    for (int c = 0; c < 3; ++c) {
-                        sumR += r[c];
-                        sumI += v[c];
-                        sq += (v[c] - r[c]) * (v[c] - r[c]);
-                        blockR[c] += r[c];
-                        blockI[c] += v[c];
-                        ++n;
-                    }
-                }
-            if (!covered) continue;
-            for (int c = 0; c < 3; ++c) {
-                double d = (blockI[c] - blockR[c]) / (B * B);
-                blockSq += d * d;
-                ++blocks;
-            }
-        }
-    double mean = sumR / n;
-    return {std::sqrt(sq / n) / mean, std::sqrt(blockSq / blocks) / mean, (sumI - sumR) / sumR};
-}
+using test::ImageError;
+ImageError compare(const Image& image, const Image& ref) { return test::compareImages(image, ref); }
 
 double secondsSince(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -97,17 +97,23 @@ TEST(KilledRenderCli, SigtermStopsTheRenderWithExit143AndNoFinalFile) {
     const std::string dir = test::tempDir();
     const std::string scene = writeScene(dir, "volpath");
     const std::string target = dir + "/frame.exr";
-    // About 15 s uninterrupted on 2 cores, in 4-pixel tiles so that those in flight end soon;
-    // killed after 1.5 s.
+    // The signal must arrive while tiles are still being rendered, on any machine: a fixed sleep
+    // raced a fast CI machine (the whole frame finished first). So the frame is long (65536 spp,
+    // about a minute on 2 cores; a 4-pixel tile takes ~1 s on one thread), and the signal is sent
+    // as soon as the first finished tile shows up in <out>.partial (written after every tile with
+    // MIRAGE_PARTIAL_INTERVAL=0). The wait is bounded at 120 s so that a broken partial writer
+    // fails the test instead of hanging it; tiles in flight finish before the exit.
     std::string out;
-    int rc =
-        test::runCommand("MIRAGE_PARTIAL_INTERVAL=0 '" MIRAGE_BINARY "' render '" + scene +
-                             "' -q --spp 1024 --set film.tile_size=4 --threads 2 -o '" + target +
-                             "' & pid=$!; sleep 1.5; "
-                             "kill -TERM $pid; wait $pid",
-                         &out);
+    int rc = test::runCommand(
+        "MIRAGE_PARTIAL_INTERVAL=0 '" MIRAGE_BINARY "' render '" + scene +
+            "' -q --spp 65536 --set film.tile_size=4 --threads 2 -o '" + target +
+            "' & pid=$!; i=0; while [ ! -e '" + target +
+            ".partial' ] && [ $i -lt 1200 ]; do sleep 0.1; i=$((i+1)); done; "
+            "kill -TERM $pid; wait $pid",
+        &out);
     EXPECT_EQ(rc, 143) << out;
-    EXPECT_FALSE(fs::exists(target));
+    EXPECT_FALSE(fs::exists(target)) << "a killed frame must not leave a final EXR";
+    EXPECT_TRUE(fs::exists(target + ".partial")) << "the finished tiles are kept for --resume";
 }
 
 TEST(KilledRenderCli, SkipExistingSkipsCompleteFramesOnly) {

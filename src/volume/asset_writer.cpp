@@ -342,6 +342,28 @@ openvdb::math::Transform::Ptr makeTransform(double voxelSize, const Vec3d& origi
     return xform;
 }
 
+// The index → object maps a test grid can carry, each stored as a different OpenVDB map type.
+openvdb::math::Transform::Ptr makeTestTransform(const TestGridSpec& s, const std::string& path) {
+    using namespace openvdb::math;
+    const double h = s.voxelSize;
+    const openvdb::Vec3d origin(s.origin.x, s.origin.y, s.origin.z);
+    if (s.map == "uniform") return makeTransform(h, s.origin);
+    if (s.map == "scale")  // ScaleTranslateMap: voxels stretched ×2 along y
+        return std::make_shared<Transform>(
+            std::make_shared<ScaleTranslateMap>(openvdb::Vec3d(h, 2 * h, h), origin));
+    if (s.map == "affine") {  // AffineMap: rotated 30° about z
+        Mat4d m = Mat4d::identity();
+        m.preScale(openvdb::Vec3d(h));
+        m.postRotate(Z_AXIS, 0.5235987755982988);
+        m.postTranslate(origin);
+        return std::make_shared<Transform>(std::make_shared<AffineMap>(m));
+    }
+    if (s.map == "frustum")  // NonlinearFrustumMap over a 16³ index box
+        return Transform::createFrustumTransform(
+            openvdb::BBoxd(openvdb::Vec3d(0.0), openvdb::Vec3d(16.0)), 0.5, 2.0, h);
+    fail(path, "test grid map '" + s.map + "' is not one of uniform, scale, affine, frustum");
+}
+
 template <typename GridT, typename MakeValue>
 openvdb::GridBase::Ptr buildTestGrid(const TestGridSpec& s, typename GridT::ValueType background,
                                      MakeValue value) {
@@ -461,10 +483,34 @@ void writeTestGrids(const std::string& path, const std::vector<TestGridSpec>& sp
         } else if (s.valueType == "bool") {
             grid = buildTestGrid<openvdb::BoolGrid>(
                 s, s.background != 0.0, [](double v, const Vec3d&) { return v != 0.0; });
+        } else if (s.valueType == "int32") {
+            grid = buildTestGrid<openvdb::Int32Grid>(
+                s, int32_t(s.background), [](double v, const Vec3d&) { return int32_t(v); });
+        } else if (s.valueType == "int64") {
+            grid = buildTestGrid<openvdb::Int64Grid>(
+                s, int64_t(s.background), [](double v, const Vec3d&) { return int64_t(v); });
+        } else if (s.valueType == "vec3d") {
+            grid = buildTestGrid<openvdb::Vec3DGrid>(
+                s, openvdb::Vec3d(s.background),
+                [](double, const Vec3d& v) { return openvdb::Vec3d(v.x, v.y, v.z); });
+        } else if (s.valueType == "vec3i") {
+            grid = buildTestGrid<openvdb::Vec3IGrid>(
+                s, openvdb::Vec3i(int(s.background)), [](double, const Vec3d& v) {
+                    return openvdb::Vec3i(int(v.x), int(v.y), int(v.z));
+                });
+        } else if (s.valueType == "mask") {
+            grid = buildTestGrid<openvdb::MaskGrid>(s, false,
+                                                    [](double v, const Vec3d&) { return v != 0.0; });
         } else {
             fail(path, "test grid type '" + s.valueType +
-                           "' is not one of float, double, "
-                           "vec3s, bool");
+                           "' is not one of float, double, vec3s, bool, int32, int64, vec3d, "
+                           "vec3i, mask");
+        }
+        if (s.shareTreeWithPrevious) {
+            if (grids.empty() || grids.back()->type() != grid->type())
+                fail(path, "test grid '" + s.name + "' shares the tree of a previous grid of "
+                                                    "another type, or of none");
+            grid->setTree(grids.back()->baseTreePtr());
         }
         openvdb::GridClass cls = openvdb::GridBase::stringToGridClass(s.gridClass);
         if (cls == openvdb::GRID_UNKNOWN && s.gridClass != "unknown")
@@ -473,7 +519,7 @@ void writeTestGrids(const std::string& path, const std::vector<TestGridSpec>& sp
                            "set, staggered, unknown");
         grid->setGridClass(cls);
         grid->setName(s.name);
-        grid->setTransform(makeTransform(s.voxelSize, s.origin));
+        grid->setTransform(makeTestTransform(s, path));
         grid->setSaveFloatAsHalf(s.saveAsHalf);
         grids.push_back(grid);
     }

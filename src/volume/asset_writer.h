@@ -63,12 +63,18 @@ struct TestGridSpec {
     };
 
     std::string name = "density";          // "" writes an unnamed grid
-    std::string valueType = "float";       // "float", "double", "vec3s", "bool"
+    // "float", "double", "vec3s", "bool", "int32", "int64", "vec3d", "vec3i", "mask"
+    std::string valueType = "float";
     std::string gridClass = "fog volume";  // "fog volume", "level set", "staggered", "unknown"
     double voxelSize = 0.1;                // metres
     Vec3d origin;                          // object-space position of index (0,0,0), metres
     double background = 0.0;
     bool saveAsHalf = false;    // store float values as 16-bit half
+    // The index → object map: "uniform" (a UniformScaleTranslateMap), "scale" (voxels ×2 along
+    // y), "affine" (rotated 30° about z) or "frustum" (a NonlinearFrustumMap).
+    std::string map = "uniform";
+    // Share the previous grid's tree (same type): OpenVDB writes this grid as an instance.
+    bool shareTreeWithPrevious = false;
     std::vector<Voxel> voxels;  // active voxels
     std::vector<Tile> tiles;
 };

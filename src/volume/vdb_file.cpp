@@ -24,6 +24,7 @@
 
 #include "core/error.h"
 #include "volume/vdb_format.h"
+#include "volume/vdb_tree.h"
 
 namespace mirage {
 
@@ -110,8 +111,12 @@ void checkFogClass(const std::string& path, const std::string& label, const std:
         fail(path, "grid " + label + " is a " + cls + " grid, expected a fog volume (density)");
 }
 
-openvdb::GridBase::Ptr readOpenVdbGrid(const std::string& path, const GridRecord& record,
-                                       const std::string& label, bool metadataOnly) {
+openvdb::GridBase::Ptr readOpenVdbGrid(const std::string& path, const FileLayout& layout,
+                                       int index, bool metadataOnly) {
+    const GridRecord& record = layout.grids[size_t(index)];
+    const std::string label = vdbformat::gridLabel(layout, index);
+    // The tree's counts and block sizes are checked before OpenVDB trusts them (vdb_tree.h).
+    if (!metadataOnly) vdbformat::checkOpenVdbTree(path, layout, index);
     initOpenVdb();
     try {
         openvdb::io::File file(path);
@@ -141,13 +146,15 @@ openvdb::GridBase::Ptr readOpenVdbGrid(const std::string& path, const GridRecord
 
 // Reads a grid and returns it as a float grid (double grids are converted; float grids stored
 // as half come back as float already), after checking that it is a scalar fog volume.
-openvdb::FloatGrid::Ptr readFogVolume(const std::string& path, const GridRecord& record,
-                                      const std::string& label) {
+openvdb::FloatGrid::Ptr readFogVolume(const std::string& path, const FileLayout& layout,
+                                      int index) {
+    const GridRecord& record = layout.grids[size_t(index)];
+    const std::string label = vdbformat::gridLabel(layout, index);
     const std::string valueType = vdbformat::valueTypeOf(record);
     if (valueType != "float" && valueType != "half" && valueType != "double")
         fail(path, "grid " + label + " holds " + describeValueType(valueType) +
                        " values, expected a scalar float fog volume (density)");
-    openvdb::GridBase::Ptr base = readOpenVdbGrid(path, record, label, false);
+    openvdb::GridBase::Ptr base = readOpenVdbGrid(path, layout, index, false);
     checkFogClass(path, label, openvdb::GridBase::gridClassToString(base->getGridClass()));
     if (!base->transform().baseMap()->isLinear())
         fail(path, "grid " + label + " has a " + base->transform().mapType() +
@@ -341,7 +348,7 @@ void warnSanitizedOnce(const std::string& path, const std::string& label,
 GridInfo openVdbGridInfo(const std::string& path, const FileLayout& layout, int index) {
     const GridRecord& record = layout.grids[size_t(index)];
     const std::string label = vdbformat::gridLabel(layout, index);
-    openvdb::GridBase::Ptr grid = readOpenVdbGrid(path, record, label, true);
+    openvdb::GridBase::Ptr grid = readOpenVdbGrid(path, layout, index, true);
 
     GridInfo info;
     info.name = record.name;
@@ -369,8 +376,8 @@ GridInfo openVdbGridInfo(const std::string& path, const FileLayout& layout, int 
         box = openvdb::CoordBBox(openvdb::Coord(bmin->value()), openvdb::Coord(bmax->value()));
         info.activeVoxels = uint64_t(std::max<int64_t>(0, voxels->value()));
         info.memoryBytes = mem ? uint64_t(std::max<int64_t>(0, mem->value())) : 0;
-    } else {
-        openvdb::GridBase::Ptr full = readOpenVdbGrid(path, record, label, false);
+    } else if (vdbformat::treeIsWalkable(layout, index)) {
+        openvdb::GridBase::Ptr full = readOpenVdbGrid(path, layout, index, false);
         box = full->evalActiveVoxelBoundingBox();
         info.activeVoxels = full->activeVoxelCount();
         info.memoryBytes = full->memUsage();
@@ -464,7 +471,7 @@ FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName) {
             fail(path, "grid " + label + " has background value " + fmt(background) +
                            ", expected 0 for a fog volume (is it a level set?)");
     } else {
-        openvdb::FloatGrid::Ptr grid = readFogVolume(path, record, label);
+        openvdb::FloatGrid::Ptr grid = readFogVolume(path, layout, index);
         try {
             handle = nanovdb::openToNanoVDB(*grid, nanovdb::StatsMode::All,
                                             nanovdb::ChecksumMode::Partial);
@@ -485,7 +492,7 @@ std::vector<double> openvdbSampleForTest(const std::string& path, const std::str
     if (layout.format != Format::OpenVdb) fail(path, "not an OpenVDB file");
     const int index = requireGrid(path, layout, gridName);
     openvdb::FloatGrid::Ptr grid =
-        readFogVolume(path, layout.grids[size_t(index)], vdbformat::gridLabel(layout, index));
+        readFogVolume(path, layout, index);
     std::vector<double> values;
     values.reserve(points.size());
     openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(*grid);

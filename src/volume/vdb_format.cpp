@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "volume/vdb_reader.h"
 
 namespace mirage::vdbformat {
 
@@ -18,8 +19,6 @@ constexpr unsigned char kNanoVdbMagic[8] = {'N', 'a', 'n', 'o', 'V', 'D', 'B', '
 constexpr uint32_t kNanoMajorVersion = 32;  // NANOVDB_MAJOR_VERSION_NUMBER: the file ABI
 constexpr uint64_t kNanoHeaderBytes = 16, kNanoMetaBytes = 176;
 
-// Names and type names longer than this are a corrupt length field, not a long name.
-constexpr uint32_t kMaxNameBytes = 1u << 16;
 // Offsets or sizes beyond this (1 TiB) are corrupt values rather than a truncated file.
 constexpr uint64_t kMaxPlausibleBytes = uint64_t(1) << 40;
 
@@ -31,60 +30,6 @@ const char kUniqueNameSeparator = '\x1e';  // OpenVDB's "record separator" befor
 
 std::string num(uint64_t v) { return std::to_string(v); }
 
-// Sequential reads from the file where every read is first checked against the file size, so
-// that a bad length is reported, never trusted.
-class Reader {
-public:
-    Reader(const std::string& path, std::ifstream& in, uint64_t size)
-        : mPath(path), mIn(in), mSize(size) {}
-
-    uint64_t pos() const { return mPos; }
-    uint64_t size() const { return mSize; }
-    uint64_t remaining() const { return mPos < mSize ? mSize - mPos : 0; }
-    void seek(uint64_t p) { mPos = p; }
-
-    void require(uint64_t n, const std::string& what) const {
-        if (n > mSize || mPos > mSize - n)
-            fail(mPath, "truncated: " + what + " at byte " + num(mPos) + " needs " + num(n) +
-                            " bytes but the file has " + num(mSize) + " bytes");
-    }
-    void read(void* dst, uint64_t n, const std::string& what) {
-        require(n, what);
-        if (mStreamPos != mPos) mIn.seekg(std::streamoff(mPos));
-        mIn.read(static_cast<char*>(dst), std::streamsize(n));
-        if (!mIn) fail(mPath, "read error at byte " + num(mPos) + ": " + std::strerror(errno));
-        mPos += n;
-        mStreamPos = mPos;
-    }
-    template <typename T>
-    T pod(const std::string& what) {
-        T v{};
-        read(&v, sizeof(T), what);
-        return v;
-    }
-    void skip(uint64_t n, const std::string& what) {
-        require(n, what);
-        mPos += n;
-    }
-    // OpenVDB string: uint32 length, then the bytes.
-    std::string str(const std::string& what) {
-        uint32_t n = pod<uint32_t>(what);
-        if (n > kMaxNameBytes)
-            fail(mPath,
-                 "corrupt: " + what + " at byte " + num(mPos - 4) + " claims " + num(n) + " bytes");
-        std::string s(n, '\0');
-        read(s.data(), n, what);
-        return s;
-    }
-
-private:
-    const std::string& mPath;
-    std::ifstream& mIn;
-    uint64_t mSize;
-    uint64_t mPos = 0;
-    uint64_t mStreamPos = ~uint64_t(0);  // where the stream is; unknown at first
-};
-
 std::string displayName(const GridRecord& g) {
     size_t sep = g.uniqueName.find(kUniqueNameSeparator);
     if (sep == std::string::npos) return g.uniqueName;
@@ -95,18 +40,114 @@ std::string labelOf(const GridRecord& g, size_t index) {
     return g.name.empty() ? "#" + num(index) : "'" + displayName(g) + "'";
 }
 
-// Skips a MetaMap (file or grid metadata), checking each length.
-void skipMetadata(Reader& r, const std::string& owner) {
+// Bytes OpenVDB's registered metadata types read for their value (openvdb::initialize(); sizes
+// checked against Metadata::createMetadata(type)->size() of OpenVDB 10). OpenVDB reads sizeof(T)
+// whatever size the file states, so a different size would put its reader somewhere the scan
+// never checked. 0: the type is not a fixed-size one.
+uint32_t fixedMetadataBytes(const std::string& type) {
+    static const std::pair<const char*, uint32_t> kTypes[] = {
+        {"bool", 1},   {"double", 8}, {"float", 4},  {"int32", 4},       {"int64", 8},
+        {"vec2i", 8},  {"vec2s", 8},  {"vec2d", 16}, {"vec3i", 12},      {"vec3s", 12},
+        {"vec3d", 24}, {"vec4i", 16}, {"vec4s", 16}, {"vec4d", 32},      {"mat4s", 64},
+        {"mat4d", 128}, {"ptdataidx32", 4}, {"ptidx32", 4}};
+    for (const auto& [name, bytes] : kTypes)
+        if (type == name) return bytes;
+    return 0;
+}
+
+// OpenVDB's "__delayedload" metadata (io/DelayedLoadMetadata.cc): uint32 leaf count, then a
+// mask array (uint32 byte count, Blosc-compressed when non-zero, else `count` raw bytes), then a
+// compressed-size array (uint32 byte count, 0xFFFFFFFF when absent, Blosc or `count` × 8 raw
+// bytes). OpenVDB sizes the arrays by the stored count before it reads them (4 GiB for a
+// corrupt count), so the count is bounded by the grid's bytes (a leaf takes at least 64) and
+// every part must fit in the item's stated size, which is what OpenVDB skips to afterwards.
+void checkDelayedLoadMetadata(Reader& r, const std::string& what, uint32_t bytes,
+                              uint64_t extent) {
+    if (bytes == 0) return;
+    const uint64_t start = r.pos(), end = start + bytes;
+    auto corrupt = [&](const std::string& why) {
+        r.fail("corrupt: " + what + " at byte " + num(start) + ": " + why);
+    };
+    if (bytes < 8) corrupt("needs at least 8 bytes, has " + num(bytes));
+    const uint32_t count = r.pod<uint32_t>(what);
+    if (uint64_t(count) * 64 > extent)
+        corrupt("claims " + num(count) + " leaves in a grid of " + num(extent) + " bytes");
+    for (uint32_t elementBytes : {1u, 8u}) {
+        if (r.pos() + 4 > end) corrupt("runs past its " + num(bytes) + " bytes");
+        const uint32_t stored = r.pod<uint32_t>(what);
+        if (elementBytes == 8 && stored == 0xFFFFFFFFu) break;  // no compressed sizes
+        const uint64_t raw = uint64_t(count) * elementBytes;
+        const uint64_t size = stored > 0 ? stored : raw;
+        if (r.pos() + size > end) corrupt("runs past its " + num(bytes) + " bytes");
+        if (stored > 0) {
+            // A Blosc frame: its header states the uncompressed and compressed sizes.
+            unsigned char header[16];
+            if (stored < sizeof(header)) corrupt("has a Blosc frame of " + num(stored) + " bytes");
+            r.read(header, sizeof(header), what);
+            uint32_t nbytes, cbytes;
+            std::memcpy(&nbytes, header + 4, 4);
+            std::memcpy(&cbytes, header + 12, 4);
+            // compression::bloscCompress pads inputs under 128 bytes to 128
+            // (points/StreamCompression.cc); OpenVDB reserves what the header states.
+            const bool padded = raw < 128 && nbytes == 128;
+            if ((nbytes != raw && !padded) || cbytes != stored)
+                corrupt("a Blosc frame of " + num(stored) + " bytes claims " + num(cbytes) +
+                        " compressed and " + num(nbytes) + " uncompressed bytes for " +
+                        num(count) + " leaves");
+            r.skip(stored - sizeof(header), what);
+        } else {
+            r.skip(raw, what);
+        }
+    }
+    r.seek(end);
+}
+
+// Skips a MetaMap (file or grid metadata), checking each length, and each value's layout where
+// OpenVDB reads a type's own layout rather than the stated size. `extent` is the bytes of the
+// grid the metadata belongs to (the file's size for file metadata).
+void skipMetadata(Reader& r, const std::string& owner, uint64_t extent) {
     uint32_t count = r.pod<uint32_t>(owner + " metadata count");
     // Each item needs at least 12 bytes: two string lengths and a value size.
     if (uint64_t(count) * 12 > r.remaining())
         r.require(uint64_t(count) * 12, owner + " metadata (" + num(count) + " items)");
     for (uint32_t i = 0; i < count; ++i) {
         std::string name = r.str(owner + " metadata name");
-        r.str(owner + " metadata type of '" + name + "'");
+        const std::string type = r.str(owner + " metadata type of '" + name + "'");
         uint32_t bytes = r.pod<uint32_t>(owner + " metadata size of '" + name + "'");
-        r.skip(bytes, owner + " metadata value '" + name + "'");
+        const std::string what = owner + " metadata value '" + boundedMessage(name, 40) + "'";
+        r.require(bytes, what);
+        const uint32_t fixed = fixedMetadataBytes(type);
+        if (fixed != 0 && bytes != fixed)
+            r.fail("corrupt: " + what + " of type " + type + " at byte " + num(r.pos()) +
+                               " has " + num(bytes) + " bytes, expected " + num(fixed));
+        if (type == "__delayedload")
+            checkDelayedLoadMetadata(r, what, bytes, extent);
+        else
+            r.skip(bytes, what);
     }
+}
+
+// Bytes of an index → object map after its type name, as each map's read() takes them
+// (math/Maps.h): Vec3d members are 24 bytes, a Mat4d 128. A frustum holds a second, linear map.
+uint64_t mapBytes(Reader& r, const std::string& type, const std::string& what, bool nested) {
+    static const std::pair<const char*, uint64_t> kMaps[] = {
+        {"AffineMap", 128},         {"UnitaryMap", 128},
+        {"ScaleMap", 5 * 24},       {"UniformScaleMap", 5 * 24},
+        {"TranslationMap", 24},     {"ScaleTranslateMap", 6 * 24},
+        {"UniformScaleTranslateMap", 6 * 24}};
+    for (const auto& [name, bytes] : kMaps)
+        if (type == name) return bytes;
+    if (type == "NonlinearFrustumMap" && !nested) {
+        // bbox (6 doubles, file version 221 on), taper, depth, then the second map.
+        const uint64_t begin = r.pos();
+        r.skip(48 + 16, what);
+        const std::string second = r.str(what + " (second map type)");
+        const uint64_t bytes = mapBytes(r, second, what, true);
+        r.seek(begin);
+        return 48 + 16 + 4 + second.size() + bytes;
+    }
+    r.fail("unsupported: " + what + " has map type '" + boundedMessage(type, 40) +
+                       "' (expected one of OpenVDB's registered maps)");
 }
 
 void checkGridExtent(const std::string& path, const std::string& label, uint64_t end,
@@ -136,7 +177,7 @@ void scanOpenVdb(const std::string& path, Reader& r, FileLayout& L) {
         fileCompression = r.pod<char>("OpenVDB header") != 0 ? kCompressZip : 0;
     r.skip(v >= 218 ? 36 : 16, "OpenVDB header (uuid)");
 
-    skipMetadata(r, "file");
+    skipMetadata(r, "file", L.fileSize);
     if (!hasGridOffsets)
         fail(path,
              "is an OpenVDB stream without grid offsets (written by io::Stream); Mirage "
@@ -172,6 +213,9 @@ void scanOpenVdb(const std::string& path, Reader& r, FileLayout& L) {
         g.blockPos = uint64_t(offsets[1]);
         g.endPos = uint64_t(offsets[2]);
         checkGridExtent(path, label, g.endPos, L.fileSize);
+        // An instance holds metadata and a transform only (io::Archive::writeGridInstance
+        // leaves its data offset at 0): its tree is its parent's.
+        if (!g.instanceParent.empty() && g.blockPos == 0) g.blockPos = g.endPos;
         if (g.gridPos < descriptorEnd || g.blockPos < g.gridPos || g.endPos < g.blockPos)
             fail(path, "corrupt: grid " + label + " has offsets out of order (descriptor ends at " +
                            num(descriptorEnd) + ", grid " + num(g.gridPos) + ", data " +
@@ -180,15 +224,21 @@ void scanOpenVdb(const std::string& path, Reader& r, FileLayout& L) {
         r.seek(g.gridPos);
         g.compression =
             v >= 222 ? r.pod<uint32_t>("compression of grid " + label) : fileCompression;
-        skipMetadata(r, "grid " + label);
+        skipMetadata(r, "grid " + label, g.endPos - g.gridPos);
         if (r.pos() > g.blockPos)
             fail(path, "corrupt: the metadata of grid " + label + " runs past its data (byte " +
                            num(g.blockPos) + ")");
         // The transform follows (file version 216 on, io/Archive.cc): OpenVDB allocates its
         // map type name at whatever length the file claims (4 GiB in an input fuzz_vdb found)
-        // before reading it, so the length is checked here.
+        // before reading it, so the length is checked here. From version 222 on (the layout
+        // vdb_tree.cpp walks) the map's own bytes are skipped too: the tree starts after them.
         if (v >= 216) {
-            r.str("transform type of grid " + label);
+            const std::string what = "transform of grid " + label;
+            const std::string mapType = r.str(what);
+            if (v >= 222) {
+                r.skip(mapBytes(r, mapType, what, false), what);
+                g.topologyPos = r.pos();
+            }
             if (r.pos() > g.blockPos)
                 fail(path, "corrupt: the transform of grid " + label +
                                " runs past its data (byte " + num(g.blockPos) + ")");

@@ -44,6 +44,9 @@ struct GridRecord {
     bool savedAsHalf = false;
     std::string instanceParent;
     uint64_t gridPos = 0, blockPos = 0, endPos = 0;  // byte offsets of the grid in the file
+    // OpenVDB, file version 222 on: where the tree's topology starts (after the grid's
+    // metadata and transform); 0 when unknown (older files).
+    uint64_t topologyPos = 0;
     uint32_t compression = 0;  // OpenVDB flags above; NanoVDB codec (0 none, 1 zip, 2 blosc)
     // NanoVDB only: the segment's metadata for this grid.
     uint64_t nanoGridBytes = 0;  // uncompressed size in memory

@@ -1,0 +1,43 @@
+// The tree of an OpenVDB grid, walked byte by byte before OpenVDB reads it.
+//
+// OpenVDB's reader trusts every count and size in a file: a corrupt root tile count makes
+// RootNode::readTopology loop over a failed stream for tens of seconds, a corrupt compressed
+// block size makes io::bloscFromStream / unzipFromStream allocate terabytes, and a raw block
+// larger than its node is read into the node's buffer. This walk follows the same layout
+// (file version 222 on; tree/RootNode.h, InternalNode.h, LeafNode*.h, io/Compression.h of
+// OpenVDB 10) and checks, against the grid's byte extent from the file's index:
+//   topology  int32 buffer count; root: background value, uint32 tile and child counts, tiles
+//             (int32×3 origin, value, bool active), children (int32×3 origin, then the node);
+//             internal nodes (5 and 4 levels of 32³ and 16³): child mask, value mask, the
+//             node's values compressed as below, then its children in mask order; leaves
+//             (8³): their value mask (a mask grid's leaves: their value bits).
+//   buffers   per leaf in the same depth-first order: value mask, then 512 values compressed
+//             as below (bool leaves: mask, origin, value bits; mask leaves: bits, origin).
+//   values    int8 mask-compression flag, 0–2 inactive values, an optional selection mask,
+//             then the active (or all) values: raw, or a zip / Blosc block (int64 size, raw
+//             when negative) whose size must fit in the grid and, for Blosc, match its header.
+// The walk also requires what every OpenVDB writer produces and the reader silently assumes:
+// root children in ascending origin order (the reader keeps them in a std::map and reads their
+// buffers in map order), the topology ending where the file's index says the data starts, the
+// data ending where the grid ends, and a leaf's mask the same in topology and data.
+//
+// This file does not include OpenVDB headers.
+#pragma once
+
+#include <string>
+
+#include "volume/vdb_format.h"
+
+namespace mirage::vdbformat {
+
+// True when Mirage can walk this grid's tree: an OpenVDB grid of file version 222 or later
+// whose tree is one of the standard 5-4-3 trees of float, double, int32, int64, vec3s, vec3d,
+// vec3i, bool or mask values (an instance: that of its parent). Point grids are not.
+bool treeIsWalkable(const FileLayout& layout, int index);
+
+// Walks the tree of OpenVDB grid `index` (that of its instance parent for an instance) and
+// throws MirageError naming the file, the grid and the first byte that does not fit. Call it
+// before OpenVDB reads the grid's topology or data.
+void checkOpenVdbTree(const std::string& path, const FileLayout& layout, int index);
+
+}  // namespace mirage::vdbformat

@@ -265,9 +265,13 @@ nanovdb::GridHandle<nanovdb::HostBuffer> readNanoVdbGrid(const std::string& path
 
     nanovdb::GridHandle<nanovdb::HostBuffer> handle(std::move(buffer));
     const nanovdb::GridMetaData* meta = handle.gridMetaData();
-    if (!meta || !meta->isValid() || meta->gridSize() != record.nanoGridBytes)
+    if (!meta || !meta->isValid() || meta->gridSize() != record.nanoGridBytes ||
+        meta->gridIndex() >= meta->gridCount())
         fail(path, "corrupt: NanoVDB grid " + label + " does not hold a valid grid");
-    nanovdb::FloatGrid* grid = handle.grid<float>();
+    // A grid keeps the index it had among the grids written together; GridHandle::grid(n)
+    // steps from grid to grid by their sizes until it meets index n, past this one-grid buffer
+    // for any n but the grid's own (fuzz_vdb found a read past the buffer that way).
+    nanovdb::FloatGrid* grid = handle.grid<float>(meta->gridIndex());
     if (!grid) fail(path, "corrupt: NanoVDB grid " + label + " is not the float grid it claims");
     // NanoVDB's validator computes the checksum first, walking the root's tile table and the
     // node arrays by the counts and offsets the file states: bound those by the buffer before
@@ -280,6 +284,13 @@ nanovdb::GridHandle<nanovdb::HostBuffer> readNanoVdbGrid(const std::string& path
     std::string problem = nanovdb::GridValidator<float>::check(*grid, /*detailed=*/true);
     if (!problem.empty())
         fail(path, "corrupt: NanoVDB grid " + label + ": " + boundedMessage(problem));
+    // From here on the buffer is a handle of its own: grid 0 of 1, with the checksum (which
+    // covers those fields) brought up to date.
+    if (grid->gridIndex() != 0 || grid->gridCount() != 1) {
+        grid->data()->mGridIndex = 0;
+        grid->data()->mGridCount = 1;
+        nanovdb::updateChecksum(*grid, nanovdb::ChecksumMode::Partial);
+    }
     return handle;
 }
 

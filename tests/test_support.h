@@ -4,25 +4,7 @@
 
 #include <string>
 
-// OpenVDB allocates whatever size a corrupt Blosc chunk claims (up to terabytes): a normal build
-// gets std::bad_alloc, which Mirage reports as one message, but AddressSanitizer's operator new
-// aborts on such a request instead of throwing. Tests feeding corrupt payloads skip those cases
-// in an ASan build (pipeline/sanitize.sh); the normal build runs them.
-#if defined(__SANITIZE_ADDRESS__)
-#define MIRAGE_TEST_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define MIRAGE_TEST_ASAN 1
-#endif
-#endif
-
 namespace mirage::test {
-
-#ifdef MIRAGE_TEST_ASAN
-constexpr bool kAddressSanitizer = true;
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
 
 // ../shared/data, or "" when absent (tests that need it call GTEST_SKIP with a message).
 std::string sharedData();

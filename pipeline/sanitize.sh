@@ -48,15 +48,14 @@ if [ "$STAGE" = asan ] || [ "$STAGE" = all ]; then
     --output-on-failure || status=1
 fi
 if [ "$STAGE" = tsan ] || [ "$STAGE" = all ]; then
-  configure build-tsan -DMIRAGE_TSAN=ON
   start=$(date +%s)
   TSAN_TBB=$(pipeline/tsan-tbb.sh build-tsan/onetbb | tail -1)
   echo "sanitize: tsan oneTBB took $(($(date +%s) - start)) s"
+  configure build-tsan -DMIRAGE_TSAN=ON -DMIRAGE_TSAN_TBB_DIR="$TSAN_TBB"
   timed "tsan build" ninja -C build-tsan -j "$JOBS" mirage_unit_tests race_canary
   # The run means something only if the tests (and the mirage they start) load that libtbb.
-  export LD_LIBRARY_PATH="$TSAN_TBB${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
   for bin in build-tsan/mirage build-tsan/tests/mirage_unit_tests build-tsan/tests/race_canary; do
-    if ! ldd "$bin" | grep -q "libtbb.so.12 => $TSAN_TBB/"; then
+    if ! grep -q "libtbb.so.12 => $TSAN_TBB/" <<<"$(ldd "$bin")"; then
       echo "sanitize: $bin does not load the TSan-built libtbb from $TSAN_TBB" >&2
       exit 1
     fi

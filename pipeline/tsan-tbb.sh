@@ -21,6 +21,12 @@ set -euo pipefail
 DIR=$(mkdir -p "$1" && cd "$1" && pwd)
 JOBS=${MIRAGE_JOBS:-$(nproc)}
 VERSION=$(dpkg-query -W -f='${Version}' libtbb12)
+HEADERS=$(dpkg-query -W -f='${Version}' libtbb-dev)
+if [ "$HEADERS" != "$VERSION" ]; then
+  echo "tsan-tbb: libtbb-dev $HEADERS and libtbb12 $VERSION differ; the library built must match" \
+    "the headers Mirage compiles against" >&2
+  exit 1
+fi
 LIB="$DIR/lib"
 if [ -f "$LIB/libtbb.so.12" ] && [ "$(cat "$DIR/version" 2>/dev/null)" = "$VERSION" ]; then
   echo "$LIB"
@@ -40,7 +46,9 @@ for f in /etc/apt/sources.list /etc/apt/sources.list.d/*.list; do
 done
 APT_OPTS=(-o Dir::Etc::SourceList=/dev/null -o "Dir::Etc::SourceParts=$APT/sources"
   -o "Dir::State::Lists=$APT/lists" -o "Dir::Cache=$APT/cache" -o APT::Sandbox::User=root)
-apt-get "${APT_OPTS[@]}" -qq update
+# An archive without sources (a vendor's repository) fails its own index only; apt-get source
+# below says clearly if Debian's is unreachable too.
+apt-get "${APT_OPTS[@]}" -qq update || echo "tsan-tbb: some source indexes failed to load" >&2
 mkdir -p "$DIR/src"
 (cd "$DIR/src" && apt-get "${APT_OPTS[@]}" -qq source --download-only "onetbb=$VERSION" &&
   dpkg-source --no-check -x ./*.dsc onetbb >/dev/null)

@@ -5,23 +5,24 @@
 #include <string>
 
 // OpenVDB allocates whatever size a corrupt Blosc chunk claims (up to terabytes): a normal build
-// gets std::bad_alloc, which Mirage reports as one message, but AddressSanitizer's operator new
-// aborts on such a request instead of throwing. Tests feeding corrupt payloads skip those cases
-// in an ASan build (pipeline/sanitize.sh); the normal build runs them.
-#if defined(__SANITIZE_ADDRESS__)
-#define MIRAGE_TEST_ASAN 1
+// gets std::bad_alloc, which Mirage reports as one message, but the operator new of
+// AddressSanitizer and of ThreadSanitizer aborts on such a request instead of throwing. Tests
+// feeding corrupt payloads skip those cases in a sanitizer build (pipeline/sanitize.sh); the
+// normal build runs them.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define MIRAGE_TEST_ABORTING_NEW 1
 #elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define MIRAGE_TEST_ASAN 1
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define MIRAGE_TEST_ABORTING_NEW 1
 #endif
 #endif
 
 namespace mirage::test {
 
-#ifdef MIRAGE_TEST_ASAN
-constexpr bool kAddressSanitizer = true;
+#ifdef MIRAGE_TEST_ABORTING_NEW
+constexpr bool kSanitizerAllocator = true;
 #else
-constexpr bool kAddressSanitizer = false;
+constexpr bool kSanitizerAllocator = false;
 #endif
 
 // ../shared/data, or "" when absent (tests that need it call GTEST_SKIP with a message).

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "geometry/embree_commit.h"
 #include "geometry/embree_ray.h"
 #include "geometry/shape_region.h"
 
@@ -234,7 +235,7 @@ std::shared_ptr<const Region> GeometryScene::interiorRegion(int shape) const {
 
 void GeometryScene::commit() {
     auto t0 = std::chrono::steady_clock::now();
-    rtcCommitScene(mEmbree->scene);
+    commitEmbreeScene(mEmbree->scene);
     mBuildSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     mCommitted = true;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "geometry/embree_commit.h"
 #include "geometry/embree_ray.h"
 
 namespace mirage {
@@ -98,7 +99,7 @@ public:
         rtcCommitGeometry(g);
         rtcAttachGeometry(mScene, g);
         rtcReleaseGeometry(g);
-        rtcCommitScene(mScene);
+        commitEmbreeScene(mScene);
         if (!mError.empty()) throw MirageError("mesh interior: " + mError);
     }
     ~MeshRegion() override {

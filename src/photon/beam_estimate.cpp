@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "geometry/embree_commit.h"
 #include "geometry/embree_ray.h"
 
 namespace mirage {
@@ -96,7 +97,7 @@ BeamEstimator::BeamEstimator(const VolumePhotons& photons, std::vector<float> ra
     rtcCommitGeometry(geom);
     rtcAttachGeometry(mBvh->scene, geom);
     rtcReleaseGeometry(geom);
-    rtcCommitScene(mBvh->scene);
+    commitEmbreeScene(mBvh->scene);
     if (!mBvh->error.empty()) throw MirageError(mBvh->error);
     mBvh->backOff = 4.f * rMax + 1e-3f;
 }

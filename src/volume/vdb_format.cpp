@@ -21,6 +21,7 @@ constexpr uint64_t kNanoHeaderBytes = 16, kNanoMetaBytes = 176;
 
 // Offsets or sizes beyond this (1 TiB) are corrupt values rather than a truncated file.
 constexpr uint64_t kMaxPlausibleBytes = uint64_t(1) << 40;
+constexpr uint64_t kMaxCompressionRatio = 1032;
 
 const char kUniqueNameSeparator = '\x1e';  // OpenVDB's "record separator" before "N"
 
@@ -308,6 +309,12 @@ void scanNanoVdb(const std::string& path, Reader& r, FileLayout& L) {
             if (bytes > kMaxPlausibleBytes || g.nanoGridBytes > kMaxPlausibleBytes)
                 fail(path, "corrupt: NanoVDB grid " + label + " claims " +
                                num(std::max(bytes, g.nanoGridBytes)) + " bytes");
+            // Deflate cannot shrink data more than 1032:1 (zlib's technical notes), LZ4 in
+            // Blosc about 255:1: a larger ratio is a corrupt size, which Mirage would otherwise
+            // allocate before decompressing (128 GiB in an input fuzz_vdb found).
+            if (codec != 0 && g.nanoGridBytes / kMaxCompressionRatio > bytes)
+                r.fail("corrupt: NanoVDB grid " + label + " claims " + num(g.nanoGridBytes) +
+                       " bytes from " + num(bytes) + " compressed bytes");
             if (codec == 0 && bytes != g.nanoGridBytes)
                 fail(path, "corrupt: uncompressed NanoVDB grid " + label + " has " + num(bytes) +
                                " bytes in the file but " + num(g.nanoGridBytes) + " in memory");

@@ -207,6 +207,18 @@ TEST(VolumeFile, NanoVdbGridsWrittenFromOneHandleLoadEach) {
     EXPECT_EQ(second.grid()->gridCount(), 1u);
 }
 
+TEST(VolumeFile, NanoVdbSizeBeyondAnyCompressionRatioIsRefused) {
+    // The metadata's uncompressed size (first field after the 16-byte segment header) is what
+    // Mirage allocates before decompressing; no codec reaches 1032:1.
+    MIRAGE_REQUIRE_SHARED(nvdb, "vdb/smoke1_blosc.nvdb");
+    std::string bytes = readBytes(nvdb);
+    const uint64_t claimed = uint64_t(bytes.size()) * 2000;
+    std::memcpy(&bytes[16], &claimed, 8);
+    const std::string path = test::tempDir() + "/ratio.nvdb";
+    writeBytes(path, bytes);
+    expectFileError([&] { loadFloatGrid(path, "#0"); }, path, "compressed bytes");
+}
+
 TEST(VolumeFile, NanoVdbLookupsAgreeWithOpenVdb) {
     MIRAGE_REQUIRE_SHARED(path, "vdb/smoke1.vdb");
     FloatGrid grid = loadFloatGrid(path, "density");

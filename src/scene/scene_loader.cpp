@@ -20,21 +20,33 @@ namespace mirage {
 
 namespace fs = std::filesystem;
 
+// A frame number pads to at most this many digits. An int frame has at most 10; a wider pad
+// is a typo (`$F888888888` would ask for a gigabyte of zeros), refused with a clear message.
+constexpr size_t kMaxFramePad = 32;
+
 std::string expandFramePattern(const std::string& pattern, int frame) {
+    auto tooWide = [&]() {
+        return MirageError("frame pattern in '" + boundedMessage(pattern, 120) +
+                           "' pads to more than " + std::to_string(kMaxFramePad) +
+                           " digits (expected $F, $F4 or #### for a 4-digit frame)");
+    };
     std::string out;
     for (size_t i = 0; i < pattern.size();) {
         if (pattern[i] == '$' && i + 1 < pattern.size() && pattern[i + 1] == 'F') {
             size_t j = i + 2;
-            int width = 0;
-            while (j < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[j])))
-                width = width * 10 + (pattern[j++] - '0');
+            size_t width = 0;
+            while (j < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[j]))) {
+                width = width * 10 + size_t(pattern[j++] - '0');
+                if (width > kMaxFramePad) throw tooWide();
+            }
             std::string num = std::to_string(std::abs(frame));
-            if (int(num.size()) < width) num.insert(0, size_t(width) - num.size(), '0');
+            if (num.size() < width) num.insert(0, width - num.size(), '0');
             out += (frame < 0 ? "-" : "") + num;
             i = j;
         } else if (pattern[i] == '#') {
             size_t j = i;
             while (j < pattern.size() && pattern[j] == '#') ++j;
+            if (j - i > kMaxFramePad) throw tooWide();
             std::string num = std::to_string(frame);
             if (num.size() < j - i) num.insert(0, (j - i) - num.size(), '0');
             out += num;
@@ -313,7 +325,11 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
         if (boxed && v.has("file")) v.fail("box", "give either 'file' or 'box', not both");
         FileLoc where = v.loc(boxed ? "box" : "file");
         if (!boxed) {
-            rec.file = resolve(expandFramePattern(v.getString("file"), options.frame));
+            try {
+                rec.file = resolve(expandFramePattern(v.getString("file"), options.frame));
+            } catch (const MirageError& e) {
+                v.fail("file", e.what());
+            }
             // The shipped scenes use procedural caches that Mirage writes itself (no downloads):
             // say how, since a fresh checkout has none of them.
             if (!fs::exists(rec.file))

@@ -118,9 +118,20 @@ TEST(SceneLoad, OverridesAndFramePatterns) {
     EXPECT_EQ(expandFramePattern("smoke.$F.vdb", 12), "smoke.12.vdb");
     EXPECT_EQ(expandFramePattern("out.####.exr", 3), "out.0003.exr");
     EXPECT_FALSE(hasFramePattern("plain.exr"));
+    // Pads wider than 32 digits are typos, refused before any string is built (the scene
+    // fuzzer found `$F888888888`, an int overflow and a gigabyte of zeros).
+    EXPECT_EQ(expandFramePattern("f.$F32.vdb", 5).size(), 32u + 6u);
+    EXPECT_THROW(expandFramePattern("f.$F33.vdb", 5), MirageError);
+    EXPECT_THROW(expandFramePattern("f.$F888888888.vdb", 5), MirageError);
+    EXPECT_THROW(expandFramePattern("f." + std::string(33, '#') + ".vdb", 5), MirageError);
 
     std::string dir = test::tempDir();
     fogAsset(dir);
+    std::string wide = writeFile(dir, "wide.toml", "[[volume]]\nfile = \"fog.$F99999999999.vdb\"\n");
+    std::string wideMsg = loadError(wide);
+    EXPECT_NE(wideMsg.find(wide + ":2:"), std::string::npos) << wideMsg;
+    EXPECT_NE(wideMsg.find("32 digits"), std::string::npos) << wideMsg;
+
     std::string p = writeFile(dir, "ok.toml", kGoodScene);
     ColorPipeline color;
     Scene s = loadScene(p, LoadOptions{1, {"film.spp=7", "volume.0.density_scale=3"}}, color);

@@ -341,7 +341,7 @@ TEST(VolumeFile, CorruptPayloadNeverCrashes) {
     for (int trial = 0; trial < 8; ++trial) {
         std::string b = bytes;
         size_t at = 2000 + size_t(rng.get1D() * float(b.size() - 3000));
-        for (size_t i = 0; i < 64; ++i) b[at + i] = char(rng.get1D() * 256);
+        for (size_t i = 0; i < 64; ++i) b[at + i] = char((unsigned char)(rng.get1D() * 256));
         const std::string copy = dir + "/noise" + std::to_string(trial) + ".vdb";
         writeBytes(copy, b);
         for (const char* name : {"density", "heat"}) {

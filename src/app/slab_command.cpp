@@ -434,9 +434,15 @@ int runSlab(const SlabOptions& o) {
         std::printf("  \"fluorescence\": {\"absorbed\": %.9g, \"reemitted\": %.9g, "
                     "\"mean_shift_nm\": %.6g},\n",
                     double(total.absorptions) / n, double(total.reemissions) / n, meanShift);
-        for (const Row& r : rows)
-            std::printf("  \"%s\": %.9g,\n  \"%s_stderr\": %.9g,\n", r.name.c_str(), r.v.first,
-                        r.name.c_str(), r.v.second);
+        // With --spectral the keys `reflectance` and `transmittance` hold the per-bin arrays
+        // (what ocean-colour users read); the totals then go by `_total`, so that every key
+        // is unique and a JSON parser keeps both.
+        for (const Row& r : rows) {
+            const bool total = o.spectral && (r.name == "reflectance" || r.name == "transmittance");
+            const std::string key = total ? r.name + "_total" : r.name;
+            std::printf("  \"%s\": %.9g,\n  \"%s_stderr\": %.9g,\n", key.c_str(), r.v.first,
+                        key.c_str(), r.v.second);
+        }
         std::printf("  \"photons\": %llu,\n  \"seed\": %llu,\n  \"seconds\": %.6g\n}\n",
                     (unsigned long long)o.photons, (unsigned long long)o.seed, seconds);
     } else {

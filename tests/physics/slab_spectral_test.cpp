@@ -39,14 +39,50 @@ std::vector<double> array(const std::string& json, const std::string& key) {
     return v;
 }
 
-// The last value of that key: the scalar rows come after the arrays of the same name.
+// The value of a scalar key, which must occur exactly once: a JSON parser keeps only the last
+// of repeated keys, so a duplicate would hide either the spectrum or the total from users.
 double value(const std::string& json, const std::string& key) {
-    size_t at = json.rfind("\"" + key + "\": ");
+    const std::string quoted = "\"" + key + "\": ";
+    size_t at = json.find(quoted);
     if (at == std::string::npos) {
         ADD_FAILURE() << "no " << key << " in\n" << json;
         return NAN;
     }
+    EXPECT_EQ(json.find(quoted, at + 1), std::string::npos) << key << " twice in\n" << json;
+    return std::strtod(json.c_str() + at + quoted.size(), nullptr);
+}
+
+// A value of the nested `fluorescence` object.
+double fluorescence(const std::string& json, const std::string& key) {
+    size_t open = json.find("\"fluorescence\": {");
+    size_t close = json.find('}', open);
+    size_t at = json.find("\"" + key + "\": ", open);
+    if (open == std::string::npos || at == std::string::npos || at > close) {
+        ADD_FAILURE() << "no fluorescence." << key << " in\n" << json;
+        return NAN;
+    }
     return std::strtod(json.c_str() + at + key.size() + 4, nullptr);
+}
+
+// A top-level row (its own line, two spaces in), as opposed to a nested key of that name.
+double row(const std::string& json, const std::string& key) {
+    size_t at = json.find("\n  \"" + key + "\": ");
+    if (at == std::string::npos) {
+        ADD_FAILURE() << "no row " << key << " in\n" << json;
+        return NAN;
+    }
+    return std::strtod(json.c_str() + at + key.size() + 7, nullptr);
+}
+
+// Every key of the slab's JSON occurs once.
+void expectUniqueKeys(const std::string& json) {
+    for (const char* key : {"reflectance", "transmittance", "reflectance_total",
+                            "transmittance_total", "wavelength_nm", "fluorescence"}) {
+        const std::string quoted = std::string("\"") + key + "\": ";
+        size_t at = json.find(quoted);
+        ASSERT_NE(at, std::string::npos) << key << " missing in\n" << json;
+        EXPECT_EQ(json.find(quoted, at + 1), std::string::npos) << key << " twice in\n" << json;
+    }
 }
 
 }  // namespace
@@ -67,12 +103,20 @@ TEST(SlabSpectral, GreyShaderSlabIsFlatAndMatchesTheGreySlab) {
     double meanT = 0;
     for (double x : t) meanT += x / 80;
     EXPECT_NEAR(meanT, 0.59232, 0.005);
-    EXPECT_NEAR(value(json, "transmittance"), 0.59232, 0.005);
-    EXPECT_NEAR(value(json, "reflectance"), 0.00585, 0.001);
+    expectUniqueKeys(json);
+    EXPECT_NEAR(value(json, "transmittance_total"), 0.59232, 0.005);
+    EXPECT_NEAR(value(json, "reflectance_total"), 0.00585, 0.001);
     // Flat: every bin within 5 binomial σ of the mean (5000 photons a bin).
     for (size_t b = 0; b < t.size(); ++b)
         EXPECT_NEAR(t[b], meanT, 5 * std::sqrt(meanT * (1 - meanT) / 5000)) << lambda[b] << " nm";
-    EXPECT_EQ(value(json, "reemitted"), 0.0);
+    EXPECT_EQ(fluorescence(json, "reemitted"), 0.0);
+    // Without fluorescence every absorption event ends a photon: the events per photon are the
+    // absorbed fraction, which closes the energy balance R + T + A = 1 (no photon capped).
+    EXPECT_EQ(row(json, "capped"), 0.0);
+    EXPECT_NEAR(fluorescence(json, "absorbed"), row(json, "absorbed"), 1e-9);
+    EXPECT_NEAR(row(json, "absorbed") + value(json, "reflectance_total") +
+                    value(json, "transmittance_total"),
+                1.0, 1e-6);
 }
 
 TEST(SlabSpectral, ChlorophyllFluorescenceAddsLightOnlyInItsBand) {
@@ -92,10 +136,16 @@ TEST(SlabSpectral, ChlorophyllFluorescenceAddsLightOnlyInItsBand) {
         if (lambda[b] > 670 && lambda[b] < 700) band += rOn[b] - rOff[b];
     }
     EXPECT_GT(band, 0.005);
-    EXPECT_GT(value(on, "reemitted"), 0.0);
-    EXPECT_EQ(value(off, "reemitted"), 0.0);
+    EXPECT_GT(fluorescence(on, "reemitted"), 0.0);
+    EXPECT_EQ(fluorescence(off, "reemitted"), 0.0);
+    // Each absorption event either re-emits (Γ roulette) or ends its photon: events minus
+    // re-emissions is the absorbed fraction exactly, and re-emissions are a few per cent of
+    // the events (Γ = 0.05 of chlorophyll's share of σa).
+    const double events = fluorescence(on, "absorbed"), reemitted = fluorescence(on, "reemitted");
+    EXPECT_NEAR(events - reemitted, row(on, "absorbed"), 1e-9);
+    EXPECT_LT(reemitted, 0.05 * events);
     // Stokes: the light comes out redder than it went in.
-    EXPECT_GT(value(on, "mean_shift_nm"), 0.0);
+    EXPECT_GT(fluorescence(on, "mean_shift_nm"), 0.0);
 }
 
 TEST(SlabSpectral, BadOptionsExitNonZero) {

@@ -31,8 +31,9 @@ struct PhotonEmission {
     Vec3 direction;  // unit
     float lambda;    // nm, drawn from the normalised spectral power distribution
     // Emitted radiance over the density the direction was drawn with, scaled to mean 1. It is
-    // 1 wherever the emission is sampled exactly; a spot light samples its cone uniformly in
-    // solid angle and carries its falloff here (mean 1 over the cone).
+    // 1 wherever the emission is sampled exactly; a spot light samples a cone uniformly in
+    // solid angle and carries its falloff here (mean 1 over its own cone, less over the
+    // narrower cone of a scene seen from afar).
     float weight = 1.f;
 };
 
@@ -42,9 +43,11 @@ public:
     // Samples incident light at p. Returns false when p receives nothing from this sample.
     virtual bool sampleLi(const Vec3& p, float u1, float u2, const SampledWavelengths& w,
                           LightSample* out) const = 0;
-    // Power the light sends into a scene bounded by sceneBounds (W). Point, spot and quad
-    // lights: their power. A distant light: its irradiance × the area of the disc covering the
-    // bounding sphere of sceneBounds, seen along the light (0 for empty bounds).
+    // Power the light sends towards a scene bounded by sceneBounds (W). Spot and quad lights:
+    // their power. A point light outside the bounding sphere of sceneBounds: the share of its
+    // power in the cone that sphere subtends (its photons are aimed there; inside: all of
+    // it). A distant light: its irradiance × the area of the disc covering that sphere, seen
+    // along the light (0 for empty bounds).
     virtual float emittedPower(const Bounds3& sceneBounds) const = 0;
     // Draws one photon. Returns false when the light emits nothing into the scene.
     virtual bool emitPhoton(const Bounds3& sceneBounds, Sampler& sampler,

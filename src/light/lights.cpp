@@ -47,6 +47,40 @@ bool towardsPoint(const Vec3& q, const Vec3& p, LightSample* out, float* d2) {
     return true;
 }
 
+// The cone of directions from a light at p that can reach anything inside the scene's bounds:
+// seen from outside their bounding sphere (centre c, radius r, at distance d > r) it has
+// half-angle asin(r/d) about c − p, solid angle 2π(1 − cos θ), cos θ = √(d² − r²)/d. A photon
+// leaving outside it meets nothing, so lights draw theirs inside (a projection map of one
+// cell: Jensen 2001, §5.1.3). From inside the sphere, or for empty bounds, there is none
+// (`valid` false) and the light emits over all its directions. Like the distant light's disc,
+// the cone is straight-line geometry: in a refractive-index field, light bent in from
+// outside it is not emitted.
+struct AimCone {
+    Vec3 axis;
+    float cosMax = -1.f;
+    bool valid = false;
+};
+
+AimCone sceneCone(const Vec3& p, const Bounds3& b) {
+    AimCone cone;
+    if (b.empty()) return cone;
+    const Vec3 toCentre = b.center() - p;
+    const float d = length(toCentre), r = 0.5f * length(b.diagonal());
+    // A margin of 0.1 % keeps a light on the sphere from a degenerate, razor-thin cone.
+    if (!(d > 1.001f * r) || !std::isfinite(d)) return cone;
+    cone.axis = toCentre / d;
+    cone.cosMax = std::sqrt((d - r) * (d + r)) / d;
+    cone.valid = true;
+    return cone;
+}
+
+// Uniform direction in the cone about `axis` with cos θ ≥ cosMax (pdf 1 / 2π(1 − cosMax)).
+Vec3 sampleCone(const Vec3& axis, float cosMax, float u1, float u2) {
+    const float cosT = 1.f - u1 * (1.f - cosMax), sinT = safeSqrt(1.f - cosT * cosT);
+    const float phi = 2.f * kPi * u2;
+    return Frame(axis).toWorld(Vec3(sinT * std::cos(phi), sinT * std::sin(phi), cosT));
+}
+
 class PointLight : public Light {
 public:
     PointLight(const Vec3& p, float power, const Spectrum& c)
@@ -61,12 +95,19 @@ public:
         out->Li = mI.sample(w) / d2;  // I/r²: inverse-square law
         return true;
     }
-    float emittedPower(const Bounds3&) const override { return mPower; }
-    // Isotropic: uniform directions on the sphere.
-    bool emitPhoton(const Bounds3&, Sampler& s, PhotonEmission* out) const override {
+    // Isotropic: the power into the scene's cone is Φ (1 − cos θ)/2, all of it when the light
+    // is inside the scene's bounding sphere.
+    float emittedPower(const Bounds3& b) const override {
+        const AimCone cone = sceneCone(mP, b);
+        return cone.valid ? mPower * 0.5f * (1.f - cone.cosMax) : mPower;
+    }
+    // Uniform directions in that cone (or on the whole sphere), each photon of weight 1.
+    bool emitPhoton(const Bounds3& b, Sampler& s, PhotonEmission* out) const override {
         out->origin = mP;
         float u1 = s.get1D(), u2 = s.get1D();
-        out->direction = sampleUniformSphere(u1, u2);
+        const AimCone cone = sceneCone(mP, b);
+        out->direction =
+            cone.valid ? sampleCone(cone.axis, cone.cosMax, u1, u2) : sampleUniformSphere(u1, u2);
         out->lambda = mLambda.sample(s.get1D());
         out->weight = 1.f;
         return mPower > 0.f;
@@ -112,15 +153,24 @@ public:
         return true;
     }
     float emittedPower(const Bounds3&) const override { return mPower; }
-    bool emitPhoton(const Bounds3&, Sampler& s, PhotonEmission* out) const override {
+    // Uniform in the smaller of two cones that hold every direction worth a photon: the spot's
+    // own (f > 0) and the scene's (sceneCone). A cone of solid angle Ω_s sampled uniformly
+    // gives the weight I f Ω_s / Φ = f Ω_s / Ω_f, whose mean over the spot's own cone is 1;
+    // over the scene's cone it is the share of the power that can reach the scene (< 1, so
+    // the emitted power stays Φ and the photons that carry it are not wasted on empty space).
+    bool emitPhoton(const Bounds3& b, Sampler& s, PhotonEmission* out) const override {
         float u1 = s.get1D(), u2 = s.get1D();
-        float cosT = 1.f - u1 * (1.f - mCosOuter), sinT = safeSqrt(1.f - cosT * cosT);
-        float phi = 2.f * kPi * u2;
+        const AimCone cone = sceneCone(mP, b);
         out->origin = mP;
-        out->direction =
-            Frame(mDir).toWorld(Vec3(sinT * std::cos(phi), sinT * std::sin(phi), cosT));
+        if (cone.valid && cone.cosMax > mCosOuter) {
+            out->direction = sampleCone(cone.axis, cone.cosMax, u1, u2);
+            out->weight = falloff(dot(out->direction, mDir)) * (1.f - cone.cosMax) /
+                          (1.f - 0.5f * (mCosInner + mCosOuter));
+        } else {
+            out->direction = sampleCone(mDir, mCosOuter, u1, u2);
+            out->weight = falloff(dot(out->direction, mDir)) * mWeightScale;
+        }
         out->lambda = mLambda.sample(s.get1D());
-        out->weight = falloff(cosT) * mWeightScale;
         return mPower > 0.f && out->weight > 0.f;
     }
     std::string describe() const override {

@@ -46,14 +46,15 @@ constexpr int kN = 200000;
 }  // namespace
 
 TEST(LightEmission, PointLightIsIsotropic) {
-    auto light = makePointLight(Vec3(0.5f, 0.f, 2.f), 40.f, Spectrum(1.f));
+    // Inside the scene's bounding sphere (radius √3): every direction may reach something.
+    auto light = makePointLight(Vec3(0.5f, 0.f, 1.f), 40.f, Spectrum(1.f));
     EXPECT_FLOAT_EQ(light->emittedPower(kScene), 40.f);
     Sampler s(1, 0, 0);
     std::vector<double> z, phi;
     for (int i = 0; i < kN; ++i) {
         PhotonEmission e;
         ASSERT_TRUE(light->emitPhoton(kScene, s, &e));
-        ASSERT_EQ(e.origin, Vec3(0.5f, 0.f, 2.f));
+        ASSERT_EQ(e.origin, Vec3(0.5f, 0.f, 1.f));
         ASSERT_NEAR(length(e.direction), 1.f, 1e-5f);
         ASSERT_EQ(e.weight, 1.f);
         // Uniform on the sphere: z and the azimuth are both uniform (Archimedes).
@@ -64,6 +65,83 @@ TEST(LightEmission, PointLightIsIsotropic) {
         test::ChiSquare c = uniformChiSquare(*v, 40);
         EXPECT_LT(c.statistic, test::chiSquareCritical(c.dof));
     }
+}
+
+// The fraction of uniform directions from p that hit the box b (slab test), by Monte Carlo
+// over the whole sphere: an estimate that knows nothing of the lights' aiming.
+Moment boxSolidAngleFraction(const Vec3& p, const Bounds3& b, int n, uint64_t seed) {
+    Sampler s(seed, 0, 0);
+    std::vector<double> hit;
+    for (int i = 0; i < n; ++i) {
+        float u1 = s.get1D(), u2 = s.get1D();
+        float z = 1.f - 2.f * u1, r = std::sqrt(std::max(0.f, 1.f - z * z));
+        Vec3 d(r * std::cos(2 * kPi * u2), r * std::sin(2 * kPi * u2), z);
+        float t0, t1;
+        hit.push_back(b.intersect(p, d, 0.f, kInfinity, &t0, &t1) ? 1.0 : 0.0);
+    }
+    return moment(hit);
+}
+
+TEST(LightEmission, PointLightOutsideTheSceneAimsAtIt) {
+    // A small cache 30 m away: the photons leave inside the cone its bounding sphere subtends,
+    // each of weight 1, and the power that meets the box is I × Ω(box) as over the full sphere.
+    const Bounds3 cache = box(Vec3(29.f, -0.5f, -1.f), Vec3(30.f, 0.5f, 0.5f));
+    const Vec3 p(0.f, 1.f, 0.f);
+    const float power = 40.f;
+    auto light = makePointLight(p, power, Spectrum(1.f));
+    const Vec3 axis = normalize(cache.center() - p);
+    const float d = length(cache.center() - p), r = 0.5f * length(cache.diagonal());
+    const float cosMax = std::sqrt(d * d - r * r) / d;
+    const float emitted = light->emittedPower(cache);
+    EXPECT_NEAR(emitted, power * 0.5f * (1.f - cosMax), 1e-6f * power);
+    EXPECT_LT(emitted, 1e-3f * power);  // the full sphere would waste > 99.9 % of them
+    Sampler s(7, 0, 0);
+    std::vector<double> u, hits;
+    for (int i = 0; i < kN; ++i) {
+        PhotonEmission e;
+        ASSERT_TRUE(light->emitPhoton(cache, s, &e));
+        ASSERT_EQ(e.weight, 1.f);
+        const double c = dot(e.direction, axis);
+        ASSERT_GE(c, cosMax - 1e-6);
+        u.push_back((c - cosMax) / (1.0 - cosMax));  // uniform in the cone: cos θ uniform
+        float t0, t1;
+        hits.push_back(cache.intersect(p, e.direction, 0.f, kInfinity, &t0, &t1) ? emitted : 0.0);
+    }
+    test::ChiSquare c = uniformChiSquare(u, 40);
+    EXPECT_LT(c.statistic, test::chiSquareCritical(c.dof));
+    const Moment aimed = moment(hits);
+    const Moment frac = boxSolidAngleFraction(p, cache, 40000000, 8);
+    const double expected = power * frac.mean, expectedSe = power * frac.stderr_;
+    EXPECT_NEAR(aimed.mean, expected, 4 * std::hypot(aimed.stderr_, expectedSe));
+}
+
+TEST(LightEmission, SpotLightWiderThanTheSceneAimsAtIt) {
+    // A 60° spot 20 m from a 1 m cache: the scene's cone is narrower than the spot's, so the
+    // photons go there, carrying the falloff and the cones' solid-angle ratio; the power that
+    // meets the box equals that of the unaimed spot (uniform over its own cone).
+    const Bounds3 cache = box(Vec3(19.5f, -0.5f, -0.5f), Vec3(20.5f, 0.5f, 0.5f));
+    const Vec3 p(0.f), axis = normalize(Vec3(1.f, 0.1f, 0.f));
+    auto light = makeSpotLight(p, axis, 12.f, 20.f, 60.f, Spectrum(1.f));
+    const Bounds3 everywhere = box(Vec3(-1e-3f), Vec3(1e-3f));  // light inside: no aiming
+    auto powerOnBox = [&](const Bounds3& aimAt, uint64_t seed, int n) {
+        Sampler s(seed, 0, 0);
+        std::vector<double> hits;
+        const float emitted = light->emittedPower(aimAt);
+        for (int i = 0; i < n; ++i) {
+            PhotonEmission e;
+            float t0, t1;
+            const bool ok = light->emitPhoton(aimAt, s, &e);
+            hits.push_back(ok && cache.intersect(p, e.direction, 0.f, kInfinity, &t0, &t1)
+                               ? emitted * e.weight
+                               : 0.0);
+        }
+        return moment(hits);
+    };
+    const Moment aimed = powerOnBox(cache, 9, kN), unaimed = powerOnBox(everywhere, 10, 20 * kN);
+    ASSERT_GT(unaimed.mean, 0.0);
+    EXPECT_NEAR(aimed.mean, unaimed.mean, 4 * std::hypot(aimed.stderr_, unaimed.stderr_));
+    // Aimed, every photon meets the box's sphere; the aimed estimate is far less noisy.
+    EXPECT_LT(aimed.stderr_, 0.2 * unaimed.stderr_ * std::sqrt(20.0));
 }
 
 TEST(LightEmission, SpotPhotonsStayInTheConeAndCarryTheFalloff) {

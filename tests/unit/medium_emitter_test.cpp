@@ -158,15 +158,17 @@ TEST(MediumEmitter, WeightedEstimateMatchesGridIntegralOfUnevenFire) {
 TEST(MediumEmitter, PhotonPassChoosesLightsAndMediaByPower) {
     // An isothermal block beside a point light of the same order of power: the share of photons
     // from the medium is Φ_m / (Φ_m + Φ_l) (binomial, 4σ), and the photons' summed power is the
-    // lights' plus the medium's.
+    // lights' plus the medium's. The light stands within the block's bounding sphere, where
+    // it sends all its power towards the scene (lights.cpp, sceneCone).
     auto m = isothermalBlock(8, 0.1, 1.f, 1500.f, 500.f);
     const double mediumPower = MediumEmitter(*m).tablePower();
-    auto light = makePointLight(Vec3(2.f, 0.4f, 0.4f), float(2.0 * mediumPower), Spectrum(1.f));
+    auto light = makePointLight(Vec3(0.9f, 0.4f, 0.4f), float(2.0 * mediumPower), Spectrum(1.f));
     PhotonPassSettings ps;
     ps.photons = 60000;
     ps.seed = 4;
     ps.progress = Progress::Mode::Quiet;
     PhotonPassStats stats;
+    ASSERT_EQ(light->emittedPower(m->worldBounds()), float(2.0 * mediumPower));
     tracePhotons({light.get()}, {m.get()}, ps, &stats);
     const double p = mediumPower / (mediumPower + 2.0 * mediumPower);
     const double n = double(ps.photons);

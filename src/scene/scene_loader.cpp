@@ -249,7 +249,7 @@ static std::unique_ptr<Medium> buildMedium(const ShaderDesc& shader, VolumeRecor
 // [film], [render] and [output]: the settings a bare VDB takes from --set as well.
 static void readSettings(const TableReader& top,
                          const std::function<std::string(const std::string&)>& resolve,
-                         Scene* out) {
+                         const ColorPipeline& color, Scene* out) {
     Scene& scene = *out;
     if (auto f = top.optionalTable("film")) {
         if (f->has("resolution")) {
@@ -296,6 +296,18 @@ static void readSettings(const TableReader& top,
         scene.output.preview = preview.empty() ? "" : resolve(preview);
         scene.output.display = o->getString("display", "sRGB");
         scene.output.view = o->getString("view", "Standard");
+        // Checked here, against the OCIO config in use, so that the message names the line.
+        auto oneOf = [&](const char* key, const std::string& value,
+                         const std::vector<std::string>& names) {
+            if (std::find(names.begin(), names.end(), value) != names.end()) return;
+            std::string list;
+            for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+            o->fail(key, "'" + value + "' is not in the OCIO config; it has: " + list);
+        };
+        if (!scene.output.colorSpace.empty())
+            oneOf("color_space", scene.output.colorSpace, color.colorSpaces());
+        oneOf("display", scene.output.display, color.displays());
+        oneOf("view", scene.output.view, color.views(scene.output.display));
         o->finish();
     }
 }
@@ -316,7 +328,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
     scene.source = path;
     TableReader top(doc, path, "");
 
-    readSettings(top, resolve, &scene);
+    readSettings(top, resolve, color, &scene);
 
     for (const auto& v : top.tables("volume")) {
         VolumeRecord rec;
@@ -446,6 +458,13 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
             c->fail("look_at", "the camera looks at its own position");
         if (!(length(cross(cam.lookAt - cam.position, cam.up)) > 0))
             c->fail("up", "'up' is parallel to the viewing direction");
+        // A turntable: N frames per orbit about `up` through look_at, frame 1 where the camera
+        // stands, so `--frames 1-N` renders one full turn (and frame N + 1 is frame 1 again).
+        if (c->has("turntable")) {
+            const int frames = int(c->getInt("turntable", 1, 1, 1000000));
+            const int k = ((options.frame - 1) % frames + frames) % frames;
+            cam = orbitCamera(cam, 360.f * float(k) / float(frames));
+        }
         c->finish();
         scene.render.camera = cam;
     } else if (!scene.render.media.empty() || scene.render.hasSurfaces()) {
@@ -474,7 +493,7 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
         toml::table doc;
         for (const auto& o : options.overrides) applyOverride(doc, o);
         TableReader top(doc, "--set (bare volume " + path + ")", "");
-        readSettings(top, [](const std::string& p) { return p; }, &scene);
+        readSettings(top, [](const std::string& p) { return p; }, color, &scene);
         top.finish();
     }
     ShaderDesc shader = loadShader("smoke", "");

@@ -127,7 +127,8 @@ TEST(SceneLoad, OverridesAndFramePatterns) {
 
     std::string dir = test::tempDir();
     fogAsset(dir);
-    std::string wide = writeFile(dir, "wide.toml", "[[volume]]\nfile = \"fog.$F99999999999.vdb\"\n");
+    std::string wide =
+        writeFile(dir, "wide.toml", "[[volume]]\nfile = \"fog.$F99999999999.vdb\"\n");
     std::string wideMsg = loadError(wide);
     EXPECT_NE(wideMsg.find(wide + ":2:"), std::string::npos) << wideMsg;
     EXPECT_NE(wideMsg.find("32 digits"), std::string::npos) << wideMsg;
@@ -205,6 +206,86 @@ TEST(EndToEnd, TurntableAndFrameRangesNumberTheirOutputs) {
     EXPECT_NE(0, test::runMirage("render '" + p + "' -o '" + dir + "/x.exr' --frames 3-5 --quiet",
                                  &log));  // frame 5 has no cache: a clear error, exit 1
     EXPECT_NE(log.find("fog.0005.vdb"), std::string::npos) << log;
+}
+
+// [camera] turntable = N: frame f orbits (f − 1)/N of a turn about `up` through look_at.
+TEST(SceneLoad, CameraTurntableOrbitsLookAtOncePerNFrames) {
+    std::string dir = test::tempDir();
+    fogAsset(dir);
+    std::string p = writeFile(dir, "turn.toml",
+                              std::string(kGoodScene) +
+                                  "[camera]\nposition = [0, 1, 4]\nlook_at = [0, 1, 0]\n"
+                                  "turntable = 4\n");
+    ColorPipeline color;
+    auto cameraAt = [&](int frame) {
+        return loadScene(p, LoadOptions{frame, {}}, color).render.camera;
+    };
+    const CameraDesc c1 = cameraAt(1), c2 = cameraAt(2), c3 = cameraAt(3), c5 = cameraAt(5);
+    EXPECT_NEAR(c1.position.z, 4.f, 1e-5f);
+    // A quarter turn: still 4 m from look_at, at its height, on the x axis.
+    EXPECT_NEAR(std::abs(c2.position.x), 4.f, 1e-4f);
+    EXPECT_NEAR(c2.position.z, 0.f, 1e-4f);
+    EXPECT_NEAR(c2.position.y, 1.f, 1e-5f);
+    // Half a turn: opposite; N frames later: where it started.
+    EXPECT_NEAR(c3.position.z, -4.f, 1e-4f);
+    EXPECT_NEAR(c5.position.x, c1.position.x, 1e-4f);
+    EXPECT_NEAR(c5.position.z, c1.position.z, 1e-4f);
+    EXPECT_EQ(c2.lookAt.y, 1.f);
+    // Zero or fractional frame counts are errors naming the line.
+    std::string bad = writeFile(dir, "bad.toml",
+                                std::string(kGoodScene) +
+                                    "[camera]\nposition = [0, 1, 4]\nlook_at = [0, 1, 0]\n"
+                                    "turntable = 0\n");
+    EXPECT_NE(loadError(bad).find("turntable"), std::string::npos) << loadError(bad);
+}
+
+// [output] color_space: the EXR holds that space's values and chromaticities. ACEScg and
+// linear Rec.709 share the D65-ish white and differ by a 3×3 matrix, so the same render in
+// both is two images whose greys agree and whose primaries do not; an unknown space is an
+// error naming the scene's line.
+TEST(EndToEnd, OutputColorSpaceConvertsPixelsAndTagsChromaticities) {
+    std::string dir = test::tempDir();
+    fogAsset(dir);
+    auto sceneIn = [&](const std::string& space) {
+        return writeFile(dir, "cs.toml",
+                         std::string(kGoodScene) + "[output]\ncolor_space = \"" + space +
+                             "\"\nhalf = false\n");
+    };
+    std::string log;
+    ASSERT_EQ(0, test::runMirage("render '" + sceneIn("ACEScg") + "' -o '" + dir +
+                                     "/cg.exr' --quiet --seed 3",
+                                 &log))
+        << log;
+    ASSERT_EQ(0, test::runMirage("render '" + sceneIn("Linear Rec.709 (sRGB)") + "' -o '" + dir +
+                                     "/709.exr' --quiet --seed 3",
+                                 &log))
+        << log;
+    std::map<std::string, std::string> metaCg, meta709;
+    Image cg = readExr(dir + "/cg.exr", &metaCg), rec = readExr(dir + "/709.exr", &meta709);
+    ASSERT_EQ(cg.rgba.size(), rec.rgba.size());
+    EXPECT_NE(metaCg["chromaticities"].find("0.713"), std::string::npos)
+        << metaCg["chromaticities"];
+    EXPECT_NE(meta709["chromaticities"].find("0.64"), std::string::npos)
+        << meta709["chromaticities"];
+    // Luminance is the same in both (Y row of each space's RGB→XYZ), pixel by pixel.
+    double maxRel = 0, maxDiff = 0, sumY = 0;
+    for (int y = 0; y < cg.height; ++y)
+        for (int x = 0; x < cg.width; ++x) {
+            const float* a = cg.pixel(x, y);
+            const float* b = rec.pixel(x, y);
+            const double yCg = 0.2722287 * a[0] + 0.6740818 * a[1] + 0.0536895 * a[2];
+            const double y709 = 0.2126390 * b[0] + 0.7151687 * b[1] + 0.0721923 * b[2];
+            sumY += yCg;
+            maxRel = std::max(maxRel, std::abs(yCg - y709) / std::max(1e-3, yCg));
+            maxDiff = std::max(maxDiff, double(std::abs(a[0] - b[0])));
+        }
+    ASSERT_GT(sumY, 0.0);
+    EXPECT_LT(maxRel, 1e-2);  // Y is kept up to the D60→D65 adaptation of chromatic colours
+    EXPECT_GT(maxDiff, 0.0);  // not the same numbers: converted
+
+    const std::string msg = loadError(sceneIn("Rec.2020 linear"));
+    EXPECT_NE(msg.find("cs.toml:16:"), std::string::npos) << msg;  // the color_space line
+    EXPECT_NE(msg.find("ACEScg"), std::string::npos) << msg;  // lists what the config has
 }
 
 TEST(SceneLoad, BareFileNameResolvesShadersAndVolumesFromWorkingDirectory) {

@@ -25,6 +25,30 @@ std::string sharedFile(const std::string& relative) {
     return std::filesystem::exists(p, ec) ? p : std::string();
 }
 
+std::string shippedScene(const std::string& name) {
+    return (std::filesystem::path(MIRAGE_SOURCE_DIR) / "assets" / "scenes" / name)
+        .lexically_normal()
+        .string();
+}
+
+std::string shippedSceneCopy(const std::string& dir, const std::string& name,
+                             const std::string& asset, const std::string& file, int resolution) {
+    const std::string copy = dir + "/" + name;
+    std::error_code ec;
+    std::filesystem::copy_file(shippedScene(name), copy,
+                               std::filesystem::copy_options::overwrite_existing, ec);
+    EXPECT_FALSE(ec) << "copying " << shippedScene(name) << ": " << ec.message();
+    if (!asset.empty()) {
+        std::string log;
+        EXPECT_EQ(runMirage("make-asset " + asset + " -o '" + dir + "/" + file +
+                                "' --resolution " + std::to_string(resolution),
+                            &log),
+                  0)
+            << log;
+    }
+    return copy;
+}
+
 std::string tempDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     std::string name = info ? std::string(info->test_suite_name()) + "." + info->name() : "mirage";

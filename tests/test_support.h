@@ -16,6 +16,15 @@ int runMirage(const std::string& args, std::string* output = nullptr);
 // Runs a shell command, returns its exit code; stdout+stderr into *output.
 int runCommand(const std::string& cmd, std::string* output = nullptr);
 
+// A scene shipped in assets/scenes/ of the source tree.
+std::string shippedScene(const std::string& name);
+// Copies that scene into `dir` and, where it names a procedural cache, writes the cache beside
+// it with `mirage make-asset ASSET -o DIR/FILE --resolution R` (as the scene's header says,
+// smaller); returns the copy's path. Failures are test failures.
+std::string shippedSceneCopy(const std::string& dir, const std::string& name,
+                             const std::string& asset = "", const std::string& file = "",
+                             int resolution = 16);
+
 }  // namespace mirage::test
 
 #define MIRAGE_REQUIRE_SHARED(var, rel)                                               \

@@ -82,7 +82,9 @@ TEST(CurvedPath, EulerConvergesToFirstOrder) {
         const CurvedPathResult r = traceCurvedPath(field, o, d, 550, 5.0, set);
         EXPECT_EQ(r.evaluations, r.steps + 1);
         const double err = length(r.end.r - ex.endPoint);
-        if (previous > 0) EXPECT_NEAR(previous / err, 2.0, 0.1) << "h " << h;
+        if (previous > 0) {
+            EXPECT_NEAR(previous / err, 2.0, 0.1) << "h " << h;
+        }
         previous = err;
     }
 }

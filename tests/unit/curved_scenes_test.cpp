@@ -18,29 +18,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A scene in the source tree (tests/unit/ → assets/scenes/), as smoke1_scene_test.cpp finds it.
-std::string shippedScene(const std::string& name) {
-    fs::path self(__FILE__);
-    if (self.is_relative()) self = fs::path(MIRAGE_BINARY).parent_path() / self;
-    return (self.parent_path().parent_path().parent_path() / "assets" / "scenes" / name)
-        .lexically_normal()
-        .string();
-}
-
 // Copies the scene into a fresh folder (with the cache it needs, if any) and returns the copy.
 std::string sceneCopy(const std::string& name, const std::string& asset = "",
                       const std::string& file = "") {
-    const std::string dir = test::tempDir();
-    fs::copy_file(shippedScene(name), dir + "/" + name);
-    if (!asset.empty()) {
-        std::string log;
-        EXPECT_EQ(
-            test::runMirage(
-                "make-asset " + asset + " -o '" + dir + "/" + file + "' --resolution 16", &log),
-            0)
-            << log;
-    }
-    return dir + "/" + name;
+    return test::shippedSceneCopy(test::tempDir(), name, asset, file);
 }
 
 TEST(CurvedScenes, EachRendersWithoutSharedData) {

@@ -13,17 +13,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The scene in the source tree, found from this file's own path (tests/unit/ → assets/scenes/);
-// ninja compiles from the build folder, where the mirage binary sits, so a relative __FILE__ is
-// relative to that.
-std::string shippedScene() {
-    fs::path self(__FILE__);
-    if (self.is_relative()) self = fs::path(MIRAGE_BINARY).parent_path() / self;
-    return (self.parent_path().parent_path().parent_path() / "assets" / "scenes" /
-            "smoke1_sun.toml")
-        .lexically_normal()
-        .string();
-}
+std::string shippedScene() { return test::shippedScene("smoke1_sun.toml"); }
 
 TEST(Smoke1SunScene, LoadsTheSharedCacheWithThePhotonIntegrator) {
     MIRAGE_REQUIRE_SHARED(smoke, "vdb/smoke1.vdb");

@@ -67,6 +67,7 @@
 #include "core/error.h"
 #include "core/progress.h"
 #include "core/rng.h"
+#include "geometry/material.h"
 #include "photon/photon_walk.h"
 #include "scene/shader_loader.h"
 
@@ -84,21 +85,14 @@ constexpr double kDeepColumn = 1e5;  // m: the default thickness of a shader sla
 constexpr float kSpectralMinNm = 380.f, kBinNm = 5.f;
 constexpr int kSpectralBins = 80;
 
-// Unpolarised Fresnel reflectance of a smooth interface from index n1 to n2 at incidence
-// cosine cosI (Born & Wolf §1.5): R = (r_s² + r_p²)/2 with
-// r_s = (n1 cosI − n2 cosT)/(n1 cosI + n2 cosT), r_p = (n2 cosI − n1 cosT)/(n2 cosI + n1 cosT),
-// and 1 past the critical angle (total internal reflection). *cosT is the refracted cosine.
+// Reflectance of a slab face from index n1 to n2 at incidence cosine cosI: the renderer's own
+// dielectric Fresnel term (geometry/material.h), so the slab's faces are a scene's glass.
+// *cosT is the refracted cosine (Snell), 0 past the critical angle, where R = 1.
 double fresnel(double cosI, double n1, double n2, double* cosT) {
-    double sinT2 = (n1 / n2) * (n1 / n2) * std::max(0.0, 1.0 - cosI * cosI);
-    if (sinT2 >= 1.0) {
-        *cosT = 0.0;
-        return 1.0;
-    }
-    *cosT = std::sqrt(1.0 - sinT2);
+    const double sinT2 = (n1 / n2) * (n1 / n2) * std::max(0.0, 1.0 - cosI * cosI);
+    *cosT = sinT2 >= 1.0 ? 0.0 : std::sqrt(1.0 - sinT2);
     if (n1 == n2) return 0.0;
-    double rs = (n1 * cosI - n2 * *cosT) / (n1 * cosI + n2 * *cosT);
-    double rp = (n2 * cosI - n1 * *cosT) / (n2 * cosI + n1 * *cosT);
-    return 0.5 * (rs * rs + rp * rp);
+    return double(fresnelDielectric(float(cosI), float(n2 / n1)));
 }
 
 enum Outcome {
@@ -438,8 +432,9 @@ int runSlab(const SlabOptions& o) {
         // (what ocean-colour users read); the totals then go by `_total`, so that every key
         // is unique and a JSON parser keeps both.
         for (const Row& r : rows) {
-            const bool total = o.spectral && (r.name == "reflectance" || r.name == "transmittance");
-            const std::string key = total ? r.name + "_total" : r.name;
+            const bool isTotal =
+                o.spectral && (r.name == "reflectance" || r.name == "transmittance");
+            const std::string key = isTotal ? r.name + "_total" : r.name;
             std::printf("  \"%s\": %.9g,\n  \"%s_stderr\": %.9g,\n", key.c_str(), r.v.first,
                         key.c_str(), r.v.second);
         }

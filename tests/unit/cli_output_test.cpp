@@ -86,5 +86,26 @@ TEST(CliOutput, RenderLogsProgressAndSummaryAndQuietSilencesThem) {
     EXPECT_FALSE(has(log, "peak memory")) << log;
 }
 
+// On a terminal (a pseudo-terminal from util-linux `script`), the progress is one bar redrawn
+// in place: carriage returns, percentage, tiles done and an ETA.
+TEST(CliOutput, RenderOnATerminalDrawsABarWithTilesAndEta) {
+    if (test::runCommand("command -v script") != 0)
+        GTEST_SKIP() << "util-linux `script` is absent: no pseudo-terminal to test with";
+    const std::string dir = test::tempDir();
+    const std::string vdb = fogSphere(dir);
+    std::string out;
+    ASSERT_EQ(test::runCommand("script -qec \"'" + std::string(MIRAGE_BINARY) + "' render '" +
+                                   vdb + "' -o '" + dir +
+                                   "/t.exr' --resolution 128x64 --spp 4 --threads 2\" /dev/null",
+                               &out),
+              0)
+        << out;
+    EXPECT_TRUE(has(out, "\rrender [")) << out;
+    EXPECT_TRUE(has(out, "8/8 tiles")) << out;
+    EXPECT_TRUE(has(out, "100.0%")) << out;
+    EXPECT_TRUE(has(out, "ETA")) << out;
+    EXPECT_TRUE(has(out, "frame 1: 128x64")) << out;
+}
+
 }  // namespace
 }  // namespace mirage

@@ -138,11 +138,14 @@ TEST(SlabSpectral, ChlorophyllFluorescenceAddsLightOnlyInItsBand) {
     EXPECT_GT(band, 0.005);
     EXPECT_GT(fluorescence(on, "reemitted"), 0.0);
     EXPECT_EQ(fluorescence(off, "reemitted"), 0.0);
-    // Each absorption event either re-emits (Γ roulette) or ends its photon: events minus
-    // re-emissions is the absorbed fraction exactly, and re-emissions are a few per cent of
-    // the events (Γ = 0.05 of chlorophyll's share of σa).
+    // Each absorption event either re-emits (Γ roulette) or ends its photon, so events minus
+    // re-emissions counts the photons that ended absorbed. The `absorbed` row is their power,
+    // which is less where a re-emission left λi/λo of it: it lies between that count less
+    // the re-emissions and the count itself. Re-emissions are a few per cent of the events
+    // (Γ = 0.05 of chlorophyll's share of σa).
     const double events = fluorescence(on, "absorbed"), reemitted = fluorescence(on, "reemitted");
-    EXPECT_NEAR(events - reemitted, row(on, "absorbed"), 1e-9);
+    EXPECT_LE(row(on, "absorbed"), events - reemitted + 1e-9);
+    EXPECT_GE(row(on, "absorbed"), events - 2 * reemitted - 1e-9);
     EXPECT_LT(reemitted, 0.05 * events);
     // Stokes: the light comes out redder than it went in.
     EXPECT_GT(fluorescence(on, "mean_shift_nm"), 0.0);

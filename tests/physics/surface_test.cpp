@@ -150,3 +150,48 @@ TEST(SurfaceCaustic, PhotonCausticMapFindsTheMirroredBeam) {
     const double expected = rho / kPi * E / 470.0;
     EXPECT_NEAR(st.mean, expected, 0.06 * expected) << "± " << st.se;
 }
+
+// Indirect light from the global photon map. Inside a closed Lambertian sphere (radius R,
+// albedo ρ) a point light of power Φ at the centre gives the wall the direct irradiance
+// Φ/(4πR²); every diffuse bounce off a sphere's inside spreads uniformly over it, so the total
+// is E = Φ/(4πR²(1 − ρ)) and the wall's radiance L = ρE/π everywhere. The photon integrator
+// takes the first bounce by shadow rays and the rest, ρ/(1 − ρ) of it, from the global map.
+TEST(SurfaceGlobal, PhotonGlobalMapFindsTheInterreflectionsOfAClosedSphere) {
+    const float rho = 0.6f, power = 100.f, R = 1.f;
+    RenderScene scene;
+    scene.geometry = std::make_unique<GeometryScene>();
+    int m = scene.geometry->addMaterial(Material::diffuse("wall", Spectrum(rho)));
+    scene.geometry->addSphere(Vec3(0.f), R, m);
+    scene.geometry->commit();
+    scene.lights.push_back(makePointLight(Vec3(0.f), power, Spectrum(1.f)));  // S = 1/470 nm⁻¹
+    const double direct = rho / kPi * power / (4 * kPi * R * R) / 470.0;
+    const double expected = direct / (1.0 - rho);
+    PhotonIntegratorSettings ps;
+    ps.photons = 200000;
+    ps.progress = Progress::Mode::Quiet;
+    auto photon = makePhotonIntegrator(ps);
+    photon->preprocess(scene);
+    auto single = makeIntegrator("single");
+    ThreadState ts(scene);
+    // The photon estimates arrive already reduced to XYZ (RadianceSample::xyz); for this flat
+    // spectrum their Y is the radiance they add to the spectral part's mean (film
+    // normalisation: a constant spectral radiance of 1 has Y = 1).
+    auto viewOf = [&](const Integrator& integrator) {
+        return meanOf(4000, [&](int i) {
+            Sampler s(6, uint64_t(i), 0);
+            Vec3 d = sampleUniformSphere(s.get1D(), s.get1D());
+            Vec3 xyz;
+            const double L = radiance(integrator, scene,
+                                      Ray{Vec3(0.2f, 0.1f, -0.3f), d, kInfinity}, uint64_t(i),
+                                      ts, &xyz);
+            return L + double(xyz.y);
+        });
+    };
+    // Shadow rays alone: the direct part, exactly (one wavelength sample's noise aside).
+    Stats st = viewOf(*single);
+    EXPECT_NEAR(st.mean, direct, 1e-3 * direct);
+    // With the global map: within the density estimate's few per cent of the closed form, and
+    // far from the direct part alone (the map holds 1.5× the direct light here).
+    st = viewOf(*photon);
+    EXPECT_NEAR(st.mean, expected, 0.04 * expected) << "± " << st.se;
+}

@@ -130,7 +130,10 @@ PhotonPath tracePhoton(uint64_t index, const std::vector<const Light*>& lights,
                 hit.reset();
                 straight = false;
             } else {
-                // Beyond curvedMaxArc of path: straight on from where the path got to.
+                // Beyond curvedMaxArc of path, or at the stepper's hard cap on ODE steps
+                // (CurvedPathSettings::maxSteps, counted as a capped path: the rest of the
+                // flight is straight, a bias): straight on from where the path got to.
+                if (end.kind == CurvedWalkEnd::Kind::Capped) path.capped = true;
                 ray = Ray{end.p, end.direction, kInfinity};
             }
         }

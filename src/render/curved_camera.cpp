@@ -1,6 +1,7 @@
 // Curved camera rays around an integrator (curved_camera.h says what and what not).
 #include "render/curved_camera.h"
 
+#include <atomic>
 #include <utility>
 
 #include "transport/tracking.h"
@@ -17,7 +18,13 @@ public:
 
     std::string name() const override { return mInner->name() + " (curved camera rays)"; }
     void preprocess(const RenderScene& scene) override { mInner->preprocess(scene); }
-    uint64_t cappedPaths() const override { return mInner->cappedPaths(); }
+    // Camera rays whose curved path reached the ODE step cap (CurvedPathSettings::maxSteps)
+    // went on straight from there: a bias, counted beside the wrapped integrator's caps.
+    uint64_t cappedPaths() const override { return mInner->cappedPaths() + mCapped.load(); }
+    // The wrapped photon integrator's pass figures reach the summary and the EXR through here.
+    uint64_t nonFinitePhotons() const override { return mInner->nonFinitePhotons(); }
+    uint64_t cappedPhotonPaths() const override { return mInner->cappedPhotonPaths(); }
+    const PhotonStats* photonStats() const override { return mInner->photonStats(); }
     std::string summary() const override { return mInner->summary(); }
 
     RadianceSample Li(const RenderScene& scene, const Ray& ray, const SampledWavelengths& w,
@@ -70,6 +77,7 @@ public:
         };
         const CurvedPathResult r = traceCurvedPath(*rf.field, Vec3d(ray.o), Vec3d(ray.d), lambda,
                                                    rf.maxArc, rf.path, visit);
+        if (r.capped) mCapped.fetch_add(1, std::memory_order_relaxed);
         if (T.maxValue() <= 0.f) {
             out.alpha = 1.f;
             return out;
@@ -84,6 +92,7 @@ public:
 private:
     std::unique_ptr<Integrator> mInner;
     std::shared_ptr<const Refraction> mRefraction;
+    mutable std::atomic<uint64_t> mCapped{0};
 };
 
 }  // namespace

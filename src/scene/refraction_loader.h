@@ -10,6 +10,8 @@
 //   tolerance = 1e-6           # Dormand–Prince error tolerance per step
 //   max_step = 5.0             # m; 0 = unlimited (keep it below the thinnest layer)
 //   max_distance = 1000.0      # m of curved path per camera ray; straight beyond
+//   max_steps = 10000000       # ODE steps (accepted + rejected) per path; a path that reaches
+//                              # it goes on straight, counted in the capped paths
 //   [[refraction.inversion]]   # atmosphere: a layer delta_t kelvin warmer between base and top
 //   base = -2.0
 //   top = 0.5

@@ -48,6 +48,7 @@ public:
         };
         bool atSurface = false;
         Ray next;
+        double nNext = nCam;  // the index where the wrapped integrator's last ray finds light
         auto visit = [&](const PathState& a, const PathState& b, bool) {
             const Vec3 pa(a.r), pb(b.r);
             const float h = float(b.arc - a.arc), len = length(pb - pa);
@@ -55,9 +56,12 @@ public:
             const Vec3 unit = (pb - pa) / len;
             if (scene.hasSurfaces()) {
                 Ray chord{pa, unit, len};
-                if (scene.geometry->intersect(chord)) {
-                    // The wrapped integrator takes this chord and everything beyond it.
+                if (const auto hit = scene.geometry->intersect(chord)) {
+                    // The wrapped integrator takes this chord and everything beyond it. What
+                    // it finds there (the surface's radiance) is radiance at the index of the
+                    // hit, not of the chord's start, which may be a long chord away.
                     next = Ray{pa, unit};
+                    nNext = rf.field->index(Vec3d(hit->p), lambda);
                     atSurface = true;
                     return false;
                 }
@@ -82,9 +86,13 @@ public:
             out.alpha = 1.f;
             return out;
         }
-        if (!atSurface) next = Ray{Vec3(r.end.r), Vec3(r.end.direction())};
+        if (!atSurface) {
+            // Beyond the curved part the path is taken as straight, through constant n.
+            next = Ray{Vec3(r.end.r), Vec3(r.end.direction())};
+            nNext = rf.field->index(r.end.r, lambda);
+        }
         const RadianceSample last = mInner->Li(scene, next, w, sampler, ts);
-        add(last, rf.field->index(Vec3d(next.o), lambda));
+        add(last, nNext);
         out.alpha = 1.f - T.average() * (1.f - last.alpha);
         return out;
     }

@@ -2,8 +2,10 @@
 #include "render/curved_camera.h"
 
 #include <atomic>
+#include <limits>
 #include <utility>
 
+#include "transport/surface_step_cap.h"
 #include "transport/tracking.h"
 
 namespace mirage {
@@ -17,7 +19,20 @@ public:
         : mInner(std::move(inner)), mRefraction(std::move(refraction)) {}
 
     std::string name() const override { return mInner->name() + " (curved camera rays)"; }
-    void preprocess(const RenderScene& scene) override { mInner->preprocess(scene); }
+    void preprocess(const RenderScene& scene) override {
+        mInner->preprocess(scene);
+        // The step cap near surfaces (surface_step_cap.h): short chords where a path meets or
+        // grazes a surface, so that the hit found on the chord is the path's.
+        mPath = mRefraction->path;
+        if (mPath.capNearSurfaces && scene.hasSurfaces()) {
+            const GeometryScene* geometry = scene.geometry.get();
+            auto distance = [geometry](const Vec3d& o, const Vec3d& d) {
+                const auto hit = geometry->intersect(Ray{Vec3(o), Vec3(d)});
+                return hit ? double(hit->t) : std::numeric_limits<double>::infinity();
+            };
+            mPath.stepCap = surfaceStepCap(mRefraction->field.get(), mPath.tolerance, distance);
+        }
+    }
     // Camera rays whose curved path reached the ODE step cap (CurvedPathSettings::maxSteps)
     // went on straight from there: a bias, counted beside the wrapped integrator's caps.
     uint64_t cappedPaths() const override { return mInner->cappedPaths() + mCapped.load(); }
@@ -80,7 +95,7 @@ public:
             return T.maxValue() > 0.f;
         };
         const CurvedPathResult r = traceCurvedPath(*rf.field, Vec3d(ray.o), Vec3d(ray.d), lambda,
-                                                   rf.maxArc, rf.path, visit);
+                                                   rf.maxArc, mPath, visit);
         if (r.capped) mCapped.fetch_add(1, std::memory_order_relaxed);
         if (T.maxValue() <= 0.f) {
             out.alpha = 1.f;
@@ -100,6 +115,7 @@ public:
 private:
     std::unique_ptr<Integrator> mInner;
     std::shared_ptr<const Refraction> mRefraction;
+    CurvedPathSettings mPath;  // the refraction's, with the step cap near this scene's surfaces
     mutable std::atomic<uint64_t> mCapped{0};
 };
 

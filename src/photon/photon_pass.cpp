@@ -20,11 +20,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "core/interrupt.h"
 #include "photon/medium_emitter.h"
 #include "photon/photon_walk.h"
+#include "transport/surface_step_cap.h"
 
 namespace mirage {
 
@@ -130,7 +132,10 @@ PhotonPath tracePhoton(uint64_t index, const std::vector<const Light*>& lights,
                 hit.reset();
                 straight = false;
             } else {
-                // Beyond curvedMaxArc of path: straight on from where the path got to.
+                // Beyond curvedMaxArc of path, or at the stepper's hard cap on ODE steps
+                // (CurvedPathSettings::maxSteps, counted as a capped path: the rest of the
+                // flight is straight, a bias): straight on from where the path got to.
+                if (end.kind == CurvedWalkEnd::Kind::Capped) path.capped = true;
                 ray = Ray{end.p, end.direction, kInfinity};
             }
         }
@@ -239,6 +244,17 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
             local.mediumPower += emitters.back().tablePower();
         }
     LightChooser chooser(lights, bounds, emitters);
+    // Curved flights: the step cap near surfaces (surface_step_cap.h), so that a photon's hit
+    // on a surface it meets at a shallow angle, or grazes, is its path's.
+    PhotonPassSettings curved = settings;
+    if (settings.field && geometry && settings.curvedPath.capNearSurfaces) {
+        auto distance = [geometry](const Vec3d& o, const Vec3d& d) {
+            const auto hit = geometry->intersect(Ray{Vec3(o), Vec3(d)});
+            return hit ? double(hit->t) : std::numeric_limits<double>::infinity();
+        };
+        curved.curvedPath.stepCap =
+            surfaceStepCap(settings.field, settings.curvedPath.tolerance, distance);
+    }
     const uint64_t n = settings.photons;
     // Nothing to do without photons, light, media or surfaces: a photon that meets nothing
     // stores nothing.
@@ -263,7 +279,7 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
                         uint64_t flightsCut = walk.tracking().cappedFlights;
                         PhotonPath path =
                             tracePhoton(i, lights, emitters, emitterMedium, chooser, bounds,
-                                        photonPower, settings, geometry, walk, &blockPhotons[b]);
+                                        photonPower, curved, geometry, walk, &blockPhotons[b]);
                         // A flight cut at the collision cap (tracking.h) caps the path too.
                         blockCapped[b] +=
                             path.capped || walk.tracking().cappedFlights != flightsCut;

@@ -55,7 +55,9 @@ struct PhotonPassSettings {
 
 struct PhotonPassStats {
     uint64_t emitted = 0, stored = 0;
-    uint64_t cappedPaths = 0;  // cut at maxBounces or at the collision cap of one flight
+    // Cut at maxBounces or at the collision cap of one flight, or a curved flight stopped by
+    // the ODE step cap (CurvedPathSettings::maxSteps) and continued straight.
+    uint64_t cappedPaths = 0;
     uint64_t nonFinite = 0;    // photons dropped for a non-finite power/position (path ended)
     uint64_t fromMedia = 0;    // photons emitted by emissive media (fire)
     double mediumPower = 0;    // W over 360–830 nm, the media emitters' tabulated power

@@ -1,8 +1,11 @@
 // Curved camera rays around an integrator (curved_camera.h says what and what not).
 #include "render/curved_camera.h"
 
+#include <atomic>
+#include <limits>
 #include <utility>
 
+#include "transport/surface_step_cap.h"
 #include "transport/tracking.h"
 
 namespace mirage {
@@ -16,8 +19,27 @@ public:
         : mInner(std::move(inner)), mRefraction(std::move(refraction)) {}
 
     std::string name() const override { return mInner->name() + " (curved camera rays)"; }
-    void preprocess(const RenderScene& scene) override { mInner->preprocess(scene); }
-    uint64_t cappedPaths() const override { return mInner->cappedPaths(); }
+    void preprocess(const RenderScene& scene) override {
+        mInner->preprocess(scene);
+        // The step cap near surfaces (surface_step_cap.h): short chords where a path meets or
+        // grazes a surface, so that the hit found on the chord is the path's.
+        mPath = mRefraction->path;
+        if (mPath.capNearSurfaces && scene.hasSurfaces()) {
+            const GeometryScene* geometry = scene.geometry.get();
+            auto distance = [geometry](const Vec3d& o, const Vec3d& d) {
+                const auto hit = geometry->intersect(Ray{Vec3(o), Vec3(d)});
+                return hit ? double(hit->t) : std::numeric_limits<double>::infinity();
+            };
+            mPath.stepCap = surfaceStepCap(mRefraction->field.get(), mPath.tolerance, distance);
+        }
+    }
+    // Camera rays whose curved path reached the ODE step cap (CurvedPathSettings::maxSteps)
+    // went on straight from there: a bias, counted beside the wrapped integrator's caps.
+    uint64_t cappedPaths() const override { return mInner->cappedPaths() + mCapped.load(); }
+    // The wrapped photon integrator's pass figures reach the summary and the EXR through here.
+    uint64_t nonFinitePhotons() const override { return mInner->nonFinitePhotons(); }
+    uint64_t cappedPhotonPaths() const override { return mInner->cappedPhotonPaths(); }
+    const PhotonStats* photonStats() const override { return mInner->photonStats(); }
     std::string summary() const override { return mInner->summary(); }
 
     RadianceSample Li(const RenderScene& scene, const Ray& ray, const SampledWavelengths& w,
@@ -41,6 +63,7 @@ public:
         };
         bool atSurface = false;
         Ray next;
+        double nNext = nCam;  // the index where the wrapped integrator's last ray finds light
         auto visit = [&](const PathState& a, const PathState& b, bool) {
             const Vec3 pa(a.r), pb(b.r);
             const float h = float(b.arc - a.arc), len = length(pb - pa);
@@ -48,9 +71,12 @@ public:
             const Vec3 unit = (pb - pa) / len;
             if (scene.hasSurfaces()) {
                 Ray chord{pa, unit, len};
-                if (scene.geometry->intersect(chord)) {
-                    // The wrapped integrator takes this chord and everything beyond it.
+                if (const auto hit = scene.geometry->intersect(chord)) {
+                    // The wrapped integrator takes this chord and everything beyond it. What
+                    // it finds there (the surface's radiance) is radiance at the index of the
+                    // hit, not of the chord's start, which may be a long chord away.
                     next = Ray{pa, unit};
+                    nNext = rf.field->index(Vec3d(hit->p), lambda);
                     atSurface = true;
                     return false;
                 }
@@ -69,14 +95,19 @@ public:
             return T.maxValue() > 0.f;
         };
         const CurvedPathResult r = traceCurvedPath(*rf.field, Vec3d(ray.o), Vec3d(ray.d), lambda,
-                                                   rf.maxArc, rf.path, visit);
+                                                   rf.maxArc, mPath, visit);
+        if (r.capped) mCapped.fetch_add(1, std::memory_order_relaxed);
         if (T.maxValue() <= 0.f) {
             out.alpha = 1.f;
             return out;
         }
-        if (!atSurface) next = Ray{Vec3(r.end.r), Vec3(r.end.direction())};
+        if (!atSurface) {
+            // Beyond the curved part the path is taken as straight, through constant n.
+            next = Ray{Vec3(r.end.r), Vec3(r.end.direction())};
+            nNext = rf.field->index(r.end.r, lambda);
+        }
         const RadianceSample last = mInner->Li(scene, next, w, sampler, ts);
-        add(last, rf.field->index(Vec3d(next.o), lambda));
+        add(last, nNext);
         out.alpha = 1.f - T.average() * (1.f - last.alpha);
         return out;
     }
@@ -84,6 +115,8 @@ public:
 private:
     std::unique_ptr<Integrator> mInner;
     std::shared_ptr<const Refraction> mRefraction;
+    CurvedPathSettings mPath;  // the refraction's, with the step cap near this scene's surfaces
+    mutable std::atomic<uint64_t> mCapped{0};
 };
 
 }  // namespace

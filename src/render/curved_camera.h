@@ -5,6 +5,8 @@
 // chord (its ray stopped at the chord's end), and the chord's transmittance over arc length
 // attenuates everything beyond; the wrapped integrator then takes the last chord (when it met a
 // surface) or the straight continuation. Radiance keeps L/n² along the path (the n² law).
+// A path stopped by the ODE step cap (CurvedPathSettings::maxSteps) also goes on straight, and
+// is counted in cappedPaths() (the render summary's and the EXR's capped paths).
 //
 // Paths scattered off the camera ray stay straight in the single and volpath integrators, and so
 // do their shadow rays. The photon integrator bends photons too (photon/photon_pass.h) and then

@@ -100,6 +100,8 @@ std::shared_ptr<const Refraction> readRefraction(const TableReader& t,
     r->path.tolerance = t.getNumber("tolerance", 1e-6, 1e-14, 1.0);
     const double maxStep = t.getNumber("max_step", 0.0, 0.0, 1e9);
     if (maxStep > 0) r->path.maxStep = maxStep;
+    r->path.maxSteps = t.getInt("max_steps", r->path.maxSteps, 1, int64_t(1e12));
+    r->path.capNearSurfaces = t.getBool("surface_step_cap", true);
     r->maxArc = float(t.getNumber("max_distance", 1000.0, 1e-6, 1e9));
     t.finish();
     return r;

@@ -10,6 +10,10 @@
 //   tolerance = 1e-6           # Dormand–Prince error tolerance per step
 //   max_step = 5.0             # m; 0 = unlimited (keep it below the thinnest layer)
 //   max_distance = 1000.0      # m of curved path per camera ray; straight beyond
+//   max_steps = 10000000       # ODE steps (accepted + rejected) per path; a path that reaches
+//                              # it goes on straight, counted in the capped paths
+//   surface_step_cap = true    # shorter steps where a path nears a surface
+//                              # (transport/surface_step_cap.h); false: only max_step
 //   [[refraction.inversion]]   # atmosphere: a layer delta_t kelvin warmer between base and top
 //   base = -2.0
 //   top = 0.5

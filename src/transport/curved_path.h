@@ -39,6 +39,9 @@ struct CurvedPathSettings {
     // Optional cap on the next step from r along the unit direction (e.g. the distance to the
     // nearest surface, so that a chord does not jump through a thin object). ≤ 0: no cap.
     std::function<double(const Vec3d& r, const Vec3d& direction)> stepCap;
+    // For the renderer: where the scene has surfaces, set stepCap by the rule of
+    // surface_step_cap.h (the scene's [refraction] surface_step_cap). The stepper ignores it.
+    bool capNearSurfaces = true;
 };
 
 struct PathState {

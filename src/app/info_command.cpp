@@ -60,8 +60,15 @@ int runInfo(const InfoOptions& o) {
                         (unsigned long long)g.activeVoxels(), formatBytes(g.memoryBytes()).c_str(),
                         g.maxValue());
         }
+        for (const ExpressionRecord& e : v.expressions)
+            std::printf("    expression (%s, %s): %s; active voxels only; OpenVDB AX compile + "
+                        "run %.3f s\n      %s\n",
+                        e.origin.c_str(), e.expression.where.str().c_str(),
+                        describeAccess(e.access).c_str(), e.seconds,
+                        boundedMessage(e.expression.code, 200).c_str());
         for (const auto& u : v.unusedGrids)
-            std::printf("    grid '%s' is read by no shader slot: not loaded\n", u.c_str());
+            std::printf("    grid '%s' is read by no shader slot or expression: not loaded\n",
+                        u.c_str());
         std::printf("    coefficients: %s\n",
                     m.greyPath() ? "grey path (every σ wavelength-independent, none fluoresces)"
                                  : "spectral path (σ evaluated at each path's 4 wavelengths)");

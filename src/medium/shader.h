@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "medium/phase.h"
 #include "spectrum/spectrum.h"
 
@@ -66,6 +67,10 @@ struct ShaderDesc {
     std::string source;  // file it came from (for messages)
     std::vector<MediumComponent> components;
     std::optional<EmissionSpec> emission;
+    // An OpenVDB AX snippet over the shader's grid slots (`expression`), run on every volume's
+    // grids before they become NanoVDB (volume/grid_expression.h); "" = none.
+    std::string expression;
+    FileLoc expressionLoc;  // where it is written, for error messages
 
     // Grid slots the shader reads, in a stable order.
     std::vector<std::string> gridSlots() const;

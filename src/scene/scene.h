@@ -11,6 +11,7 @@
 #include "render/render_scene.h"
 #include "render/renderer.h"
 #include "render/curved_camera.h"
+#include "volume/grid_expression.h"
 
 namespace mirage {
 
@@ -24,11 +25,22 @@ struct OutputSettings {
     std::string display = "sRGB", view = "Standard";
 };
 
+// A grid expression as loaded: the code, where it came from, its grids and its cost.
+struct ExpressionRecord {
+    GridExpression expression;
+    std::string origin;     // "volume" or "shader 'name'"
+    ExpressionAccess access;  // grid names in the file
+    double seconds = 0;     // compile + run (OpenVDB AX)
+};
+
 struct VolumeRecord {
     std::string file;  // after frame substitution
     std::string shader;
     std::vector<std::pair<std::string, std::string>> bindings;  // shader slot → grid in file
-    std::vector<std::string> unusedGrids;  // grids in the file no shader reads (not loaded)
+    // The shader's expression, then the volume's, in the order they run.
+    std::vector<ExpressionRecord> expressions;
+    // Grids in the file that no shader slot and no expression reads (not loaded).
+    std::vector<std::string> unusedGrids;
     float densityScale = 1;
 };
 

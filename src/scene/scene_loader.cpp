@@ -215,26 +215,52 @@ std::vector<std::pair<std::string, std::string>> bindGrids(
 
 }  // namespace
 
-// Builds a medium from a shader and a file: loads only the grids the shader reads.
+// Builds a medium from a shader and a file: loads only the grids the shader's slots and the
+// expressions (rec.expressions, run in order on the OpenVDB grids) read.
 static std::unique_ptr<Medium> buildMedium(const ShaderDesc& shader, VolumeRecord& rec,
                                            const std::vector<std::pair<std::string, std::string>>& explicitBind,
                                            const Transform& xf, int majorantRes,
                                            const FileLoc& where, const Scene& scene,
                                            const LoadOptions& options) {
-    rec.bindings = bindGrids(shader, explicitBind, rec.file, &rec.unusedGrids, where);
-    std::vector<FloatGrid> grids;
-    for (const auto& [slot, gridName] : rec.bindings) {
-        if (options.beforeGridLoad) {
-            // In-core size from the file's metadata (cheap: no voxels are read).
-            VdbFileInfo info = inspectVdbFile(rec.file);
+    std::vector<std::string> unbound;
+    rec.bindings = bindGrids(shader, explicitBind, rec.file, &unbound, where);
+    // The shader's expression speaks of its slots: AX looks each one up under the grid the
+    // volume binds it to.
+    for (ExpressionRecord& e : rec.expressions) {
+        if (e.origin != "volume")
+            for (const auto& [slot, gridName] : rec.bindings)
+                if (slot != gridName) e.expression.bindings.emplace_back(slot, gridName);
+        e.access = expressionAccess(e.expression);
+    }
+    // Grids to read: the bound ones, then those only an expression names.
+    std::vector<std::string> toRead;
+    for (const auto& b : rec.bindings) toRead.push_back(b.second);
+    for (const ExpressionRecord& e : rec.expressions)
+        for (const auto* names : {&e.access.reads, &e.access.writes})
+            for (const std::string& n : *names)
+                if (std::find(toRead.begin(), toRead.end(), n) == toRead.end()) toRead.push_back(n);
+    for (const std::string& u : unbound)
+        if (std::find(toRead.begin(), toRead.end(), u) == toRead.end())
+            rec.unusedGrids.push_back(u);
+    if (options.beforeGridLoad) {
+        // In-core size from the file's metadata (cheap: no voxels are read).
+        VdbFileInfo info = inspectVdbFile(rec.file);
+        for (const std::string& gridName : toRead) {
             uint64_t bytes = 0;
             for (size_t i = 0; i < info.grids.size(); ++i)
                 if (info.grids[i].name == gridName || "#" + std::to_string(i) == gridName)
                     bytes = std::max(info.grids[i].memoryBytes, info.grids[i].activeVoxels * 4);
             options.beforeGridLoad(scene, rec.file, gridName, bytes);
         }
-        grids.push_back(loadFloatGrid(rec.file, gridName));
     }
+    std::vector<std::string> bound;
+    for (const auto& b : rec.bindings) bound.push_back(b.second);
+    std::vector<GridExpression> expressions;
+    for (const ExpressionRecord& e : rec.expressions) expressions.push_back(e.expression);
+    std::vector<double> seconds;
+    std::vector<FloatGrid> grids = loadFloatGrids(rec.file, bound, expressions, &seconds);
+    for (size_t i = 0; i < seconds.size() && i < rec.expressions.size(); ++i)
+        rec.expressions[i].seconds = seconds[i];
     try {
         return std::make_unique<Medium>(shader, std::move(grids), xf, rec.densityScale,
                                         majorantRes);
@@ -399,6 +425,24 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
                 bind.emplace_back(k, b->getString(k));
             }
         }
+        // Grid expressions (OpenVDB AX): the shader's first, over its slots, then the volume's,
+        // over the file's grid names (README "Grid expressions").
+        if (!shader.expression.empty())
+            rec.expressions.push_back(
+                {{shader.expression, shader.expressionLoc,
+                  "'expression' of shader '" + shader.name + "'", {}},
+                 "shader '" + shader.name + "'", {}, 0.0});
+        if (v.has("expression")) {
+            const std::string code = v.getString("expression");
+            if (code.find_first_not_of(" \t\r\n") == std::string::npos)
+                v.fail("expression", "expected OpenVDB AX code, e.g. \"@density = "
+                                     "clamp((@density - 0.05) * 4, 0, 1);\"");
+            rec.expressions.push_back(
+                {{code, v.loc("expression"), "'expression' in [volume]", {}}, "volume", {}, 0.0});
+        }
+        if (boxed && !rec.expressions.empty())
+            v.fail(v.has("expression") ? "expression" : "box",
+                   "a box volume has no grids for an expression to run on");
         Transform xf;
         if (auto t = v.optionalTable("transform")) xf = readTransform(*t);
         Bounds3 box;
@@ -497,6 +541,11 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
         top.finish();
     }
     ShaderDesc shader = loadShader("smoke", "");
+    // A smoke.toml in $MIRAGE_SHADER_PATH may carry an expression of its own.
+    if (!shader.expression.empty())
+        rec.expressions.push_back({{shader.expression, shader.expressionLoc,
+                                    "'expression' of shader '" + shader.name + "'", {}},
+                                   "shader '" + shader.name + "'", {}, 0.0});
     scene.render.media.push_back(
         buildMedium(shader, rec, {}, Transform(), scene.majorantResolution,
                     FileLoc{rec.file, 0, 0}, scene, options));
@@ -590,6 +639,17 @@ std::vector<PhysicsTerm> Scene::physics() const {
     terms.push_back({"fluorescence", !fluorescenceWhy.empty(),
                      fluorescenceWhy.empty() ? "no shader declares a quantum efficiency"
                                              : fluorescenceWhy});
+    std::string expressionWhy;
+    for (size_t i = 0; i < volumes.size(); ++i)
+        for (const ExpressionRecord& e : volumes[i].expressions)
+            expressionWhy += (expressionWhy.empty() ? "" : "; ") + std::string("volume ") +
+                             std::to_string(i) + " (" + e.origin + ", " +
+                             e.expression.where.str() + ") " + describeAccess(e.access);
+    terms.push_back({"grid expressions", !expressionWhy.empty(),
+                     expressionWhy.empty()
+                         ? "no expression: grids are used as stored"
+                         : "OpenVDB AX on the grids before NanoVDB conversion, active voxels "
+                           "only: " + expressionWhy});
     if (refraction) {
         // Which paths bend: camera rays always; photons when the photon integrator runs and the
         // field curves within the scene's bounds (photonsCurve), which then drops shadow rays.

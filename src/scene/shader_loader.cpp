@@ -94,6 +94,8 @@ ShaderDesc parseShader(const toml::table& doc, const std::string& file) {
     s.source = file;
     s.name = top.getString("name", fs::path(file).stem().string());
     top.getString("description", "");
+    s.expression = top.getString("expression", "");
+    s.expressionLoc = top.loc("expression");
     auto comps = top.tables("component");
     if (comps.empty())
         throw MirageError(top.tableLoc(), "shader '" + s.name +

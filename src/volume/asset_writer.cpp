@@ -371,6 +371,8 @@ openvdb::GridBase::Ptr buildTestGrid(const TestGridSpec& s, typename GridT::Valu
     auto acc = grid->getAccessor();
     for (const auto& v : s.voxels)
         acc.setValue(openvdb::Coord(v.i, v.j, v.k), value(v.value, v.vector));
+    for (const auto& v : s.inactiveVoxels)
+        acc.setValueOff(openvdb::Coord(v.i, v.j, v.k), value(v.value, v.vector));
     for (const auto& t : s.tiles)
         grid->tree().addTile(openvdb::Index(t.level), openvdb::Coord(t.i, t.j, t.k),
                              value(t.value, Vec3d(t.value)), true);

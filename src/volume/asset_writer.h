@@ -76,6 +76,9 @@ struct TestGridSpec {
     // Share the previous grid's tree (same type): OpenVDB writes this grid as an instance.
     bool shareTreeWithPrevious = false;
     std::vector<Voxel> voxels;  // active voxels
+    // Inactive voxels that store a value (a leaf keeps one for each of its 512 voxels): what
+    // grid expressions must leave alone.
+    std::vector<Voxel> inactiveVoxels;
     std::vector<Tile> tiles;
 };
 

@@ -1,5 +1,7 @@
-// OpenVDB and NanoVDB files → NanoVDB float grids. One of the two translation units allowed to
-// include OpenVDB (with asset_writer.cpp): it costs ~28 s and ~1 GB to compile.
+// OpenVDB and NanoVDB files → NanoVDB float grids. One of the three translation units allowed
+// to include OpenVDB (with asset_writer.cpp and grid_expression.cpp): it costs ~28 s and ~1 GB
+// to compile. Grid expressions run here, between reading and conversion, through
+// openvdb_expression.h (the AX headers stay in grid_expression.cpp).
 //
 // Every path goes through vdbformat::scanFile first, which checks the file's own index against
 // its size; OpenVDB is only asked to read files whose offsets are known to be inside the file,
@@ -18,11 +20,13 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <mutex>
 #include <set>
 #include <sstream>
 
 #include "core/error.h"
+#include "volume/openvdb_expression.h"
 #include "volume/vdb_format.h"
 #include "volume/vdb_tree.h"
 
@@ -440,6 +444,28 @@ GridInfo nanoVdbGridInfo(const GridRecord& record) {
     return info;
 }
 
+nanovdb::GridHandle<nanovdb::HostBuffer> toNanoVdb(const std::string& path,
+                                                   const std::string& label,
+                                                   const openvdb::FloatGrid& grid) {
+    try {
+        return nanovdb::openToNanoVDB(grid, nanovdb::StatsMode::All,
+                                      nanovdb::ChecksumMode::Partial);
+    } catch (const std::exception& e) {
+        fail(path, "could not convert grid " + label + " to NanoVDB: " + boundedMessage(e.what()));
+    }
+}
+
+// The voxel rule on a converted grid, its warning (`label` names the grid in it), and the name
+// the grid goes by: its own, or "#N".
+FloatGrid finishGrid(const std::string& path, const FileLayout& layout, int index,
+                     nanovdb::GridHandle<nanovdb::HostBuffer> handle, const std::string& label) {
+    const SanitizeCounts sanitized = sanitize(*handle.grid<float>());
+    if (sanitized.total() > 0) warnSanitizedOnce(path, label, sanitized);
+    const std::string& own = layout.grids[size_t(index)].name;
+    std::string name = own.empty() ? "#" + std::to_string(index) : own;
+    return FloatGrid(std::move(handle), std::move(name), sanitized.total());
+}
+
 }  // namespace
 
 void validateVdbFile(const std::string& path) { vdbformat::scanFile(path); }
@@ -482,19 +508,82 @@ FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName) {
             fail(path, "grid " + label + " has background value " + fmt(background) +
                            ", expected 0 for a fog volume (is it a level set?)");
     } else {
-        openvdb::FloatGrid::Ptr grid = readFogVolume(path, layout, index);
-        try {
-            handle = nanovdb::openToNanoVDB(*grid, nanovdb::StatsMode::All,
-                                            nanovdb::ChecksumMode::Partial);
-        } catch (const std::exception& e) {
-            fail(path,
-                 "could not convert grid " + label + " to NanoVDB: " + boundedMessage(e.what()));
-        }
+        handle = toNanoVdb(path, label, *readFogVolume(path, layout, index));
     }
-    const SanitizeCounts sanitized = sanitize(*handle.grid<float>());
-    if (sanitized.total() > 0) warnSanitizedOnce(path, label, sanitized);
-    std::string name = record.name.empty() ? "#" + std::to_string(index) : record.name;
-    return FloatGrid(std::move(handle), std::move(name), sanitized.total());
+    return finishGrid(path, layout, index, std::move(handle), label);
+}
+
+std::vector<FloatGrid> loadFloatGrids(const std::string& path,
+                                      const std::vector<std::string>& gridNames,
+                                      const std::vector<GridExpression>& expressions,
+                                      std::vector<double>* expressionSeconds) {
+    if (expressionSeconds) expressionSeconds->clear();
+    std::vector<FloatGrid> out;
+    if (expressions.empty()) {
+        for (const std::string& name : gridNames) out.push_back(loadFloatGrid(path, name));
+        return out;
+    }
+    const FileLayout layout = vdbformat::scanFile(path);
+    if (layout.format == Format::NanoVdb)
+        throw MirageError(expressions[0].where,
+                          expressions[0].label + ": expressions run on OpenVDB grids, but " +
+                              path + " is a NanoVDB file; give the OpenVDB (.vdb) cache");
+
+    // Each grid is read once, by index, and carries the name AX will look it up by: its name
+    // in the file, or "#N" when it has none.
+    auto canonicalName = [&](int index) {
+        const std::string& name = layout.grids[size_t(index)].name;
+        return name.empty() ? "#" + std::to_string(index) : name;
+    };
+    std::map<int, openvdb::FloatGrid::Ptr> grids;
+    auto read = [&](int index) {
+        openvdb::FloatGrid::Ptr& grid = grids[index];
+        if (!grid) {
+            grid = readFogVolume(path, layout, index);
+            grid->setName(canonicalName(index));
+        }
+        return grid;
+    };
+    std::vector<int> wanted;
+    for (const std::string& name : gridNames) {
+        wanted.push_back(requireGrid(path, layout, name));
+        read(wanted.back());
+    }
+
+    std::set<int> written;
+    for (const GridExpression& e : expressions) {
+        const ExpressionAccess access = expressionAccess(e);
+        std::vector<std::string> names = access.reads;
+        names.insert(names.end(), access.writes.begin(), access.writes.end());
+        openvdb::GridPtrVec inputs;
+        std::set<int> seen;
+        for (const std::string& name : names) {
+            const int index = vdbformat::findGrid(layout, name);
+            if (index < 0)
+                throw MirageError(e.where, e.label + ": the expression names grid '" +
+                                               boundedMessage(name, 60) + "', but " + path +
+                                               " has no such grid (grids: " +
+                                               vdbformat::gridList(layout) + ")");
+            if (seen.insert(index).second) inputs.push_back(read(index));
+        }
+        for (const std::string& name : access.writes)
+            written.insert(vdbformat::findGrid(layout, name));
+        GridExpression bound = e;
+        for (auto& binding : bound.bindings) {
+            const int index = vdbformat::findGrid(layout, binding.second);
+            if (index >= 0) binding.second = canonicalName(index);
+        }
+        const double seconds = runGridExpression(bound, inputs, path);
+        if (expressionSeconds) expressionSeconds->push_back(seconds);
+    }
+
+    for (const int index : wanted) {
+        std::string label = vdbformat::gridLabel(layout, index);
+        auto handle = toNanoVdb(path, label, *grids[index]);
+        if (written.count(index)) label += " (after its expression)";
+        out.push_back(finishGrid(path, layout, index, std::move(handle), label));
+    }
+    return out;
 }
 
 std::vector<double> openvdbSampleForTest(const std::string& path, const std::string& gridName,

@@ -1,6 +1,6 @@
 // Reading OpenVDB files: validation, grid listing, and conversion of the grids a shader uses
 // to NanoVDB. This header does not include OpenVDB (its headers cost ~28 s and ~1 GB per
-// translation unit); only vdb_file.cpp and asset_writer.cpp do.
+// translation unit); only vdb_file.cpp, asset_writer.cpp and grid_expression.cpp do.
 //
 // Both OpenVDB (.vdb) and NanoVDB (.nvdb) files are accepted; the format is recognised by the
 // magic number, not the extension. Grids are addressed by name, or as "#N" for the N-th grid in
@@ -13,6 +13,7 @@
 
 #include "core/math.h"
 #include "volume/grid.h"
+#include "volume/grid_expression.h"
 
 namespace mirage {
 
@@ -59,6 +60,19 @@ VdbFileInfo inspectVdbFile(const std::string& path);
 // Throws MirageError if the file or grid is missing, or the grid is not a scalar fog volume
 // (level set, vector, bool or integer grid, background other than 0, non-affine transform).
 FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName);
+
+// Reads the grids `gridNames` of one OpenVDB file, as loadFloatGrid does, after running the
+// expressions on them in order (OpenVDB AX, grid_expression.h). The grids an expression names
+// are read too, even when they are not in `gridNames` (a mask or a second grid to combine with),
+// and dropped afterwards. The voxel rule applies to the results: a NaN or negative value an
+// expression produced becomes 0 like one read from the file. `expressionSeconds`, when given,
+// receives each expression's compile + run time. Throws MirageError at the expression's
+// location when it names a grid the file lacks (listing the file's grids), when the file is a
+// NanoVDB file (AX runs on OpenVDB grids), or when AX cannot compile or run it.
+std::vector<FloatGrid> loadFloatGrids(const std::string& path,
+                                      const std::vector<std::string>& gridNames,
+                                      const std::vector<GridExpression>& expressions,
+                                      std::vector<double>* expressionSeconds = nullptr);
 
 // Test support: OpenVDB's own trilinear lookup (tools::BoxSampler) of grid `gridName` of an
 // OpenVDB file at each point, in index space (indexSpace = true) or object space, so that tests

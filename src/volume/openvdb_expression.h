@@ -1,0 +1,22 @@
+// Running a grid expression on OpenVDB grids: the seam between the two translation units that
+// compile OpenVDB, vdb_file.cpp (which reads the grids) and grid_expression.cpp (the only one
+// with OpenVDB AX headers). It includes OpenVDB: include it from those two files only.
+#pragma once
+
+#include <openvdb/openvdb.h>
+
+#include <string>
+
+#include "volume/grid_expression.h"
+
+namespace mirage {
+
+// Compiles the expression with OpenVDB AX and runs it over the active voxels and tiles of the
+// grids it writes; `grids` hold at least every grid it names (bindings applied), each carrying
+// its name in the file. Returns the seconds spent compiling and running. Throws MirageError at
+// expression.where, naming `file`, with AX's message (bounded) when the code does not compile
+// or does not run.
+double runGridExpression(const GridExpression& expression, openvdb::GridPtrVec& grids,
+                         const std::string& file);
+
+}  // namespace mirage

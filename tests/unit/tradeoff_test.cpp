@@ -142,6 +142,36 @@ TEST(Tradeoff, BadInputGivesOneClearMessage) {
         << out;
 }
 
+// The photon mapper's knobs: photons × estimate, against the volpath reference. Each estimate
+// has its column, the photon count too, and for beam and point alike more photons means less
+// error (the density estimate's variance falls; at 24×24 and 4 spp the bias is below it).
+TEST(Tradeoff, PhotonCountAndEstimateSweepWithThePhotonIntegrator) {
+    const std::string dir = test::tempDir();
+    const std::string scene = writeScene(dir), prefix = dir + "/p_";
+    std::string out;
+    ASSERT_EQ(test::runMirage("tradeoff '" + scene + "' --set render.integrator=photon "
+                                  "--vary photons=300,30000 --vary estimate=beam,point -o '" +
+                                  prefix + "'",
+                              &out),
+              0)
+        << out;
+    auto rows = readCsv(prefix + "tradeoff.csv");
+    ASSERT_EQ(rows.size(), 5u) << out;
+    ASSERT_EQ(rows[0].size(), 7u);
+    EXPECT_EQ(rows[0][5], "photons");
+    EXPECT_EQ(rows[0][6], "estimate");
+    std::map<std::string, double> rmse;
+    for (size_t r = 1; r < rows.size(); ++r) {
+        ASSERT_EQ(rows[r].size(), 7u);
+        rmse[rows[r][6] + "/" + rows[r][5]] = std::stod(rows[r][2]);
+    }
+    for (const char* estimate : {"beam", "point"}) {
+        const std::string e(estimate);
+        ASSERT_TRUE(rmse.count(e + "/300") && rmse.count(e + "/30000")) << out;
+        EXPECT_LT(rmse[e + "/30000"], rmse[e + "/300"]) << e;
+    }
+}
+
 // `render --quality`: the presets raise the samples from draft to final; an explicit --spp or
 // --set film.spp wins over the preset.
 TEST(Tradeoff, QualityPresetsSetSamplesUnlessOverridden) {
@@ -165,6 +195,22 @@ TEST(Tradeoff, QualityPresetsSetSamplesUnlessOverridden) {
     EXPECT_LT(preview, finalSpp);
     EXPECT_EQ(sppOf("--quality final --spp 3"), 3);
     EXPECT_EQ(sppOf("--quality final --set film.spp=5"), 5);
+    // With the photon integrator the presets set the photon count too (the EXR records the
+    // photons traced), unless render.photons is given.
+    auto photonsOf = [&](const std::string& args) {
+        std::string log;
+        const std::string exr = dir + "/ph.exr";
+        EXPECT_EQ(test::runMirage("render '" + scene + "' --integrator photon --resolution 4x4 "
+                                      "--spp 1 -q -o '" + exr + "' " + args,
+                                  &log),
+                  0)
+            << args << ": " << log;
+        std::map<std::string, std::string> meta;
+        readExr(exr, &meta);
+        return std::stoll(meta["mirage:photons_traced"]);
+    };
+    EXPECT_EQ(photonsOf("--quality draft"), 100000);
+    EXPECT_EQ(photonsOf("--quality draft --set render.photons=2000"), 2000);
 
     std::string out;
     // A command-line error exits 2 (README "Input rules"), with the option named.

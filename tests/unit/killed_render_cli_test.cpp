@@ -8,6 +8,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <string>
 
@@ -114,6 +115,28 @@ TEST(KilledRenderCli, SigtermStopsTheRenderWithExit143AndNoFinalFile) {
     EXPECT_EQ(rc, 143) << out;
     EXPECT_FALSE(fs::exists(target)) << "a killed frame must not leave a final EXR";
     EXPECT_TRUE(fs::exists(target + ".partial")) << "the finished tiles are kept for --resume";
+}
+
+// A farm re-render of a frame that is already good, killed half-way, must leave the good frame
+// exactly as it was: the interrupted render writes only <out>.partial.
+TEST(KilledRenderCli, AKilledReRenderLeavesTheGoodFrameUntouched) {
+    const std::string dir = test::tempDir();
+    const std::string scene = writeScene(dir, "single");
+    const std::string target = dir + "/frame.exr";
+    std::string out;
+    ASSERT_EQ(render("'" + scene + "' -q -o '" + target + "'", &out), 0) << out;
+    std::ifstream before(target, std::ios::binary);
+    const std::string good((std::istreambuf_iterator<char>(before)),
+                           std::istreambuf_iterator<char>());
+    ASSERT_FALSE(good.empty());
+    const int rc = render("'" + scene + "' -q --seed 9 -o '" + target + "'", &out,
+                          "MIRAGE_TEST_STOP_AFTER_TILES=1");
+    ASSERT_EQ(rc, 130) << out;
+    std::ifstream after(target, std::ios::binary);
+    const std::string now((std::istreambuf_iterator<char>(after)),
+                          std::istreambuf_iterator<char>());
+    EXPECT_TRUE(now == good) << "the good frame was overwritten by a killed render";
+    EXPECT_TRUE(fs::exists(target + ".partial"));
 }
 
 TEST(KilledRenderCli, SkipExistingSkipsCompleteFramesOnly) {

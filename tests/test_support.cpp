@@ -25,6 +25,16 @@ std::string sharedFile(const std::string& relative) {
     return std::filesystem::exists(p, ec) ? p : std::string();
 }
 
+std::string makeFogSphere(const std::string& dir, int resolution) {
+    std::string log;
+    EXPECT_EQ(runMirage("make-asset fog-sphere -o '" + dir + "/fog.vdb' --resolution " +
+                            std::to_string(resolution),
+                        &log),
+              0)
+        << log;
+    return dir + "/fog.vdb";
+}
+
 std::string shippedScene(const std::string& name) {
     return (std::filesystem::path(MIRAGE_SOURCE_DIR) / "assets" / "scenes" / name)
         .lexically_normal()

@@ -16,6 +16,9 @@ int runMirage(const std::string& args, std::string* output = nullptr);
 // Runs a shell command, returns its exit code; stdout+stderr into *output.
 int runCommand(const std::string& cmd, std::string* output = nullptr);
 
+// Writes the procedural fog sphere (`mirage make-asset fog-sphere --resolution R`) to
+// DIR/fog.vdb and returns that path; a failure is a test failure.
+std::string makeFogSphere(const std::string& dir, int resolution = 16);
 // A scene shipped in assets/scenes/ of the source tree.
 std::string shippedScene(const std::string& name);
 // Copies that scene into `dir` and, where it names a procedural cache, writes the cache beside

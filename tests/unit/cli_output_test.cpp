@@ -15,21 +15,12 @@
 namespace mirage {
 namespace {
 
-std::string fogSphere(const std::string& dir) {
-    std::string log;
-    EXPECT_EQ(test::runMirage("make-asset fog-sphere -o '" + dir + "/fog.vdb' --resolution 16",
-                              &log),
-              0)
-        << log;
-    return dir + "/fog.vdb";
-}
-
 bool has(const std::string& text, const std::string& what) {
     return text.find(what) != std::string::npos;
 }
 
 TEST(CliOutput, InfoOnAVdbListsEveryGridFieldAndThePhysics) {
-    const std::string vdb = fogSphere(test::tempDir());
+    const std::string vdb = test::makeFogSphere(test::tempDir());
     std::string info;
     ASSERT_EQ(test::runMirage("info '" + vdb + "'", &info), 0) << info;
     for (const char* field : {"'density'", "type float", "class fog volume", "compression",
@@ -61,7 +52,7 @@ TEST(CliOutput, InfoOnAVdbListsEveryGridFieldAndThePhysics) {
 
 TEST(CliOutput, RenderLogsProgressAndSummaryAndQuietSilencesThem) {
     const std::string dir = test::tempDir();
-    const std::string vdb = fogSphere(dir);
+    const std::string vdb = test::makeFogSphere(dir);
     std::string log;
     // runMirage reads stderr through a pipe: not a terminal, so the plain line log.
     ASSERT_EQ(test::runMirage("render '" + vdb + "' -o '" + dir +
@@ -92,7 +83,7 @@ TEST(CliOutput, RenderOnATerminalDrawsABarWithTilesAndEta) {
     if (test::runCommand("command -v script") != 0)
         GTEST_SKIP() << "util-linux `script` is absent: no pseudo-terminal to test with";
     const std::string dir = test::tempDir();
-    const std::string vdb = fogSphere(dir);
+    const std::string vdb = test::makeFogSphere(dir);
     std::string out;
     ASSERT_EQ(test::runCommand("script -qec \"'" + std::string(MIRAGE_BINARY) + "' render '" +
                                    vdb + "' -o '" + dir +

@@ -107,10 +107,7 @@ TEST(CurvedPhotons, WeakFieldGivesThePhotonMapImageOfStraightLight) {
     // walk curved paths and carry the direct light too, which the render then takes from the
     // maps alone: the same image within the noise, nothing counted twice or missed.
     const std::string dir = test::tempDir();
-    std::string log;
-    ASSERT_EQ(
-        test::runMirage("make-asset fog-sphere -o '" + dir + "/fog.vdb' --resolution 16", &log), 0)
-        << log;
+    test::makeFogSphere(dir);
     auto scene = [&](const std::string& name, const std::string& extra) {
         std::ofstream f(dir + "/" + name);
         f << "[film]\nresolution = [16, 16]\nspp = 8\nseed = 4\n"

@@ -23,10 +23,7 @@ namespace fs = std::filesystem;
 // The procedural fog sphere, 40×24 pixels in 8-pixel tiles (15 tiles), photon integrator: the
 // photon pass is re-run on resume and must give the same photons.
 std::string writeScene(const std::string& dir, const std::string& integrator = "photon") {
-    std::string out;
-    EXPECT_EQ(
-        test::runMirage("make-asset fog-sphere -o '" + dir + "/fog.vdb' --resolution 16", &out), 0)
-        << out;
+    test::makeFogSphere(dir);
     std::ofstream f(dir + "/scene.toml");
     f << "[film]\nresolution = [40, 24]\ntile_size = 8\nspp = 2\nseed = 7\n"
          "[render]\nintegrator = \""

@@ -14,11 +14,7 @@ namespace mirage {
 namespace {
 
 std::string writeFogScene(const std::string& dir) {
-    std::string out;
-    EXPECT_EQ(test::runMirage("make-asset fog-sphere -o '" + dir + "/fog.vdb' --resolution 16",
-                              &out),
-              0)
-        << out;
+    test::makeFogSphere(dir);
     std::ofstream f(dir + "/scene.toml");
     f << "[film]\nresolution = [16, 16]\nspp = 2\nseed = 1\n"
          "[render]\nintegrator = \"photon\"\nphotons = 20000\nestimate = \"beam\"\n"

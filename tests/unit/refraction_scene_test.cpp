@@ -86,11 +86,7 @@ TEST(RefractionScene, ChordByChordMediaMatchTheStraightRender) {
     // seen chord by chord (each chord's emission and scattering, times the transmittance of the
     // chords before) must add up to the straight render's, within the noise (≈ 0.9 % here).
     const std::string dir = test::tempDir();
-    std::string log;
-    ASSERT_EQ(test::runMirage("make-asset fog-sphere -o '" + dir + "/fog.vdb' --resolution 16",
-                              &log),
-              0)
-        << log;
+    test::makeFogSphere(dir);
     auto scene = [&](const std::string& name, const std::string& extra) {
         std::ofstream f(dir + "/" + name);
         f << "[film]\nresolution = [24, 24]\nspp = 64\nseed = 11\n"

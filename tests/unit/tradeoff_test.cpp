@@ -20,11 +20,7 @@ namespace fs = std::filesystem;
 
 // A small scene: the procedural fog sphere with the smoke shader, lit by a sun, 24×24 pixels.
 std::string writeScene(const std::string& dir) {
-    std::string out;
-    EXPECT_EQ(test::runMirage("make-asset fog-sphere -o '" + dir + "/fog.vdb' --resolution 16",
-                              &out),
-              0)
-        << out;
+    test::makeFogSphere(dir);
     std::ofstream f(dir + "/scene.toml");
     f << "[film]\nresolution = [24, 24]\nspp = 4\nseed = 3\n"
          "[render]\nintegrator = \"volpath\"\n"

@@ -10,6 +10,7 @@
 // light through specular surfaces (caustics) comes from the photon map.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -87,6 +88,12 @@ public:
 
     // Nearest surface along ray (unit direction) in (0, ray.tMax).
     std::optional<SurfaceHit> intersect(const Ray& ray) const;
+    // Distance (m) from o along the unit direction d to the nearest surface, +∞ for none (the
+    // curved paths' step cap near surfaces, transport/surface_step_cap.h).
+    double surfaceDistance(const Vec3d& o, const Vec3d& d) const {
+        const auto hit = intersect(Ray{Vec3(o), Vec3(d)});
+        return hit ? double(hit->t) : std::numeric_limits<double>::infinity();
+    }
     // True when a surface lies on the segment p + t·dir, t ∈ (0, tMax).
     bool occluded(const Vec3& p, const Vec3& dir, float tMax) const;
 

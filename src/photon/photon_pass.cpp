@@ -20,7 +20,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <optional>
 
 #include "core/interrupt.h"
@@ -248,12 +247,11 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
     // on a surface it meets at a shallow angle, or grazes, is its path's.
     PhotonPassSettings curved = settings;
     if (settings.field && geometry && settings.curvedPath.capNearSurfaces) {
-        auto distance = [geometry](const Vec3d& o, const Vec3d& d) {
-            const auto hit = geometry->intersect(Ray{Vec3(o), Vec3(d)});
-            return hit ? double(hit->t) : std::numeric_limits<double>::infinity();
-        };
         curved.curvedPath.stepCap =
-            surfaceStepCap(settings.field, settings.curvedPath.tolerance, distance);
+            surfaceStepCap(settings.field, settings.curvedPath.tolerance,
+                           [geometry](const Vec3d& o, const Vec3d& d) {
+                               return geometry->surfaceDistance(o, d);
+                           });
     }
     const uint64_t n = settings.photons;
     // Nothing to do without photons, light, media or surfaces: a photon that meets nothing

@@ -2,7 +2,6 @@
 #include "render/curved_camera.h"
 
 #include <atomic>
-#include <limits>
 #include <utility>
 
 #include "transport/surface_step_cap.h"
@@ -26,11 +25,10 @@ public:
         mPath = mRefraction->path;
         if (mPath.capNearSurfaces && scene.hasSurfaces()) {
             const GeometryScene* geometry = scene.geometry.get();
-            auto distance = [geometry](const Vec3d& o, const Vec3d& d) {
-                const auto hit = geometry->intersect(Ray{Vec3(o), Vec3(d)});
-                return hit ? double(hit->t) : std::numeric_limits<double>::infinity();
-            };
-            mPath.stepCap = surfaceStepCap(mRefraction->field.get(), mPath.tolerance, distance);
+            mPath.stepCap = surfaceStepCap(mRefraction->field.get(), mPath.tolerance,
+                                           [geometry](const Vec3d& o, const Vec3d& d) {
+                                               return geometry->surfaceDistance(o, d);
+                                           });
         }
     }
     // Camera rays whose curved path reached the ODE step cap (CurvedPathSettings::maxSteps)

@@ -215,6 +215,14 @@ std::vector<std::pair<std::string, std::string>> bindGrids(
 
 }  // namespace
 
+// A shader's own expression, if it has one, runs first on every volume that uses the shader.
+static void addShaderExpression(const ShaderDesc& shader, VolumeRecord* rec) {
+    if (shader.expression.empty()) return;
+    rec->expressions.push_back({{shader.expression, shader.expressionLoc,
+                                 "'expression' of shader '" + shader.name + "'", {}},
+                                "shader '" + shader.name + "'", {}, 0.0});
+}
+
 // Builds a medium from a shader and a file: loads only the grids the shader's slots and the
 // expressions (rec.expressions, run in order on the OpenVDB grids) read.
 static std::unique_ptr<Medium> buildMedium(const ShaderDesc& shader, VolumeRecord& rec,
@@ -427,11 +435,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
         }
         // Grid expressions (OpenVDB AX): the shader's first, over its slots, then the volume's,
         // over the file's grid names (README "Grid expressions").
-        if (!shader.expression.empty())
-            rec.expressions.push_back(
-                {{shader.expression, shader.expressionLoc,
-                  "'expression' of shader '" + shader.name + "'", {}},
-                 "shader '" + shader.name + "'", {}, 0.0});
+        addShaderExpression(shader, &rec);
         if (v.has("expression")) {
             const std::string code = v.getString("expression");
             if (code.find_first_not_of(" \t\r\n") == std::string::npos)
@@ -542,10 +546,7 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
     }
     ShaderDesc shader = loadShader("smoke", "");
     // A smoke.toml in $MIRAGE_SHADER_PATH may carry an expression of its own.
-    if (!shader.expression.empty())
-        rec.expressions.push_back({{shader.expression, shader.expressionLoc,
-                                    "'expression' of shader '" + shader.name + "'", {}},
-                                   "shader '" + shader.name + "'", {}, 0.0});
+    addShaderExpression(shader, &rec);
     scene.render.media.push_back(
         buildMedium(shader, rec, {}, Transform(), scene.majorantResolution,
                     FileLoc{rec.file, 0, 0}, scene, options));

@@ -11,6 +11,9 @@
 
 namespace mirage::test {
 
+std::string mirageBinary() { return MIRAGE_BINARY; }
+std::string sourceDir() { return MIRAGE_SOURCE_DIR; }
+
 std::string sharedData() {
     std::error_code ec;
     return std::filesystem::is_directory(MIRAGE_SHARED_DATA, ec) ? std::string(MIRAGE_SHARED_DATA)

@@ -15,6 +15,11 @@ std::string tempDir();
 int runMirage(const std::string& args, std::string* output = nullptr);
 // Runs a shell command, returns its exit code; stdout+stderr into *output.
 int runCommand(const std::string& cmd, std::string* output = nullptr);
+// The built mirage binary and the source tree. Only test_support.cpp is compiled with these
+// absolute paths, so every other translation unit is the same in any checkout (and a compiler
+// cache serves it to a second working tree).
+std::string mirageBinary();
+std::string sourceDir();
 
 // Writes the procedural fog sphere (`mirage make-asset fog-sphere --resolution R`) to
 // DIR/fog.vdb and returns that path; a failure is a test failure.

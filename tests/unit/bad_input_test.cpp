@@ -409,7 +409,7 @@ TEST_F(BadInput, DirectoriesOutOfRangeIndicesAndShadersNextToARelativeScene) {
                        "sigma_a = 0.5\nsigma_s = 0.5\n");
     scene("grey_scene.toml", sceneFor("good.vdb", "", "grey"));
     std::string log;
-    EXPECT_EQ(test::runCommand("cd '" + dir + "' && '" MIRAGE_BINARY "' info grey_scene.toml",
+    EXPECT_EQ(test::runCommand("cd '" + dir + "' && '" + test::mirageBinary() + "' info grey_scene.toml",
                                &log),
               0)
         << log;

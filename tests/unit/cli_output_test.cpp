@@ -85,7 +85,7 @@ TEST(CliOutput, RenderOnATerminalDrawsABarWithTilesAndEta) {
     const std::string dir = test::tempDir();
     const std::string vdb = test::makeFogSphere(dir);
     std::string out;
-    ASSERT_EQ(test::runCommand("script -qec \"'" + std::string(MIRAGE_BINARY) + "' render '" +
+    ASSERT_EQ(test::runCommand("script -qec \"'" + test::mirageBinary() + "' render '" +
                                    vdb + "' -o '" + dir +
                                    "/t.exr' --resolution 128x64 --spp 4 --threads 2\" /dev/null",
                                &out),

@@ -41,7 +41,7 @@ bool haveTool(const char* path) { return ::access(path, X_OK) == 0; }
 // --- The config --------------------------------------------------------------------------------
 
 TEST(ColorConfigTest, BuiltinConfigIsTheAssetFile) {
-    std::string asset = std::string(MIRAGE_SOURCE_DIR) + "/assets/ocio/config.ocio";
+    std::string asset = test::sourceDir() + "/assets/ocio/config.ocio";
     std::ifstream in(asset);
     if (!in) GTEST_SKIP() << asset << " is absent; skipping";
     std::stringstream text;

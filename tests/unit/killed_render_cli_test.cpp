@@ -36,7 +36,7 @@ std::string writeScene(const std::string& dir, const std::string& integrator = "
 }
 
 int render(const std::string& args, std::string* out, const std::string& env = "") {
-    return test::runCommand(env + " '" MIRAGE_BINARY "' render " + args, out);
+    return test::runCommand(env + " '" + test::mirageBinary() + "' render " + args, out);
 }
 
 }  // namespace
@@ -103,7 +103,7 @@ TEST(KilledRenderCli, SigtermStopsTheRenderWithExit143AndNoFinalFile) {
     // fails the test instead of hanging it; tiles in flight finish before the exit.
     std::string out;
     int rc = test::runCommand(
-        "MIRAGE_PARTIAL_INTERVAL=0 '" MIRAGE_BINARY "' render '" + scene +
+        "MIRAGE_PARTIAL_INTERVAL=0 '" + test::mirageBinary() + "' render '" + scene +
             "' -q --spp 65536 --set film.tile_size=4 --threads 2 -o '" + target +
             "' & pid=$!; i=0; while [ ! -e '" + target +
             ".partial' ] && [ $i -lt 1200 ]; do sleep 0.1; i=$((i+1)); done; "

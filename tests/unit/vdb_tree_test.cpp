@@ -190,7 +190,7 @@ TEST(VdbTree, HugeRootTileCountIsRefusedBeforeOpenVdbLoopsOverIt) {
     expectCorrupt(writeBytes(dir + "/tiles.vdb", s.bytes), "root tiles at byte");
     // The slow input the fuzzer found (43 s in OpenVDB's reader) now stops at once.
     const std::string slow =
-        std::string(MIRAGE_SOURCE_DIR) + "/tests/fuzz/known/slow_root_topology.vdb";
+        test::sourceDir() + "/tests/fuzz/known/slow_root_topology.vdb";
     expectCorrupt(slow, "root tiles at byte");
 }
 

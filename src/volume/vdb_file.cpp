@@ -345,17 +345,22 @@ SanitizeCounts sanitize(nanovdb::FloatGrid& grid) {
 }
 
 void warnSanitizedOnce(const std::string& path, const std::string& label,
-                       const SanitizeCounts& count) {
+                       const SanitizeCounts& count, bool vectors = false) {
     static std::mutex mutex;
     static std::set<std::string> warned;
     std::lock_guard<std::mutex> lock(mutex);
     if (!warned.insert(path + '\n' + label).second) return;
     std::string what;
     if (count.zeroed > 0)
-        what = std::to_string(count.zeroed) + " voxels were negative or NaN and were set to 0";
+        what = std::to_string(count.zeroed) +
+               (vectors ? " vectors had a NaN or infinite component and were set to 0"
+                        : " voxels were negative or NaN and were set to 0");
     if (count.clamped > 0)
         what += (what.empty() ? "" : "; ") + std::to_string(count.clamped) +
-                " voxels were +inf or above " + fmt(kMaxVoxelValue) + " and were clamped to it";
+                (vectors ? " vectors were longer than " + fmt(kMaxVoxelValue) +
+                               " and were shortened to it"
+                         : " voxels were +inf or above " + fmt(kMaxVoxelValue) +
+                               " and were clamped to it");
     std::fprintf(stderr, "warning: %s: grid %s: %s\n", path.c_str(), label.c_str(),
                  what.c_str());
 }
@@ -584,6 +589,55 @@ std::vector<FloatGrid> loadFloatGrids(const std::string& path,
         out.push_back(finishGrid(path, layout, index, std::move(handle), label));
     }
     return out;
+}
+
+VectorGrid loadVectorGrid(const std::string& path, const std::string& gridName) {
+    const FileLayout layout = vdbformat::scanFile(path);
+    const int index = requireGrid(path, layout, gridName);
+    const GridRecord& record = layout.grids[size_t(index)];
+    const std::string label = vdbformat::gridLabel(layout, index);
+    const std::string valueType = vdbformat::valueTypeOf(record);
+    if (layout.format == Format::NanoVdb)
+        fail(path, "grid " + label + ": vector grids are read from OpenVDB (.vdb) files only; " +
+                       "give the OpenVDB cache");
+    if (valueType != "vec3s" && valueType != "vec3d")
+        fail(path, "grid " + label + " holds " + describeValueType(valueType) +
+                       " values, expected a 3-vector grid (vec3s or vec3d) of velocities");
+    openvdb::GridBase::Ptr base = readOpenVdbGrid(path, layout, index, false);
+    if (!base->transform().baseMap()->isLinear())
+        fail(path, "grid " + label + " has a " + base->transform().mapType() +
+                       " transform; only affine index → object maps are supported");
+    const bool staggered = base->getGridClass() == openvdb::GRID_STAGGERED;
+    openvdb::Vec3SGrid::Ptr grid = openvdb::gridPtrCast<openvdb::Vec3SGrid>(base);
+    if (!grid) {
+        auto dgrid = openvdb::gridPtrCast<openvdb::Vec3DGrid>(base);
+        if (!dgrid) fail(path, "grid " + label + " has an unexpected tree type " + record.type);
+        grid = openvdb::Vec3SGrid::create(std::make_shared<openvdb::Vec3STree>(dgrid->tree()));
+        grid->setTransform(dgrid->transform().copy());
+    }
+    // Outside its active voxels a velocity field is still; a non-zero background would move
+    // all of space.
+    if (grid->background() != openvdb::Vec3s(0.f))
+        fail(path, "grid " + label + " has a non-zero background vector, expected (0, 0, 0)");
+    nanovdb::GridHandle<nanovdb::HostBuffer> handle;
+    try {
+        handle = nanovdb::openToNanoVDB(*grid, nanovdb::StatsMode::All,
+                                        nanovdb::ChecksumMode::Partial);
+    } catch (const std::exception& e) {
+        fail(path, "could not convert grid " + label + " to NanoVDB: " + boundedMessage(e.what()));
+    }
+    uint64_t zeroed = 0;
+    const uint64_t changed =
+        sanitizeVectorVoxels(*handle.grid<nanovdb::Vec3f>(), kMaxVoxelValue, &zeroed);
+    if (changed > 0) {
+        SanitizeCounts counts;
+        counts.zeroed = zeroed;
+        counts.clamped = changed - zeroed;
+        warnSanitizedOnce(path, label, counts, /*vectors=*/true);
+    }
+    const std::string& own = record.name;
+    return VectorGrid(std::move(handle), own.empty() ? "#" + std::to_string(index) : own,
+                      staggered, changed);
 }
 
 std::vector<double> openvdbSampleForTest(const std::string& path, const std::string& gridName,

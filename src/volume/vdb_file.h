@@ -14,6 +14,7 @@
 #include "core/math.h"
 #include "volume/grid.h"
 #include "volume/grid_expression.h"
+#include "volume/vector_grid.h"
 
 namespace mirage {
 
@@ -60,6 +61,13 @@ VdbFileInfo inspectVdbFile(const std::string& path);
 // Throws MirageError if the file or grid is missing, or the grid is not a scalar fog volume
 // (level set, vector, bool or integer grid, background other than 0, non-affine transform).
 FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName);
+
+// Reads one 3-vector grid (velocity: vec3s or vec3d, collocated or staggered, vector_grid.h)
+// from an OpenVDB file as a NanoVDB Vec3f grid. The vector voxel rule applies: vectors with a
+// NaN or infinite component become 0, and vectors longer than kMaxVoxelValue are shortened to
+// it, with one warning per grid. Throws MirageError if the file or grid is missing, the grid
+// is not a 3-vector grid, its background is not zero, or it comes from a NanoVDB file.
+VectorGrid loadVectorGrid(const std::string& path, const std::string& gridName);
 
 // Reads the grids `gridNames` of one OpenVDB file, as loadFloatGrid does, after running the
 // expressions on them in order (OpenVDB AX, grid_expression.h). The grids an expression names

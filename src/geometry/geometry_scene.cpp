@@ -246,6 +246,9 @@ std::optional<SurfaceHit> GeometryScene::intersect(const Ray& ray) const {
     if (mShapes.empty()) return std::nullopt;
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
+    // Embree asserts on a ray it cannot trace (non-finite origin or direction): such a ray
+    // meets nothing, and the non-finite path it belongs to is dropped by its caller.
+    if (!(isFinite(ray.o) && isFinite(ray.d) && ray.tMax >= 0.f)) return std::nullopt;
     RTCRayHit rh = embreeRayHit(ray.o, ray.d, 0.f, ray.tMax);
     rtcIntersect1(mEmbree->scene, &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
@@ -282,7 +285,7 @@ std::optional<SurfaceHit> GeometryScene::intersect(const Ray& ray) const {
 }
 
 bool GeometryScene::occluded(const Vec3& p, const Vec3& dir, float tMax) const {
-    if (mShapes.empty() || !(tMax > 0.f)) return false;
+    if (mShapes.empty() || !(tMax > 0.f) || !(isFinite(p) && isFinite(dir))) return false;
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRay r;

@@ -68,6 +68,15 @@ double airIndex(double pressurePa, double temperatureK, double lambdaNm) {
 
 AtmosphereSample usStandardAtmosphere1976(double H) {
     const auto& b = layerBases();
+    // Above the model's top (84.852 km) the air is continued isothermally at the top's
+    // temperature, P = P_top exp(−g0 M (H − H_top) / (R T_top)): the top layer's lapse rate
+    // extended upwards would reach 0 K near H = 178 km and give a NaN index to every ray or
+    // photon that starts far away (a distant light's photons start ~10⁸ m out).
+    if (H > kBase[kLayers]) {
+        const LayerBase& top = b[kLayers];
+        const double P = top.P * std::exp(-kHydro * (H - kBase[kLayers]) / top.T);
+        return {top.T, P, airDensity(P, top.T), 0.0};
+    }
     int i = 0;
     while (i + 1 < kLayers && H >= kBase[i + 1]) ++i;
     const double dH = H - kBase[i];  // negative below sea level: layer 0 extended downwards

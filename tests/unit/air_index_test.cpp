@@ -77,6 +77,34 @@ TEST(AirIndex, StratifiedGradientMatchesFiniteDifferences) {
     }
 }
 
+// Above the model's top (84.852 km geopotential) the air continues isothermally: the index
+// stays finite and ≥ 1, falls with height, and its gradient matches finite differences. The
+// top layer's lapse rate extended upwards reached 0 K near 178 km, and a distant light's
+// photons (starting ~10⁸ m away) got a NaN direction there.
+TEST(AirIndex, AboveTheModelTheAirIsIsothermalAndFinite) {
+    const AtmosphereIndexField f{AtmosphereSettings()};
+    double previous = f.index(Vec3d(0, 80000, 0), 550);
+    for (double y : {90000.0, 2e5, 1e6, 5.7e7, 2e8}) {
+        double n;
+        Vec3d g;
+        f.eval(Vec3d(1e8, y, 0), 550, &n, &g);
+        ASSERT_TRUE(std::isfinite(n) && std::isfinite(g.y)) << "y " << y;
+        EXPECT_GE(n, 1.0);
+        EXPECT_LE(n, previous);
+        EXPECT_LE(g.y, 0.0);
+        previous = n;
+    }
+    const AtmosphereSample top = usStandardAtmosphere1976(84852), above = usStandardAtmosphere1976(1e5);
+    EXPECT_DOUBLE_EQ(above.temperature, top.temperature);
+    EXPECT_LT(above.pressure, top.pressure);
+    const double e = 1.0;
+    auto at = [&](double dy) { return f.index(Vec3d(0, 95000 + dy, 0), 550); };
+    double n;
+    Vec3d g;
+    f.eval(Vec3d(0, 95000, 0), 550, &n, &g);
+    EXPECT_NEAR(g.y, (at(e) - at(-e)) / (2 * e), 1e-3 * std::abs(g.y));
+}
+
 TEST(AirIndex, InferiorMirageTurnsRaysUpBeforeTheGround) {
     // The road heats the air: 30 K warmer up to 0.5 m, blended out over 1 m (gone by 1 m).
     AtmosphereSettings hot;

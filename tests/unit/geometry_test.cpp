@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <fstream>
 
 #include "core/error.h"
@@ -74,6 +76,19 @@ TEST(GeometryScene, SphereFromOutsideAndInside) {
     EXPECT_NEAR(through->t, 1.f, 1e-4f);
     EXPECT_TRUE(g.occluded(Vec3(1, 2, -2), Vec3(0, 0, 1), 10.f));
     EXPECT_FALSE(g.occluded(Vec3(1, 2, -2), Vec3(0, 0, 1), 4.f));
+}
+
+// A ray with a NaN direction (a curved path gone wrong) meets nothing instead of tripping
+// Embree's assertion, which aborts the process.
+TEST(GeometryScene, NonFiniteRaysMeetNothing) {
+    GeometryScene g;
+    g.addSphere(Vec3(0, 0, 0), 1.f, g.addMaterial(Material::diffuse("white", Spectrum(0.5f))));
+    g.commit();
+    const float nan = std::nanf("");
+    EXPECT_FALSE(g.intersect(Ray{Vec3(0, 0, -5), Vec3(nan, nan, nan), kInfinity}));
+    EXPECT_FALSE(g.intersect(Ray{Vec3(nan, 0, -5), Vec3(0, 0, 1), kInfinity}));
+    EXPECT_TRUE(std::isinf(g.surfaceDistance(Vec3d(0, 0, -5), Vec3d(std::nan(""), 0, 0))));
+    EXPECT_TRUE(g.intersect(Ray{Vec3(0, 0, -5), Vec3(0, 0, 1), kInfinity}));
 }
 
 TEST(GeometryScene, QuadNormalAndEdges) {

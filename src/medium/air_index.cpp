@@ -122,7 +122,12 @@ void AtmosphereIndexField::eval(const Vec3d& x, double lambdaNm, double* n,
 
 double AtmosphereIndexField::gradientBound(const Vec3d& lo, const Vec3d& hi) const {
     // |dn/dz| ≤ (n−1)max · (|P'/P|max + |T'|max / Tmin): each factor bounded over [z0, z1].
-    const double z0 = lo.y - mSettings.groundHeight, z1 = hi.y - mSettings.groundHeight;
+    // The geopotential height R z / (R + z) turns back up below z = −R (through the Earth's
+    // centre), where the model means nothing anyway: heights are floored at −R/2, still far
+    // below any ground, so a whole-space query (±1e30 m) bounds the densest air there is.
+    const double zFloor = -0.5 * air::kEarthRadius;
+    const double z0 = std::max(lo.y - mSettings.groundHeight, zFloor);
+    const double z1 = std::max(hi.y - mSettings.groundHeight, zFloor);
     const double H0 = geopotentialHeight(z0), H1 = geopotentialHeight(z1);
     // The 1976 temperature is piecewise linear in H: its minimum is at an end or a layer base.
     double tStdMin = std::min(usStandardAtmosphere1976(H0).temperature,

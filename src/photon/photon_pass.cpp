@@ -25,6 +25,7 @@
 #include "core/interrupt.h"
 #include "photon/medium_emitter.h"
 #include "photon/photon_walk.h"
+#include "transport/path_vertex.h"
 #include "transport/surface_step_cap.h"
 
 namespace mirage {
@@ -72,145 +73,193 @@ struct PhotonPath {
     bool nonFinite = false;  // a photon with non-finite power or position was dropped
 };
 
+// What photons start from: the lights, then the emissive media, chosen ∝ power.
+struct PhotonSources {
+    const std::vector<const Light*>& lights;
+    std::vector<MediumEmitter> emitters;
+    std::vector<size_t> emitterMedium;  // index of each emitter's medium in the pass's media
+    Bounds3 bounds;                     // of the media and surfaces: lights aim photons at it
+    double mediumPower = 0.0;           // W, summed over the emitters' tables
+
+    PhotonSources(const std::vector<const Light*>& l, const std::vector<const Medium*>& media,
+                  const Bounds3& b)
+        : lights(l), bounds(b) {
+        for (size_t i = 0; i < media.size(); ++i)
+            if (media[i]->emissive() && !media[i]->homogeneous()) {
+                emitters.emplace_back(*media[i]);
+                emitterMedium.push_back(i);
+                mediumPower += emitters.back().tablePower();
+            }
+    }
+};
+
 // A photon reaches a map only if everything an estimate reads from it is finite: one NaN or ∞
 // power would poison every estimate whose search finds it. The path ends at such a photon.
 bool finitePhoton(const Photon& ph) {
     return std::isfinite(ph.power) && isFinite(ph.p) && isFinite(ph.wi) && std::isfinite(ph.lambda);
 }
 
-// Photon `index`: emission, then flights until it leaves every medium, is absorbed, or has
-// scattered maxBounces times. Appends its stored photons to *out.
-PhotonPath tracePhoton(uint64_t index, const std::vector<const Light*>& lights,
-                       const std::vector<MediumEmitter>& emitters,
-                       const std::vector<size_t>& emitterMedium, const LightChooser& chooser,
-                       const Bounds3& bounds, float photonPower,
-                       const PhotonPassSettings& settings, const GeometryScene* geometry,
-                       PhotonWalk& walk, PhotonMapLists* out) {
-    PhotonPath path;
-    Sampler sampler(settings.seed, index, 0);
+// Where a photon walk is, between two vertices.
+struct PhotonState {
+    Ray ray;
+    PathThroughput throughput;  // β[0]: the photon's power (W); monochromatic
+    bool direct;                // no interaction yet: light straight from the light
+    bool specularOnly;          // every interaction so far was a mirror or glass
+    int bounces = 0;
+};
+
+// Emission: a source ∝ power and a photon from it. False when it emits nothing.
+bool emitPhoton(const PhotonSources& sources, const LightChooser& chooser, float photonPower,
+                Sampler& sampler, PhotonWalk& walk, PhotonPath* path, PhotonState* state) {
     const size_t source = chooser.choose(sampler.get1D());
     PhotonEmission em;
     // Light from a medium is never direct light of the render pass (no NEE to media): its
     // first scattering and its first diffuse surface are stored, in the global map.
-    const bool fromMedium = source >= lights.size();
+    const bool fromMedium = source >= sources.lights.size();
     if (fromMedium) {
-        const size_t e = source - lights.size();
-        path.fromMedium = true;
-        if (!emitters[e].sample(sampler, walk.tracking().context(emitterMedium[e]), &em))
-            return path;
-    } else if (!lights[source]->emitPhoton(bounds, sampler, &em)) {
-        return path;
+        const size_t e = source - sources.lights.size();
+        path->fromMedium = true;
+        if (!sources.emitters[e].sample(sampler,
+                                        walk.tracking().context(sources.emitterMedium[e]), &em))
+            return false;
+    } else if (!sources.lights[source]->emitPhoton(sources.bounds, sampler, &em)) {
+        return false;
     }
-    float power = photonPower * em.weight;
-    if (!std::isfinite(power)) path.nonFinite = true;
-    if (!(power > 0.f) || path.nonFinite) return path;
-    path.power = power;
+    const float power = photonPower * em.weight;
+    if (!std::isfinite(power)) path->nonFinite = true;
+    if (!(power > 0.f) || path->nonFinite) return false;
+    path->power = power;
     walk.setWavelength(em.lambda);
+    state->ray = Ray{em.origin, em.direction, kInfinity};
+    state->throughput.beta = SampledSpectrum(power);
+    state->direct = state->specularOnly = !fromMedium;
+    return true;
+}
 
-    Ray ray{em.origin, em.direction, kInfinity};
-    bool direct = !fromMedium;        // no interaction yet: light straight from the light
-    bool specularOnly = !fromMedium;  // every interaction so far was a mirror or glass
-    for (int bounces = 0;;) {
+// One free flight from state.ray: straight, or along its Fermat path where light curves. *hit
+// is the surface the flight ended at, if any; state.ray becomes the ray that met it (a curved
+// flight's last chord) or, for a curved flight that ran out of path, the straight ray on.
+FlightEvent flyPhoton(const PhotonPassSettings& settings, const GeometryScene* geometry,
+                      Sampler& sampler, PhotonWalk& walk, PhotonState* state, PhotonPath* path,
+                      std::optional<SurfaceHit>* hit) {
+    Ray& ray = state->ray;
+    if (settings.field) {
+        // The curved flight; the surface hit of the chord it ended on, if any, is kept.
+        ChordSurfaceTest surfaces = [&](const Ray& chord, float tMax) {
+            if (!geometry) return kInfinity;
+            *hit = geometry->intersect(Ray{chord.o, chord.d, tMax});
+            return *hit ? (*hit)->t : kInfinity;
+        };
+        CurvedWalkEnd end;
+        FlightEvent ev = walk.flyCurved(*settings.field, settings.curvedPath, surfaces, ray.o,
+                                        ray.d, settings.curvedMaxArc, sampler, &end);
+        if (end.kind == CurvedWalkEnd::Kind::Surface) {
+            ray = Ray{end.chord.o, end.chord.d, kInfinity};
+            return ev;
+        }
+        if (ev.end != FlightEnd::Escaped) {
+            hit->reset();
+            return ev;
+        }
+        // Beyond curvedMaxArc of path, or at the stepper's hard cap on ODE steps
+        // (CurvedPathSettings::maxSteps, counted as a capped path: the rest of the flight is
+        // straight, a bias): straight on from where the path got to.
+        if (end.kind == CurvedWalkEnd::Kind::Capped) path->capped = true;
+        ray = Ray{end.p, end.direction, kInfinity};
+    }
+    hit->reset();
+    if (geometry) *hit = geometry->intersect(ray);
+    return walk.fly(ray, *hit ? (*hit)->t : kInfinity, sampler);
+}
+
+// Appends a photon to `list` when it is finite; false (and the path ends) when it is not.
+bool storePhoton(const Photon& ph, PhotonList* list, PhotonPath* path) {
+    if (!finitePhoton(ph)) {
+        path->nonFinite = true;
+        return false;
+    }
+    list->push_back(ph);
+    return true;
+}
+
+// A photon at a surface: stored where it is diffuse (not straight from a light, whose direct
+// light the render pass computes, unless paths curve), then reflected or refracted
+// (continueAtSurface) with the roulette that keeps its power. False when the walk ends.
+bool photonAtSurface(const SurfaceHit& hit, const PhotonPassSettings& settings,
+                     const GeometryScene& geometry, Sampler& sampler, PhotonWalk& walk,
+                     PhotonState* state, PhotonPath* path, PhotonMapLists* out) {
+    const Material& mat = geometry.materialAt(hit);
+    const float power = state->throughput.beta[0];
+    if (!mat.specular()) {
+        // Where paths curve there are no shadow rays: the first diffuse hit is stored too.
+        if (!state->direct || (settings.field && settings.storeFirstInteraction)) {
+            PhotonList* list = !state->direct && state->specularOnly ? &out->surfaceCaustic
+                                                                     : &out->surfaceGlobal;
+            if (!storePhoton(Photon{hit.p, state->ray.d, walk.wavelength(), power}, list, path))
+                return false;
+        }
+        state->specularOnly = false;
+    }
+    Ray next;
+    if (!continueAtSurface(mat, hit, state->ray.d, walk.tracking().wavelengths(),
+                           TransportMode::Importance, sampler, &state->throughput, &next))
+        return false;
+    path->nonFinite = !std::isfinite(state->throughput.beta[0]);
+    if (path->nonFinite || !state->throughput.keepPower(power, sampler)) return false;
+    state->direct = false;
+    state->ray = next;
+    return true;
+}
+
+// A photon scattered (or re-emitted) in a medium: stored unless it is the first interaction
+// of light straight from a light, which the render pass computes itself. A fluorescent
+// re-emission is stored always (no render pass computes light that changes wavelength by
+// shadow rays), at the new wavelength with the power after re-emission, Φ λi/λo
+// (photon_walk.h), flagged by its absorbed λi so that the estimates give it the isotropic lobe
+// of re-emission. False when the walk ends.
+bool photonInMedium(const FlightEvent& ev, const PhotonPassSettings& settings, PhotonWalk& walk,
+                    PhotonState* state, PhotonPath* path, PhotonMapLists* out) {
+    const float power = state->throughput.beta[0];
+    const bool reemitted = ev.end == FlightEnd::Reemitted;
+    if (reemitted || !state->direct || settings.storeFirstInteraction) {
+        const Photon ph = reemitted
+                              ? Photon{ev.p, ev.wi, ev.lambdaOut, power * ev.weight, ev.lambdaIn}
+                              : Photon{ev.p, ev.wi, walk.wavelength(), power};
+        if (!storePhoton(ph, &out->volume, path)) return false;
+    }
+    state->direct = false;
+    state->specularOnly = false;
+    state->throughput.beta *= ev.weight;
+    path->nonFinite = !std::isfinite(state->throughput.beta[0]);
+    if (!(state->throughput.beta[0] > 0.f) || path->nonFinite) return false;
+    state->ray = Ray{ev.p, ev.wo, kInfinity};
+    return true;
+}
+
+// Photon `index`: emission, then flights until it leaves every medium and surface, is
+// absorbed, or has interacted maxBounces times. Appends its stored photons to *out.
+PhotonPath tracePhoton(uint64_t index, const PhotonSources& sources, const LightChooser& chooser,
+                       float photonPower, const PhotonPassSettings& settings,
+                       const GeometryScene* geometry, PhotonWalk& walk, PhotonMapLists* out) {
+    PhotonPath path;
+    Sampler sampler(settings.seed, index, 0);
+    PhotonState state;
+    if (!emitPhoton(sources, chooser, photonPower, sampler, walk, &path, &state)) return path;
+    for (;;) {
         std::optional<SurfaceHit> hit;
-        FlightEvent ev;
-        bool straight = true;
-        if (settings.field) {
-            // The curved flight; the surface hit of the chord it ended on, if any, is kept.
-            ChordSurfaceTest surfaces = [&](const Ray& chord, float tMax) {
-                if (!geometry) return kInfinity;
-                hit = geometry->intersect(Ray{chord.o, chord.d, tMax});
-                return hit ? hit->t : kInfinity;
-            };
-            CurvedWalkEnd end;
-            ev = walk.flyCurved(*settings.field, settings.curvedPath, surfaces, ray.o, ray.d,
-                                settings.curvedMaxArc, sampler, &end);
-            if (end.kind == CurvedWalkEnd::Kind::Surface) {
-                ray = Ray{end.chord.o, end.chord.d, kInfinity};
-                straight = false;
-            } else if (ev.end != FlightEnd::Escaped) {
-                hit.reset();
-                straight = false;
-            } else {
-                // Beyond curvedMaxArc of path, or at the stepper's hard cap on ODE steps
-                // (CurvedPathSettings::maxSteps, counted as a capped path: the rest of the
-                // flight is straight, a bias): straight on from where the path got to.
-                if (end.kind == CurvedWalkEnd::Kind::Capped) path.capped = true;
-                ray = Ray{end.p, end.direction, kInfinity};
-            }
-        }
-        if (straight) {
-            hit.reset();
-            if (geometry) hit = geometry->intersect(ray);
-            ev = walk.fly(ray, hit ? hit->t : kInfinity, sampler);
-        }
-        if (ev.end == FlightEnd::Escaped && hit) {
-            // A surface: reflect, refract or store and bounce.
-            const Material& mat = geometry->materialAt(*hit);
-            Frame frame(hit->ns);
-            Vec3 woL = frame.toLocal(-ray.d);
-            Vec3 wiL;
-            if (mat.specular()) {
-                BsdfSample bs;
-                float uc = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
-                if (!mat.sample(woL, uc, u1, u2, walk.tracking().wavelengths(),
-                                TransportMode::Importance, &bs))
-                    return path;
-                power *= bs.weight[0];
-                wiL = bs.wi;
-            } else {
-                // Where paths curve there are no shadow rays: the first diffuse hit is stored too.
-                if (!direct || (settings.field && settings.storeFirstInteraction)) {
-                    Photon ph{hit->p, ray.d, walk.wavelength(), power};
-                    if (!finitePhoton(ph)) {
-                        path.nonFinite = true;
-                        return path;
-                    }
-                    (!direct && specularOnly ? out->surfaceCaustic : out->surfaceGlobal)
-                        .push_back(ph);
-                }
-                // Albedo roulette: bounce with probability ρ(λ), power unchanged (f cos/pdf = ρ).
-                if (sampler.get1D() >= mat.albedo(walk.wavelength())) return path;
-                wiL = sampleCosineHemisphere(sampler.get1D(), sampler.get1D());
-                if (woL.z < 0.f) wiL.z = -wiL.z;
-                specularOnly = false;
-            }
-            direct = false;
-            path.nonFinite = !std::isfinite(power);
-            if (!(power > 0.f) || path.nonFinite) return path;
-            if (++bounces >= settings.maxBounces) {
-                path.capped = true;
-                return path;
-            }
-            ray = spawnRay(*hit, frame.toWorld(wiL));
-            continue;
-        }
-        if (ev.end != FlightEnd::Scattered && ev.end != FlightEnd::Reemitted) return path;
-        // The first interaction is direct light; the render pass may compute it itself.
-        // A fluorescent re-emission is stored always, first interaction or not (no render
-        // pass computes light that changes wavelength by shadow rays), at the new wavelength
-        // with the power after re-emission, Φ λi/λo (photon_walk.h), flagged by its absorbed
-        // λi so that the estimates give it the isotropic lobe of re-emission.
-        const bool reemitted = ev.end == FlightEnd::Reemitted;
-        if (reemitted || !direct || settings.storeFirstInteraction) {
-            Photon ph = reemitted ? Photon{ev.p, ev.wi, ev.lambdaOut, power * ev.weight, ev.lambdaIn}
-                                  : Photon{ev.p, ev.wi, walk.wavelength(), power};
-            if (!finitePhoton(ph)) {
-                path.nonFinite = true;
-                return path;
-            }
-            out->volume.push_back(ph);
-        }
-        direct = false;
-        specularOnly = false;
-        ++bounces;
-        power *= ev.weight;
-        path.nonFinite = !std::isfinite(power);
-        if (!(power > 0.f) || path.nonFinite) return path;
-        if (bounces >= settings.maxBounces) {
+        const FlightEvent ev = flyPhoton(settings, geometry, sampler, walk, &state, &path, &hit);
+        bool goesOn;
+        if (ev.end == FlightEnd::Escaped && hit)
+            goesOn = photonAtSurface(*hit, settings, *geometry, sampler, walk, &state, &path, out);
+        else if (ev.end == FlightEnd::Scattered || ev.end == FlightEnd::Reemitted)
+            goesOn = photonInMedium(ev, settings, walk, &state, &path, out);
+        else
+            goesOn = false;
+        if (!goesOn) return path;
+        if (++state.bounces >= settings.maxBounces) {
             path.capped = true;
             return path;
         }
-        ray = Ray{ev.p, ev.wo, kInfinity};
     }
 }
 
@@ -234,15 +283,9 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
     Bounds3 bounds;
     for (const Medium* m : media) bounds.expand(m->worldBounds());
     if (geometry) bounds.expand(geometry->bounds());
-    std::vector<MediumEmitter> emitters;
-    std::vector<size_t> emitterMedium;  // index of each emitter's medium in `media`
-    for (size_t i = 0; i < media.size(); ++i)
-        if (media[i]->emissive() && !media[i]->homogeneous()) {
-            emitters.emplace_back(*media[i]);
-            emitterMedium.push_back(i);
-            local.mediumPower += emitters.back().tablePower();
-        }
-    LightChooser chooser(lights, bounds, emitters);
+    const PhotonSources sources(lights, media, bounds);
+    local.mediumPower = sources.mediumPower;
+    LightChooser chooser(lights, bounds, sources.emitters);
     // Curved flights: the step cap near surfaces (surface_step_cap.h), so that a photon's hit
     // on a surface it meets at a shallow angle, or grazes, is its path's.
     PhotonPassSettings curved = settings;
@@ -275,9 +318,8 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
                     uint64_t first = b * kBlockPhotons, last = std::min(n, first + kBlockPhotons);
                     for (uint64_t i = first; i < last; ++i) {
                         uint64_t flightsCut = walk.tracking().cappedFlights;
-                        PhotonPath path =
-                            tracePhoton(i, lights, emitters, emitterMedium, chooser, bounds,
-                                        photonPower, curved, geometry, walk, &blockPhotons[b]);
+                        PhotonPath path = tracePhoton(i, sources, chooser, photonPower, curved,
+                                                      geometry, walk, &blockPhotons[b]);
                         // A flight cut at the collision cap (tracking.h) caps the path too.
                         blockCapped[b] +=
                             path.capped || walk.tracking().cappedFlights != flightsCut;

@@ -15,11 +15,10 @@
 //
 // Surfaces: each free flight ends at the nearest surface (tracking over (0, t_hit)). There the
 // path scores the surface's emission (Lambertian emitters are found by rays only, never by
-// NEE), then, on a diffuse surface, NEE to the lights, and continues along a BSDF sample:
+// NEE), then, on a diffuse surface, NEE to the lights, and continues along a BSDF sample
+// (transport/path_vertex.h: continueAtSurface):
 //   surface       β ← β f |cos θi| / pdf  (ρ for Lambertian; 1 or 1/η² for glass, mirror ρ)
-// A dispersive dielectric leaves only the hero wavelength alive (material.h): its other three
-// throughputs become 0 and, at the end, L[0] is weighted by 4 — the estimate of a path that
-// drew one wavelength from p(λ) instead of four stratified ones.
+// A dispersive dielectric leaves only the hero wavelength alive (PathThroughput::heroOnly).
 //
 // Fluorescence: a path carries the wavelength light *leaves* with, so at an absorption event of
 // a fluorescent medium it asks where that light could have come from: sampleInelasticAdjoint
@@ -32,11 +31,11 @@
 // with next-event estimation through the isotropic lobe (render/inelastic_light.h). Needs
 // σa(λo) > 0 wherever σa(λi) Γ η(λi → λo) > 0, else that light is never sampled: true of water.
 #include <atomic>
-#include <optional>
 
 #include "render/direct_light.h"
 #include "render/inelastic_light.h"
 #include "render/integrator.h"
+#include "transport/path_vertex.h"
 #include "transport/reemission.h"
 
 namespace mirage {
@@ -51,125 +50,102 @@ public:
     RadianceSample Li(const RenderScene& scene, const Ray& cameraRay, const SampledWavelengths& w,
                       Sampler& sampler, ThreadState& ts) const override {
         RadianceSample out;
-        SampledSpectrum beta(1.f);
+        PathThroughput path;
         Ray ray = cameraRay;
         const GeometryScene* geometry = scene.hasSurfaces() ? scene.geometry.get() : nullptr;
-        bool heroOnly = false;
-        float lambdaIn = 0.f;  // > 0: the path fluoresced at this collision and goes on at λi
         bool fluoresced = false;
         for (int depth = 0;; ++depth) {
-            bool scattered = false;
             Ray next;
             std::optional<SurfaceHit> hit;
             if (geometry) hit = geometry->intersect(ray);
             const float tEnd = hit ? hit->t : ray.tMax;
-            bool escaped = trackCollisions(ts.tracking, ray, tEnd, sampler, [&](const Collision& c) {
-                const Medium& m = ts.tracking.medium(c.medium);
-                if (m.emissive()) out.L += beta * c.mp.sigmaA * c.mp.Le / c.sigmaMaj;
-
-                EventProbabilities e = eventProbabilities(c, beta);
-                float u = sampler.get1D();
-                if (u < e.pAbsorb) {
-                    InelasticAdjoint in;
-                    if (sampleInelasticAdjoint(m, ts.tracking.context(size_t(c.medium)), c.p,
-                                               ts.tracking.wavelengths().lambda[0], sampler,
-                                               &in)) {
-                        float hero = beta[0] * in.weight / (c.sigmaMaj * e.pAbsorb);
-                        beta = SampledSpectrum(0.f);
-                        beta[0] = hero;
-                        heroOnly = true;
-                        if (!(hero > 0.f)) return Track::Stop;
-                        lambdaIn = in.lambdaInNm;
-                        next = Ray{c.p, in.wi, kInfinity};
+            float lambdaIn = 0.f;  // > 0: the path fluoresced at this collision, goes on at λi
+            bool scattered = false;
+            const bool escaped =
+                trackCollisions(ts.tracking, ray, tEnd, sampler, [&](const Collision& c) {
+                    const Medium& m = ts.tracking.medium(c.medium);
+                    const CollisionOutcome o = collisionEvent(c, m, path, sampler, &out.L);
+                    if (o.event == MediumEvent::Null) return Track::Continue;
+                    if (o.event == MediumEvent::Scattered) {
+                        out.L += path.beta * directLightMedium(scene, c, -ray.d, sampler, ts);
+                        next = Ray{c.p, samplePhase(m, c, ray.d, sampler, &path), kInfinity};
                         scattered = true;
                         return Track::Stop;
                     }
-                    beta = SampledSpectrum(0.f);
+                    scattered = fluoresce(m, c, o.pAbsorb, ts, sampler, &path, &next, &lambdaIn);
                     return Track::Stop;
-                }
-                if (u < e.pAbsorb + e.pScatter) {
-                    beta *= c.mp.sigmaS / (c.sigmaMaj * e.pScatter);
-                    out.L += beta * directLightMedium(scene, c, -ray.d, sampler, ts);
-                    SampledSpectrum weight;
-                    float pdf;
-                    float uc = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
-                    Vec3 wo = m.phaseSample(c.mp, ray.d, uc, u1, u2, &weight, &pdf);
-                    beta *= weight;
-                    next = Ray{c.p, wo, kInfinity};
-                    scattered = true;
-                    return Track::Stop;
-                }
-                beta *= e.sigmaN / (c.sigmaMaj * e.pNull);
-                return Track::Continue;
-            });
+                });
             if (depth == 0)
-                out.alpha = escaped && !hit ? clamp(1.f - beta.average(), 0.f, 1.f) : 1.f;
+                out.alpha = escaped && !hit ? clamp(1.f - path.beta.average(), 0.f, 1.f) : 1.f;
             if (lambdaIn > 0.f) {
                 SampledWavelengths li = ts.tracking.wavelengths();
                 li.lambda.fill(lambdaIn);
                 ts.tracking.setWavelengths(li);
-                out.L += beta * directLightIsotropic(scene, next.o, sampler, ts);
-                lambdaIn = 0.f;
+                out.L += path.beta * directLightIsotropic(scene, next.o, sampler, ts);
                 fluoresced = true;
             }
             if (!scattered && escaped && hit)
                 scattered = scatterAtSurface(scene, *hit, ray, ts.tracking.wavelengths(), sampler,
-                                             ts, &beta, &out.L, &heroOnly, &next);
+                                             ts, &path, &out.L, &next);
             if (!scattered) break;
             if (depth + 1 >= mMaxDepth) {
                 mCapped.fetch_add(1, std::memory_order_relaxed);
                 break;
             }
-            // Russian roulette once the throughput is small (spectral media, long walks).
-            float maxBeta = beta.maxValue();
-            if (!(maxBeta > 0.f)) break;
-            if (maxBeta < 0.25f) {
-                float survive = maxBeta / 0.25f;
-                if (sampler.get1D() >= survive) break;
-                beta /= survive;
-            }
+            if (!path.roulette(sampler)) break;
             ray = next;
         }
         if (fluoresced) ts.tracking.setWavelengths(w);  // the caller's, for its next path
-        if (heroOnly) {
-            out.L[0] *= float(kSpectrumSamples);
-            for (int i = 1; i < kSpectrumSamples; ++i) out.L[i] = 0.f;
-        }
+        out.L = path.estimate(out.L);
         return out;
     }
 
     uint64_t cappedPaths() const override { return mCapped.load(); }
 
+private:
+    // The next direction from the medium's phase function; β times its weight p/pdf.
+    static Vec3 samplePhase(const Medium& m, const Collision& c, const Vec3& dir, Sampler& sampler,
+                            PathThroughput* path) {
+        SampledSpectrum weight;
+        float pdf;
+        const float uc = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
+        const Vec3 wo = m.phaseSample(c.mp, dir, uc, u1, u2, &weight, &pdf);
+        path->beta *= weight;
+        return wo;
+    }
+
+    // Absorption in a fluorescent medium: where could the light leaving at λo have been
+    // absorbed (the adjoint re-emission at the top of the file)? True when the path goes on
+    // at *lambdaIn along *next, hero-only; false when it ends (absorbed for good).
+    static bool fluoresce(const Medium& m, const Collision& c, float pAbsorb, ThreadState& ts,
+                          Sampler& sampler, PathThroughput* path, Ray* next, float* lambdaIn) {
+        InelasticAdjoint in;
+        if (!sampleInelasticAdjoint(m, ts.tracking.context(size_t(c.medium)), c.p,
+                                    ts.tracking.wavelengths().lambda[0], sampler, &in)) {
+            path->beta = SampledSpectrum(0.f);
+            return false;
+        }
+        const float hero = path->beta[0] * in.weight / (c.sigmaMaj * pAbsorb);
+        path->keepHeroOnly();
+        path->beta[0] = hero;
+        if (!(hero > 0.f)) return false;
+        *lambdaIn = in.lambdaInNm;
+        *next = Ray{c.p, in.wi, kInfinity};
+        return true;
+    }
+
     // The surface vertex: emission, NEE on diffuse surfaces, then the BSDF sample that
     // continues the path. Returns false when the path ends here.
     static bool scatterAtSurface(const RenderScene& scene, const SurfaceHit& hit, const Ray& ray,
                                  const SampledWavelengths& w, Sampler& sampler, ThreadState& ts,
-                                 SampledSpectrum* beta, SampledSpectrum* L, bool* heroOnly,
-                                 Ray* next) {
+                                 PathThroughput* path, SampledSpectrum* L, Ray* next) {
         const Material& mat = scene.geometry->materialAt(hit);
-        const Vec3 wo = -ray.d;
-        if (mat.emissive()) *L += *beta * mat.emission(w);
-        if (!mat.specular()) *L += *beta * directLightSurface(scene, hit, mat, wo, sampler, ts);
-        Frame frame(hit.ns);
-        float uc = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
-        BsdfSample bs;
-        if (!mat.sample(frame.toLocal(wo), uc, u1, u2, w, TransportMode::Radiance, &bs))
-            return false;
-        Vec3 wi = frame.toWorld(bs.wi);
-        // A shading normal can send a reflected sample below the geometric surface (or a
-        // refracted one above it): such a sample would leak light through the surface.
-        bool crosses = (dot(wi, hit.ng) > 0.f) != (dot(wo, hit.ng) > 0.f);
-        if (crosses != bs.transmitted) return false;
-        *beta *= bs.weight;
-        if (bs.dispersed && !*heroOnly) {
-            *heroOnly = true;
-            for (int i = 1; i < kSpectrumSamples; ++i) (*beta)[i] = 0.f;
-        }
-        *next = spawnRay(hit, wi);
-        return true;
+        if (mat.emissive()) *L += path->beta * mat.emission(w);
+        if (!mat.specular())
+            *L += path->beta * directLightSurface(scene, hit, mat, -ray.d, sampler, ts);
+        return continueAtSurface(mat, hit, ray.d, w, TransportMode::Radiance, sampler, path, next);
     }
 
-private:
     int mMaxDepth;
     mutable std::atomic<uint64_t> mCapped{0};
 };

@@ -1,0 +1,37 @@
+#include "transport/path_vertex.h"
+
+namespace mirage {
+
+CollisionOutcome collisionEvent(const Collision& c, const Medium& medium, PathThroughput& path,
+                                Sampler& sampler, SampledSpectrum* L) {
+    if (medium.emissive()) *L += path.beta * c.mp.sigmaA * c.mp.Le / c.sigmaMaj;
+    const EventProbabilities e = eventProbabilities(c, path.beta);
+    const float u = sampler.get1D();
+    if (u < e.pAbsorb) return {MediumEvent::Absorbed, e.pAbsorb};
+    if (u < e.pAbsorb + e.pScatter) {
+        path.beta *= c.mp.sigmaS / (c.sigmaMaj * e.pScatter);
+        return {MediumEvent::Scattered, e.pAbsorb};
+    }
+    path.beta *= e.sigmaN / (c.sigmaMaj * e.pNull);
+    return {MediumEvent::Null, e.pAbsorb};
+}
+
+bool continueAtSurface(const Material& material, const SurfaceHit& hit, const Vec3& dir,
+                       const SampledWavelengths& w, TransportMode mode, Sampler& sampler,
+                       PathThroughput* path, Ray* next, BsdfSample* sample) {
+    const Vec3 wo = -dir;
+    const Frame frame(hit.ns);
+    const float uc = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
+    BsdfSample bs;
+    if (!material.sample(frame.toLocal(wo), uc, u1, u2, w, mode, &bs)) return false;
+    const Vec3 wi = frame.toWorld(bs.wi);
+    const bool crosses = (dot(wi, hit.ng) > 0.f) != (dot(wo, hit.ng) > 0.f);
+    if (crosses != bs.transmitted) return false;
+    path->beta *= bs.weight;
+    if (bs.dispersed && !path->heroOnly) path->keepHeroOnly();
+    *next = spawnRay(hit, wi);
+    if (sample) *sample = bs;
+    return true;
+}
+
+}  // namespace mirage

@@ -1,0 +1,95 @@
+// The path-vertex core every estimator shares: the state a path carries from vertex to vertex
+// (PathThroughput), the event at a tentative collision in a medium (collisionEvent), and the
+// continuation at a surface (continueAtSurface). Camera paths (render/) and photon paths
+// (photon/) both walk with these, so a rule about surfaces or throughput is written once.
+#pragma once
+
+#include "core/rng.h"
+#include "core/spectral.h"
+#include "geometry/geometry_scene.h"
+#include "geometry/material.h"
+#include "transport/tracking.h"
+
+namespace mirage {
+
+// Mirror and glass vertices a camera path follows before it gives up (a glass sphere needs 2).
+constexpr int kMaxSpecularBounces = 16;
+
+// Russian roulette starts once the largest throughput falls below this (survival ∝ β).
+constexpr float kRouletteThreshold = 0.25f;
+
+// Throughput β per wavelength and whether the path still carries all four wavelengths.
+// A path keeps only its hero wavelength λ[0] once a direction or a wavelength was chosen for
+// it alone (a dispersive refraction, a fluorescent re-emission); its estimate is then L[0]
+// weighted by the number of wavelengths — the estimate of a path that drew one wavelength
+// from p(λ) instead of four stratified ones (pbrt-v4's TerminateSecondary).
+struct PathThroughput {
+    SampledSpectrum beta{1.f};
+    bool heroOnly = false;
+
+    void keepHeroOnly() {
+        heroOnly = true;
+        for (int i = 1; i < kSpectrumSamples; ++i) beta[i] = 0.f;
+    }
+    bool alive() const { return beta.maxValue() > 0.f; }
+
+    // Russian roulette once max β < kRouletteThreshold: survives with probability
+    // max β / threshold and divides β by it, so E[β] is unchanged. False: the path ends.
+    bool roulette(Sampler& sampler) {
+        const float maxBeta = beta.maxValue();
+        if (!(maxBeta > 0.f)) return false;
+        if (maxBeta >= kRouletteThreshold) return true;
+        const float survive = maxBeta / kRouletteThreshold;
+        if (sampler.get1D() >= survive) return false;
+        beta /= survive;
+        return true;
+    }
+
+    // The roulette of a photon (monochromatic: β[0] is its power relative to where it
+    // started): survives with probability β[0] / before when a vertex lowered β[0] from
+    // `before`, and then carries `before` again (Jensen 2001, §5.2: photons of equal power
+    // are the best case for a density estimate). A vertex that did not lower it draws nothing.
+    bool keepPower(float before, Sampler& sampler) {
+        const float q = beta[0] / before;
+        if (!(q > 0.f)) return false;
+        if (q >= 1.f) return true;
+        if (sampler.get1D() >= q) return false;
+        beta = SampledSpectrum(before);
+        return true;
+    }
+
+    // The path's estimate from the radiance L it gathered.
+    SampledSpectrum estimate(SampledSpectrum L) const {
+        if (!heroOnly) return L;
+        L[0] *= float(kSpectrumSamples);
+        for (int i = 1; i < kSpectrumSamples; ++i) L[i] = 0.f;
+        return L;
+    }
+};
+
+// What a camera path does at a tentative collision (null-collision formulation,
+// transport/tracking.h): the emission term β σa Le / σ̄ is scored into *L at every tentative
+// collision, then one event is chosen with the spectral-tracking probabilities and β weighted:
+//   null        β ← β σn / (σ̄ P_n)
+//   scattering  β ← β σs / (σ̄ P_s)
+//   absorption  β unchanged: the caller ends the path or re-emits (fluorescence), with
+//               pAbsorb the probability the event had.
+enum class MediumEvent { Null, Absorbed, Scattered };
+struct CollisionOutcome {
+    MediumEvent event;
+    float pAbsorb;
+};
+CollisionOutcome collisionEvent(const Collision& c, const Medium& medium, PathThroughput& path,
+                                Sampler& sampler, SampledSpectrum* L);
+
+// The continuation of a path at a surface it reached travelling along `dir`: a BSDF sample
+// (three numbers), β weighted by f |cos θi| / pdf, the hero wavelength alone after a
+// dispersive sample. A sample that the shading normal sends to the other side of the
+// geometric surface than its lobe says (a reflection below it, a refraction above it) would
+// leak light through the surface and ends the path. Returns false when the path ends here;
+// else *next continues it and *sample (when given) says what was sampled.
+bool continueAtSurface(const Material& material, const SurfaceHit& hit, const Vec3& dir,
+                       const SampledWavelengths& w, TransportMode mode, Sampler& sampler,
+                       PathThroughput* path, Ray* next, BsdfSample* sample = nullptr);
+
+}  // namespace mirage

@@ -137,7 +137,7 @@ void BeamEstimator::query(const Ray& ray, float tMin, float tMax,
 }
 
 Vec3 BeamEstimator::estimate(const Ray& ray, float tMax, const RayOpticalDepth& depth,
-                             std::vector<BeamHit>* hits) const {
+                             std::vector<BeamHit>* hits, const ViewWeight& view) const {
     if (depth.empty()) return Vec3(0.f);
     // Not clipped to the span of `depth`: a photon near an edge of a medium's box may project
     // just outside the ray's span in the box, and its disc still belongs to the estimate (T is
@@ -148,7 +148,7 @@ Vec3 BeamEstimator::estimate(const Ray& ray, float tMax, const RayOpticalDepth& 
     for (const BeamHit& h : *hits) {
         const Photon& ph = mPhotons->map()[h.slot];
         float w = kernelValue(h.d2, mRadii[h.slot]) * depth.transmittance(h.t, ph.lambda) *
-                  mPhotons->phase(h.slot, wo);
+                  mPhotons->phase(h.slot, wo) * view(ph.lambda);
         sum += mPhotons->fluxXyz(h.slot) * w;
     }
     return sum;

@@ -30,6 +30,7 @@
 #include <memory>
 #include <vector>
 
+#include "photon/view_weight.h"
 #include "photon/volume_estimate.h"
 
 namespace mirage {
@@ -63,9 +64,10 @@ public:
     void query(const Ray& ray, float tMin, float tMax, std::vector<BeamHit>* hits) const;
 
     // L_b along `ray` over (0, tMax) as XYZ (W·m⁻²·sr⁻¹·nm⁻¹); `depth` has been marched along
-    // the same ray and gives T at each photon's wavelength.
+    // the same ray and gives T at each photon's wavelength; `view` weights each photon by what
+    // the camera path puts in front of this ray (view_weight.h).
     Vec3 estimate(const Ray& ray, float tMax, const RayOpticalDepth& depth,
-                  std::vector<BeamHit>* scratch) const;
+                  std::vector<BeamHit>* scratch, const ViewWeight& view = ViewWeight()) const;
 
     // The 2D kernel at squared distance d2 from the centre of a disc of radius r (1/m²).
     float kernelValue(float d2, float r) const {

@@ -165,7 +165,8 @@ Vec3 pointEstimate(const VolumePhotons& photons, const Vec3& x, const Vec3& wo, 
 
 Vec3 pointEstimateAlongRay(const VolumePhotons& photons, const Ray& ray,
                            const RayOpticalDepth& depth, int k, float maxRadius, float step,
-                           float u, PhotonNeighbour* buffer, ScatteringProbe& probe) {
+                           float u, PhotonNeighbour* buffer, ScatteringProbe& probe,
+                           const ViewWeight& view) {
     MIRAGE_CHECK(k >= 2);
     if (depth.empty() || photons.size() == 0 || !(step > 0.f)) return Vec3(0.f);
     const Vec3 wo = -ray.d;
@@ -183,7 +184,7 @@ Vec3 pointEstimateAlongRay(const VolumePhotons& photons, const Ray& ray,
             float atPhoton = photons.sigmaS(slot);
             if (!(atPhoton > 0.f)) return 0.f;
             float here = probe.grey() ? greySigmaS : probe.eventDensity(x, p);
-            return depth.transmittance(t, p.lambda) * here / atPhoton;
+            return depth.transmittance(t, p.lambda) * here / atPhoton * view(p.lambda);
         });
     }
     return sum * step;

@@ -11,6 +11,7 @@
 #include "core/progress.h"
 #include "core/rng.h"
 #include "medium/index_field.h"
+#include "photon/view_weight.h"
 #include "render/render_scene.h"
 #include "transport/curved_path.h"
 #include "transport/tracking.h"
@@ -21,6 +22,10 @@ namespace mirage {
 struct ThreadState {
     explicit ThreadState(const RenderScene& scene) : tracking(scene.mediaPointers()) {}
     TrackingContext tracking;
+    // What lies in front of the ray an integrator is handed, at any wavelength, for the
+    // estimates made at the photons' own wavelengths (photon/view_weight.h): the curved
+    // camera's earlier chords. One (nothing) for a camera ray.
+    ViewWeight photonView;
 };
 
 // Figures of the photon integrator's two passes, for the render summary and the EXR header

@@ -17,7 +17,7 @@
 // computed for every camera sample, so pixel filtering and the spectral noise of the single-
 // scattered part average together.
 //
-// Curved light (issue 5): where a [refraction] field bends paths inside the scene
+// Curved light (docs/curved-light.md): where a [refraction] field bends paths inside the scene
 // (photonsCurve), a straight shadow ray is no path of light. The photons then follow Fermat
 // paths (photon_pass.h), the maps hold every interaction, the first included, and light that
 // reaches a diffuse surface straight from a light; the single-scatter part keeps only emission.
@@ -35,10 +35,12 @@
 // and at the first diffuse surface the surface estimates of photon/surface_estimate.h —
 // caustics from the caustic map (L S+ D) and indirect light straight from the global map (no
 // final gather: a direct global-map estimate, blurrier but cheap; its radius is the same
-// k-nearest disc). Specular weights are grey (Fresnel roulette, white mirrors); for
-// segments behind the first, the media's transmittance is taken at 550 nm (exact for grey
-// media), and a dispersive glass bends the whole photon estimate along the hero wavelength's
-// direction. Emissive surfaces are seen (single-scatter part) but emit no photons.
+// k-nearest disc). Each photon is weighted at its own wavelength by everything the chain puts
+// in front of it (photon/view_weight.h): the transmittance of the segments before, a tinted
+// mirror's reflectance, and, behind a dispersive glass, a kernel that keeps only light near
+// the hero wavelength whose direction the chain follows. A curved camera ray's earlier chords
+// reach the estimate the same way (ThreadState::photonView). Emissive surfaces are seen
+// (single-scatter part) but emit no photons.
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
@@ -51,6 +53,7 @@
 #include "photon/photon_pass.h"
 #include "photon/surface_estimate.h"
 #include "render/integrator.h"
+#include "transport/path_vertex.h"
 
 namespace mirage {
 
@@ -161,22 +164,16 @@ public:
                       Sampler& sampler, ThreadState& ts) const override {
         RadianceSample out = mSingle->Li(scene, ray, w, sampler, ts);
         if (scene.hasSurfaces()) {
-            out.xyz = photonsAlongSpecularChain(scene, ray, w, sampler);
+            out.xyz = photonsAlongSpecularChain(scene, ray, w, sampler, ts.photonView);
             return out;
         }
         if (!mPhotons || mPhotons->size() == 0) return out;
 
-        float u = sampler.get1D();  // the march's jitter, drawn whichever estimate is used
+        const float u = sampler.get1D();  // the march's jitter, drawn whichever estimate is used
         PhotonThreadState& pt = mThreads->local();
         auto t0 = Clock::now();
         pt.depth.march(ray, ray.tMax);
-        if (mBeam) {
-            out.xyz = mBeam->estimate(ray, ray.tMax, pt.depth, &pt.hits);
-        } else {
-            pt.neighbours.resize(size_t(mSettings.kOrDefault()));
-            out.xyz = pointEstimateAlongRay(*mPhotons, ray, pt.depth, mSettings.kOrDefault(),
-                                            mMaxRadius, mStep, u, pt.neighbours.data(), pt.probe);
-        }
+        out.xyz = volumeEstimate(ray, ray.tMax, u, pt, ts.photonView);
         pt.estimateSeconds += secondsSince(t0);
         ++pt.estimates;
         return out;
@@ -223,60 +220,83 @@ public:
     uint64_t cappedPhotonPaths() const override { return mPassStats.cappedPaths; }
 
 private:
-    static constexpr int kMaxSpecularBounces = 16;
+    // The volume photons' in-scattered radiance along `ray` over (0, tEnd), XYZ: beam or point
+    // estimate; pt.depth has been marched along the ray.
+    Vec3 volumeEstimate(const Ray& ray, float tEnd, float u, PhotonThreadState& pt,
+                        const ViewWeight& view) const {
+        if (mBeam) return mBeam->estimate(ray, tEnd, pt.depth, &pt.hits, view);
+        pt.neighbours.resize(size_t(mSettings.kOrDefault()));
+        return pointEstimateAlongRay(*mPhotons, ray, pt.depth, mSettings.kOrDefault(), mMaxRadius,
+                                     mStep, u, pt.neighbours.data(), pt.probe, view);
+    }
 
     // The photon part with surfaces (see the top of the file), XYZ.
     Vec3 photonsAlongSpecularChain(const RenderScene& scene, const Ray& cameraRay,
-                                   const SampledWavelengths& w, Sampler& sampler) const {
-        float u = sampler.get1D();  // the point estimate's march jitter
+                                   const SampledWavelengths& w, Sampler& sampler,
+                                   const ViewWeight& prefix) const {
+        const float u = sampler.get1D();  // the point estimate's march jitter
         PhotonThreadState& pt = mThreads->local();
         auto t0 = Clock::now();
         const bool volume = mPhotons && mPhotons->size() > 0;
         const int kSurface = mSettings.k > 0 ? mSettings.k : 32;
         Vec3 xyz(0.f);
-        float weight = 1.f;  // grey throughput of the specular vertices and earlier segments
+        ViewWeight view = prefix;
+        PathThroughput path;  // the chain's throughput at the path's wavelengths
         Ray ray = cameraRay;
         for (int bounce = 0; bounce <= kMaxSpecularBounces; ++bounce) {
             std::optional<SurfaceHit> hit = scene.geometry->intersect(ray);
             const float tEnd = hit ? hit->t : ray.tMax;
             pt.depth.march(ray, tEnd);
-            if (volume) {
-                if (mBeam) {
-                    xyz += mBeam->estimate(ray, tEnd, pt.depth, &pt.hits) * weight;
-                } else {
-                    pt.neighbours.resize(size_t(mSettings.kOrDefault()));
-                    xyz += pointEstimateAlongRay(*mPhotons, ray, pt.depth, mSettings.kOrDefault(),
-                                                 mMaxRadius, mStep, u, pt.neighbours.data(),
-                                                 pt.probe) *
-                           weight;
-                }
-            }
+            if (volume) xyz += volumeEstimate(ray, tEnd, u, pt, view);
             if (!hit) break;
             const Material& mat = scene.geometry->materialAt(*hit);
             if (!mat.specular()) {
                 pt.neighbours.resize(size_t(kSurface));
-                auto T = [&](float lambda) { return pt.depth.transmittance(hit->t, lambda); };
-                Vec3 wo = -ray.d;
-                xyz += (mCaustic->estimate(hit->p, hit->ng, wo, mat, kSurface, mMaxRadius,
-                                           pt.neighbours.data(), T) +
-                        mGlobal->estimate(hit->p, hit->ng, wo, mat, kSurface, mMaxRadius,
-                                          pt.neighbours.data(), T)) *
-                       weight;
+                auto T = [&](float lambda) {
+                    return pt.depth.transmittance(hit->t, lambda) * view(lambda);
+                };
+                const Vec3 wo = -ray.d;
+                xyz += mCaustic->estimate(hit->p, hit->ng, wo, mat, kSurface, mMaxRadius,
+                                          pt.neighbours.data(), T) +
+                       mGlobal->estimate(hit->p, hit->ng, wo, mat, kSurface, mMaxRadius,
+                                         pt.neighbours.data(), T);
                 break;
             }
-            weight *= pt.depth.transmittance(tEnd, 550.f);
-            Frame frame(hit->ns);
-            float uc = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
+            attenuateView(pt.depth, tEnd, &view);
+            Ray next;
             BsdfSample bs;
-            if (!mat.sample(frame.toLocal(-ray.d), uc, u1, u2, w, TransportMode::Radiance, &bs))
+            if (!continueAtSurface(mat, *hit, ray.d, w, TransportMode::Radiance, sampler, &path,
+                                   &next, &bs))
                 break;
-            weight *= bs.weight.average();
-            if (!(weight > 0.f)) break;
-            ray = spawnRay(*hit, frame.toWorld(bs.wi));
+            weighSpecularVertex(mat, bs, w, &view);
+            if (view.zero()) break;
+            ray = next;
         }
         pt.estimateSeconds += secondsSince(t0);
         ++pt.estimates;
         return xyz;
+    }
+
+    // The media of a segment the chain leaves: their transmittance at every wavelength.
+    static void attenuateView(const RayOpticalDepth& depth, float tEnd, ViewWeight* view) {
+        if (depth.grey()) {
+            view->scale(depth.transmittance(tEnd, 550.f));
+            return;
+        }
+        view->multiply([&](float lambda) { return depth.transmittance(tEnd, lambda); });
+    }
+
+    // A mirror's reflectance at every wavelength; a glass's weight (1, or 1/η² for radiance
+    // refracted into it), which depends on λ only where the glass disperses, and there the
+    // chain keeps the hero wavelength alone.
+    static void weighSpecularVertex(const Material& mat, const BsdfSample& bs,
+                                    const SampledWavelengths& w, ViewWeight* view) {
+        if (mat.type() == MaterialType::Mirror && !mat.reflectance().isConstant()) {
+            view->multiply([&](float lambda) { return mat.reflectance()(lambda); });
+            return;
+        }
+        view->scale(bs.weight[0]);
+        if (bs.dispersed) view->keepHero(w.lambda[0], w.pdf[0]);
     }
 
     PhotonIntegratorSettings mSettings;

@@ -20,16 +20,16 @@
 //   surface       β ← β f |cos θi| / pdf  (ρ for Lambertian; 1 or 1/η² for glass, mirror ρ)
 // A dispersive dielectric leaves only the hero wavelength alive (PathThroughput::heroOnly).
 //
-// Fluorescence: a path carries the wavelength light *leaves* with, so at an absorption event of
-// a fluorescent medium it asks where that light could have come from: sampleInelasticAdjoint
-// (transport/reemission.h) draws a component, its Γ roulette, a shorter λi and an isotropic
-// direction, and returns w = n_f σa,c(λi) η(λi → λo) (λi/λo) / q(λi) — λi/λo because η counts
-// photons and radiance counts energy, the adjoint of the photon walk's power × λi/λo (Mobley
-// 1994 §5.13). The absorption branch was chosen
-// with density σ̄ P_a, so
-//   fluorescence  β₀ ← β₀ w / (σ̄ P_a),  β₁…₃ ← 0 (hero only, as dispersion), path goes on at λi
-// with next-event estimation through the isotropic lobe (render/inelastic_light.h). Needs
-// σa(λo) > 0 wherever σa(λi) Γ η(λi → λo) > 0, else that light is never sampled: true of water.
+// Fluorescence: a path carries the wavelength light *leaves* with, so at every tentative
+// collision in a fluorescent medium it first asks whether this is where that light was
+// re-emitted: sampleInelasticEvent (transport/reemission.h) draws a component and chooses the
+// inelastic event with a probability of its own, ∝ Γ (at least Γ P_a) — not as a branch of
+// absorption, whose probability follows σa at the path's wavelengths and may be 0 at λo. Chosen:
+//   fluorescence  β₀ ← β₀ w,  β₁…₃ ← 0 (hero only, as dispersion), path goes on at λi
+// with w = n_f Γ σa,c(λi) η(λi → λo) (λi/λo) / (q σ̄ P_f) — λi/λo because η counts photons and
+// radiance counts energy, the adjoint of the photon walk's power × λi/λo (Mobley 1994 §5.13) —
+// and next-event estimation through the isotropic lobe (render/inelastic_light.h). Not chosen:
+// the ordinary events, their weights divided by 1 − P_f; absorption then ends the path.
 #include <atomic>
 
 #include "render/direct_light.h"
@@ -64,16 +64,19 @@ public:
             const bool escaped =
                 trackCollisions(ts.tracking, ray, tEnd, sampler, [&](const Collision& c) {
                     const Medium& m = ts.tracking.medium(c.medium);
-                    const CollisionOutcome o = collisionEvent(c, m, path, sampler, &out.L);
+                    scoreEmission(c, m, path, &out.L);
+                    if (m.fluorescent() && fluoresce(m, c, ts, sampler, &path, &next, &lambdaIn)) {
+                        scattered = path.alive();
+                        return Track::Stop;
+                    }
+                    const CollisionOutcome o = chooseEvent(c, path, sampler);
                     if (o.event == MediumEvent::Null) return Track::Continue;
                     if (o.event == MediumEvent::Scattered) {
                         out.L += path.beta * directLightMedium(scene, c, -ray.d, sampler, ts);
                         next = Ray{c.p, samplePhase(m, c, ray.d, sampler, &path), kInfinity};
                         scattered = true;
-                        return Track::Stop;
                     }
-                    scattered = fluoresce(m, c, o.pAbsorb, ts, sampler, &path, &next, &lambdaIn);
-                    return Track::Stop;
+                    return Track::Stop;  // scattered, or absorbed for good
                 });
             if (depth == 0)
                 out.alpha = escaped && !hit ? clamp(1.f - path.beta.average(), 0.f, 1.f) : 1.f;
@@ -114,23 +117,26 @@ private:
         return wo;
     }
 
-    // Absorption in a fluorescent medium: where could the light leaving at λo have been
-    // absorbed (the adjoint re-emission at the top of the file)? True when the path goes on
-    // at *lambdaIn along *next, hero-only; false when it ends (absorbed for good).
-    static bool fluoresce(const Medium& m, const Collision& c, float pAbsorb, ThreadState& ts,
-                          Sampler& sampler, PathThroughput* path, Ray* next, float* lambdaIn) {
-        InelasticAdjoint in;
-        if (!sampleInelasticAdjoint(m, ts.tracking.context(size_t(c.medium)), c.p,
-                                    ts.tracking.wavelengths().lambda[0], sampler, &in)) {
-            path->beta = SampledSpectrum(0.f);
+    // The inelastic event at a collision in a fluorescent medium (the top of the file). True
+    // when it was chosen: the path goes on hero-only at *lambdaIn along *next (β may be 0 when
+    // no λi feeds λo). Not chosen, β carries the ordinary events' factor 1 / (1 − P_f).
+    static bool fluoresce(const Medium& m, const Collision& c, ThreadState& ts, Sampler& sampler,
+                          PathThroughput* path, Ray* next, float* lambdaIn) {
+        const InelasticEvent in =
+            sampleInelasticEvent(m, ts.tracking.context(size_t(c.medium)), c.p,
+                                 ts.tracking.wavelengths(), c.sigmaMaj,
+                                 eventProbabilities(c, path->beta).pAbsorb, sampler);
+        if (!in.chosen) {
+            path->beta *= in.otherScale;
             return false;
         }
-        const float hero = path->beta[0] * in.weight / (c.sigmaMaj * pAbsorb);
+        const float hero = path->beta[0] * in.weight;
         path->keepHeroOnly();
         path->beta[0] = hero;
-        if (!(hero > 0.f)) return false;
-        *lambdaIn = in.lambdaInNm;
-        *next = Ray{c.p, in.wi, kInfinity};
+        if (hero > 0.f) {
+            *lambdaIn = in.lambdaInNm;
+            *next = Ray{c.p, in.wi, kInfinity};
+        }
         return true;
     }
 

@@ -2,9 +2,18 @@
 
 namespace mirage {
 
+void scoreEmission(const Collision& c, const Medium& medium, const PathThroughput& path,
+                   SampledSpectrum* L) {
+    if (medium.emissive()) *L += path.beta * c.mp.sigmaA * c.mp.Le / c.sigmaMaj;
+}
+
 CollisionOutcome collisionEvent(const Collision& c, const Medium& medium, PathThroughput& path,
                                 Sampler& sampler, SampledSpectrum* L) {
-    if (medium.emissive()) *L += path.beta * c.mp.sigmaA * c.mp.Le / c.sigmaMaj;
+    scoreEmission(c, medium, path, L);
+    return chooseEvent(c, path, sampler);
+}
+
+CollisionOutcome chooseEvent(const Collision& c, PathThroughput& path, Sampler& sampler) {
     const EventProbabilities e = eventProbabilities(c, path.beta);
     const float u = sampler.get1D();
     if (u < e.pAbsorb) return {MediumEvent::Absorbed, e.pAbsorb};

@@ -81,6 +81,11 @@ struct CollisionOutcome {
 };
 CollisionOutcome collisionEvent(const Collision& c, const Medium& medium, PathThroughput& path,
                                 Sampler& sampler, SampledSpectrum* L);
+// Its two halves, for a path that puts an event of its own between them (volpath's inelastic
+// event, transport/reemission.h).
+void scoreEmission(const Collision& c, const Medium& medium, const PathThroughput& path,
+                   SampledSpectrum* L);
+CollisionOutcome chooseEvent(const Collision& c, PathThroughput& path, Sampler& sampler);
 
 // The continuation of a path at a surface it reached travelling along `dir`: a BSDF sample
 // (three numbers), β weighted by f |cos θi| / pdf, the hero wavelength alone after a

@@ -43,22 +43,38 @@ bool sampleReemission(const Medium& m, Medium::Context& ctx, const Vec3& pWorld,
 // transfer equation (Gutierrez et al. 2005, in energy units) is
 //   S(x, ω, λo) = Σ_c Γ_c ∫ σa,c(x, λi) η_c(λi → λo) (λi/λo) (1/4π) ∫ L(x, ω', λi) dω' dλi,
 // η_c a density in λo (1/nm; zero for λo < λi under the Stokes rule). It is the adjoint of the
-// photon walk's power × λi/λo above. One sample: a fluorescent component c uniformly
-// (probability 1/n_f), the Γ_c roulette, λi uniform over the allowed range [360 nm, λo]
-// (density q = 1/(λo − 360)), ω' uniform (its density 1/4π cancels the isotropic emission's).
-// The path then continues at λi along wi with the weight
-//   n_f σa,c(x, λi) η_c(λi → λo) (λi/λo) / q  (1/m; Γ_c cancels against its roulette),
-// which the caller divides by its probability density of having chosen this collision's event
-// (σ̄ P for delta tracking). Returns false when the Γ roulette ends the path; true, possibly
-// with weight 0 (no λi can feed λo), when it passes. That decision does not depend on λo, which
-// is what lets the caller keep only its hero wavelength from then on: hero wavelength sampling
-// stays unbiased only if the choice to drop the others is symmetric in the path's wavelengths.
-struct InelasticAdjoint {
+// photon walk's power × λi/λo above.
+//
+// A source like emission, S enters the null-collision form of the transfer equation beside
+// σs Ls and σn L; at a tentative collision (rate σ̄) a camera path estimates S/σ̄ by an event of
+// its own, not as a branch of absorption: absorption is chosen in proportion to σa at the
+// path's wavelengths, which can be 0 at λo where λi is absorbed (a dye that absorbs blue and
+// glows red would never re-emit on a red path). A fluorescent component c is drawn uniformly
+// (1/n_f) and chosen with probability
+//   P_f = min(½, Γ_c max(P_a, σ̂a,c(x) / σ̄)),   σ̂a,c(x) = max of σa,c(x, λ) over 360, 420, …,
+// 780 nm: positive wherever c absorbs at all, and never rarer than the branch of absorption it
+// replaces (P_a, the path's probability of absorption, a symmetric function of its
+// wavelengths), which keeps its weights as small as that branch's were. Chosen, λi is drawn uniformly
+// over [360 nm, λmax] (q = 1/(λmax − 360); λmax the longest of the path's wavelengths, or
+// 830 nm where anti-Stokes emission is allowed), the path goes on at λi along an isotropic wi
+// (its density 1/4π cancels the isotropic emission's), and
+//   β(λo) ← β(λo) · n_f Γ_c σa,c(x, λi) η_c(λi → λo) (λi/λo) / (q σ̄ P_f);
+// not chosen, the ordinary events follow with their weights divided by 1 − P_f. Neither P_f,
+// nor the choice, nor the density of λi singles out the hero wavelength (λmax is a symmetric
+// function of the four), which is what lets the path keep only its hero wavelength after the
+// event: hero wavelength sampling stays unbiased only if the choice to drop the others is
+// symmetric in the path's wavelengths.
+struct InelasticEvent {
+    bool chosen = false;
+    float otherScale = 1.f;  // not chosen: 1 / (1 − P_f), for the ordinary events' weights
     float lambdaInNm = 0;
-    Vec3 wi;           // direction to continue along (the light arrived from −wi)
-    float weight = 0;  // 1/m, see above
+    Vec3 wi;                 // chosen: direction to continue along (light arrived from −wi)
+    float weight = 0;        // chosen: the factor on β(λo) above (0 when η(λi → λo) = 0)
 };
-bool sampleInelasticAdjoint(const Medium& m, Medium::Context& ctx, const Vec3& pWorld,
-                            float lambdaOutNm, Sampler& sampler, InelasticAdjoint* out);
+// λo is w.lambda[0], the hero. Draws 5 numbers in a fluorescent medium and none in any other
+// (then: not chosen, scale 1).
+InelasticEvent sampleInelasticEvent(const Medium& m, Medium::Context& ctx, const Vec3& pWorld,
+                                    const SampledWavelengths& w, float sigmaMaj, float pAbsorb,
+                                    Sampler& sampler);
 
 }  // namespace mirage

@@ -8,7 +8,8 @@
 //  - a red-absorbing box in front of the fog seen by camera rays that curve (a vanishing index
 //    gradient) against straight ones, the photon integrator both times, per channel;
 //  - the fog seen through a dispersive glass ball, where the chain follows the hero wavelength
-//    alone: the photon integrator against volpath, per channel.
+//    alone: the photon integrator against volpath, per channel;
+//  - a fluorescent dye seen through that ball: volpath's inelastic event against the photons.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -138,6 +139,31 @@ TEST(PhotonColour, DispersiveBallKeepsTheHeroWavelengthsLight) {
     const Image photon = render(dir, "photon", scene, kPhoton);
     const Image volpath = render(dir, "volpath", scene, kVolpath);
     expectSameColour(photon, volpath, 0.12);
+}
+
+// A dye that absorbs only below 550 nm (Γ = 0.5) and glows around 630 nm, seen through a
+// dispersive ball: behind it the camera path carries its hero wavelength alone, so volpath's
+// red paths meet a dye with σa(λo) = 0. Choosing re-emission as a branch of absorption (∝ σa
+// at the path's wavelengths) never re-emitted on them and lost the red glow; the inelastic
+// event of its own finds it, as the photon map does.
+TEST(PhotonColour, FluorescentDyeBehindDispersiveGlass) {
+    const std::string dir = test::tempDir();
+    std::ofstream(dir + "/dye.toml")
+        << "name = \"dye\"\n[[component]]\n"
+           "sigma_a = { wavelengths = [360, 545, 555, 830], values = [3.0, 3.0, 0.0, 0.0] }\n"
+           "sigma_s = 0.3\nquantum_efficiency = 0.5\nemission_peak_nm = 630\n"
+           "emission_fwhm_nm = 30\n";
+    const std::string scene =
+        "[film]\nresolution = [12, 12]\nseed = 6\n"
+        "[camera]\nposition = [0, 0, 4]\nlook_at = [0, 0, 0]\nfov = 24\n"
+        "[[volume]]\nbox = { min = [-1, -1, -1], max = [1, 1, 1] }\nshader = \"dye.toml\"\n"
+        "[[light]]\ntype = \"sun\"\ndirection = [-0.8, -0.6, 0]\nirradiance = 1000\n"
+        "[[material]]\nname = \"flint\"\ntype = \"dielectric\"\nior = 1.6\ncauchy_b = 0.02\n"
+        "[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 2.2]\nradius = 0.7\n"
+        "material = \"flint\"\n";
+    const Image photon = render(dir, "photon", scene, kPhoton);
+    const Image volpath = render(dir, "volpath", scene, kVolpath);
+    expectSameColour(volpath, photon, 0.15);
 }
 
 }  // namespace

@@ -7,8 +7,10 @@
 // smoke1_sun needs ../shared (tests/unit/smoke1_scene_test.cpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "film/image_io.h"
 #include "test_support.h"
@@ -95,8 +97,11 @@ TEST(ShippedScenes, VolumeCausticBeamLightsTheFogAroundTheBall) {
     EXPECT_GT(beam, 1e-3);
 }
 
-// Figure 3 of the seed: clear water is blue-dominated; at 5 mg/m³ chlorophyll absorbs blue and
-// red, and the box turns green: G/B rises with chlorophyll.
+// Figure 3 of Gutierrez et al. 2005: clear water is blue-dominated; at 5 mg/m³ chlorophyll
+// absorbs blue and red, and the box turns green: G/B rises with chlorophyll. The median of the
+// pixels' G/B: at 16 samples a few pixels carry a rare long path's firefly (the light sits
+// inside the water), which moves a mean by tens of per cent from one seed or random-number
+// layout to the next, and a median not at all.
 TEST(ShippedScenes, CornellWaterTurnsGreenWithChlorophyll) {
     const std::string dir = test::tempDir();
     const std::string scene = test::shippedSceneCopy(dir, "cornell_water.toml");
@@ -105,7 +110,13 @@ TEST(ShippedScenes, CornellWaterTurnsGreenWithChlorophyll) {
             render(scene, std::string("--resolution 16x16 --spp 16 "
                                       "--set volume.0.concentration.chlorophyll=") +
                               chl);
-        return regionMean(im, 1, 0, 16, 0, 16) / regionMean(im, 2, 0, 16, 0, 16);
+        std::vector<double> ratios;
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 16; ++x)
+                if (im.pixel(x, y)[2] > 0.f) ratios.push_back(im.pixel(x, y)[1] / im.pixel(x, y)[2]);
+        EXPECT_GT(ratios.size(), 128u);
+        std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+        return ratios.empty() ? 0.0 : ratios[ratios.size() / 2];
     };
     const double clear = greenOverBlue("0.05"), green = greenOverBlue("5");
     EXPECT_GT(green, 1.2 * clear) << "G/B " << clear << " at 0.05 mg/m³, " << green << " at 5";

@@ -136,7 +136,7 @@ TEST(Fluorescence, PhotonWalkAndAdjointConvertEnergyAlike) {
     // Γ η counts photons; both transports carry energy, so a re-emission from λi to λo keeps
     // the fraction λi/λo of the absorbed energy (Mobley 1994, §5.13). Photon walk: the power
     // scale of a re-emission at λi = 450 nm has mean E_η[λi/λo]. Volpath's adjoint sample
-    // (sampleInelasticAdjoint) must give the same conversion: lit by L(λi) = 1 on
+    // (sampleInelasticEvent) must give the same conversion: lit by L(λi) = 1 on
     // [440, 460] nm, the re-emitted energy ∫ dλo Σ Γ ∫ σa η(λi → λo) (λi/λo) L(λi) dλi, over
     // the absorbed energy σa ∫ L dλi, is Γ E[λi/λo] < Γ: no energy is created.
     constexpr float kG = 0.5f, kSigmaA = 2.f;
@@ -179,18 +179,30 @@ TEST(Fluorescence, PhotonWalkAndAdjointConvertEnergyAlike) {
     double walkSe = std::sqrt(std::max(0.0, sum2 / reemitted - walkMean * walkMean) / reemitted);
     EXPECT_NEAR(walkMean, walkExpected, 3 * walkSe + 1e-5);
 
+    // The camera path's inelastic event at a collision of majorant σ̄ = 4/m (P_f = Γσa/σ̄ =
+    // 1/4): its weight is already divided by σ̄ P_f, so σ̄ × weight estimates the source.
     const double range = kLambdaMax - kLambdaMin;
+    const float sigmaMaj = 4.f;
     sum = sum2 = 0;
+    int chosen = 0;
     for (int i = 0; i < n; ++i) {
         float lambdaOut = kLambdaMin + float(range) * sampler.get1D();
-        InelasticAdjoint a;
+        SampledWavelengths w;
+        w.lambda.fill(lambdaOut);
+        w.pdf.fill(1.f);
+        const InelasticEvent a =
+            sampleInelasticEvent(m, ctx, Vec3(0.5f), w, sigmaMaj, kSigmaA / sigmaMaj, sampler);
         double x = 0;
-        if (sampleInelasticAdjoint(m, ctx, Vec3(0.5f), lambdaOut, sampler, &a) &&
-            a.lambdaInNm >= 440.f && a.lambdaInNm <= 460.f)
-            x = a.weight * range / (kSigmaA * 20.0);  // ∫ dλo, over the absorbed σa ∫ L
+        chosen += a.chosen;
+        if (!a.chosen) {
+            EXPECT_FLOAT_EQ(a.otherScale, 1.f / (1.f - kG * kSigmaA / sigmaMaj));
+        }
+        if (a.chosen && a.lambdaInNm >= 440.f && a.lambdaInNm <= 460.f)
+            x = a.weight * sigmaMaj * range / (kSigmaA * 20.0);  // ∫ dλo, over σa ∫ L
         sum += x;
         sum2 += x * x;
     }
+    EXPECT_NEAR(double(chosen) / n, kG * kSigmaA / sigmaMaj, 0.005);
     double adjointMean = sum / n;
     double adjointSe = std::sqrt(std::max(0.0, sum2 / n - adjointMean * adjointMean) / n);
     EXPECT_NEAR(adjointMean, adjointExpected, 3 * adjointSe);

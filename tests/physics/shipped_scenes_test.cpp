@@ -95,8 +95,8 @@ TEST(ShippedScenes, VolumeCausticBeamLightsTheFogAroundTheBall) {
     EXPECT_GT(beam, 1e-3);
 }
 
-// Figure 3 of the seed: clear water is blue-dominated; at 5 mg/m³ chlorophyll absorbs blue and
-// red, and the box turns green: G/B rises with chlorophyll.
+// Gutierrez et al. 2005, figure 3: clear water is blue-dominated; at 5 mg/m³ chlorophyll absorbs
+// blue and red, and the box turns green: G/B rises with chlorophyll.
 TEST(ShippedScenes, CornellWaterTurnsGreenWithChlorophyll) {
     const std::string dir = test::tempDir();
     const std::string scene = test::shippedSceneCopy(dir, "cornell_water.toml");

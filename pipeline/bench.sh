@@ -112,7 +112,7 @@ else
   echo "blender not installed: skipping the Cycles comparison (apt-get install blender)"
 fi
 
-# Curved light (README "Curved light"): end-point error and time of the Fermat path stepper,
+# Curved light (docs/curved-light.md): end-point error and time of the Fermat path stepper,
 # Dormand–Prince RK5(4)7M over tolerances 1e-3 … 1e-14 against forward Euler, on the linear
 # profile with its exact path; writes out/bench/raypath.csv and two plots (~20 s).
 ./build/tests/bench_raypath out/bench

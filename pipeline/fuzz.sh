@@ -61,7 +61,7 @@ for t in $TARGETS; do
        >"$log" 2>&1; then
     grep -E "stat::(number_of_executed_units|average_exec_per_sec|peak_rss_mb)|^#[0-9]+: cov" "$log" | tail -4 || true
     if ls "$OUT/findings/$t-"* >/dev/null 2>&1; then
-      echo "fuzz: $t: ignored out-of-memory inputs (third-party allocations, README):"
+      echo "fuzz: $t: ignored out-of-memory inputs (third-party; docs/hostile-input.md):"
       ls "$OUT/findings/$t-"*
     fi
   else

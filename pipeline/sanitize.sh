@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Sanitizer runs (clang 14; README, "Hostile input and sanitizers"):
+# Sanitizer runs (clang 14; docs/hostile-input.md, "Hostile input and sanitizers"):
 #   asan  ASan + UBSan (-fno-sanitize-recover=undefined: any undefined behaviour fails the test)
 #         on the unit tests (ctest -L unit). It shares build-fuzz/ with pipeline/fuzz.sh: the
 #         library is compiled once, with the sanitizers and libFuzzer's coverage hooks, for both.

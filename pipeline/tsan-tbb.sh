@@ -7,7 +7,7 @@
 # small-object pool, the caller woken when the last task ends) while the task objects are
 # written and read by TBB's header templates compiled into Mirage's own, instrumented code.
 # Uninstrumented, TSan reports races between TBB's headers on both sides that no annotation in
-# Mirage's calls can order (README, "Hostile input and sanitizers").
+# Mirage's calls can order (docs/hostile-input.md, "Hostile input and sanitizers").
 #
 # The source is Debian's own package of exactly the installed libtbb12 version (so that the
 # library matches the headers Mirage is compiled against), fetched with apt-get source from the

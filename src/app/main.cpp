@@ -18,47 +18,73 @@ int main(int argc, char** argv) {
     render->add_option("input", ro.input, "Scene .toml, or a .vdb/.nvdb for a quick look")
         ->required();
     render->add_option("-o,--output", ro.output,
-                       "Output EXR (frame patterns $F4 or #### allowed); default: the scene's");
-    render->add_option("--preview", ro.preview, "Also write an sRGB preview (PNG/JPEG)");
-    render->add_option("--frame", ro.frame, "Frame number substituted into $F patterns");
-    render->add_option("--frames", ro.frames, "Frame range A-B (inclusive)")->excludes("--frame");
-    render->add_option("--set", ro.overrides, "Override a scene value: key.path=value")
+                       "Output EXR; $F4, $F or #### take the frame (a sequence without a pattern "
+                       "gets .#### before the extension); default: the scene's [output] path");
+    render->add_option("--preview", ro.preview,
+                       "Also write a display preview (PNG/JPEG) through the scene's [output] "
+                       "display/view (default sRGB, Standard); default: the scene's preview");
+    render->add_option("--frame", ro.frame,
+                       "Frame number for $F/#### patterns and turntables (default 1)");
+    render->add_option("--frames", ro.frames, "Render frames A to B (inclusive), e.g. 1-24")
+        ->excludes("--frame");
+    render
+        ->add_option("--set", ro.overrides,
+                     "Override scene values before loading: key.path=value …, e.g. "
+                     "film.spp=64 volume.0.density_scale=2 (a bare VDB: film.*, render.*, "
+                     "output.* only)")
         ->take_all();
-    render->add_option("--resolution", ro.resolution, "Image size WxH");
-    render->add_option("--spp", ro.spp, "Samples per pixel")->check(CLI::Range(1, 1 << 20));
+    render->add_option("--resolution", ro.resolution,
+                       "Image size WxH (overrides film.resolution; a bare VDB's camera "
+                       "reframes)");
+    render->add_option("--spp", ro.spp, "Samples per pixel (overrides film.spp and --quality)")
+        ->check(CLI::Range(1, 1 << 20));
     render->add_option("--threads", ro.threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 4096));
-    render->add_option("--seed", ro.seed, "Random seed")->check(CLI::Range(int64_t(0), INT64_MAX));
-    render->add_option("--turntable", ro.turntable, "Render N frames orbiting the volume")
+    render->add_option("--seed", ro.seed, "Random seed (default: film.seed)")
+        ->check(CLI::Range(int64_t(0), INT64_MAX));
+    render
+        ->add_option("--turntable", ro.turntable,
+                     "Render frames 1 to N, the camera orbiting about its up axis through "
+                     "look_at (a bare VDB: about the volume); output gets .####")
         ->check(CLI::Range(1, 100000));
     render->add_option("--integrator", ro.integrator,
-                       "single (single scattering + emission) or volpath (reference path tracer)");
-    render->add_option("--quality", ro.quality,
-                       "Preset samples/photons/k measured on the speed-accuracy curves")
+                       "single (single scattering + emission), volpath (reference path tracer) "
+                       "or photon (volume photon mapping); default: the scene's [render] "
+                       "integrator");
+    render
+        ->add_option("--quality", ro.quality,
+                     "draft, preview or final: samples per pixel and, for photon, photons and k, "
+                     "measured on the speed-accuracy curves (docs/performance.md); --spp and "
+                     "--set film.spp/render.photons/render.k still win")
         ->check(CLI::IsMember({"draft", "preview", "final"}));
-    render->add_flag("--float", ro.floatExr, "Write 32-bit float EXR instead of half");
+    render->add_flag("--float", ro.floatExr,
+                     "Write 32-bit float EXR instead of half (overrides [output] half)");
     render->add_flag("-q,--quiet", ro.quiet, "No progress output");
-    render->add_option("--ocio", ro.ocioConfig, "OCIO config (default: $OCIO, else built-in)");
+    render->add_option("--ocio", ro.ocioConfig, "OCIO config file (default: $OCIO, else built-in)");
     render->add_flag("--resume", ro.resume,
-                     "Continue a killed frame from <out>.partial (same scene and settings)");
+                     "Continue a killed frame from <out>.partial, bit for bit; refused if the "
+                     "scene or settings changed; without a partial file, render it all");
     render->add_flag("--skip-existing", ro.skipExisting,
                      "Skip frames whose output EXR is complete (mirage:complete = true)");
     render->add_option("--max-memory", ro.maxMemory,
-                       "Fail early when the frame's estimated memory exceeds SIZE (4G, 512M)");
+                       "Fail early when the frame's estimated memory exceeds SIZE (4G, 512M, 1.5G, "
+                       "64k or bytes; binary multiples)");
 
     InfoOptions io;
     auto* info = app.add_subcommand("info", "Describe a scene or a VDB file");
     info->add_option("input", io.input, "Scene .toml or .vdb/.nvdb")->required();
-    info->add_option("--set", io.overrides, "Override a scene value: key.path=value")->take_all();
-    info->add_option("--ocio", io.ocioConfig, "OCIO config (default: $OCIO, else built-in)");
+    info->add_option("--set", io.overrides, "Override scene values: key.path=value …")->take_all();
+    info->add_option("--ocio", io.ocioConfig, "OCIO config file (default: $OCIO, else built-in)");
 
     AssetOptions ao;
     auto* asset = app.add_subcommand("make-asset", "Write a procedural VDB cache");
     asset->add_option("kind", ao.kind, "smoke | fire | fog-sphere | ocean")->required();
-    asset->add_option("-o,--output", ao.output, "Output .vdb")->required();
-    asset->add_option("--resolution", ao.resolution, "Voxels along the tallest axis")
+    asset->add_option("-o,--output", ao.output, "Output .vdb (written atomically)")->required();
+    asset
+        ->add_option("--resolution", ao.resolution,
+                     "Voxels along the 2 m height, 8 to 1024 (default 64)")
         ->check(CLI::Range(4, 2048));
-    asset->add_option("--seed", ao.seed, "Noise seed");
+    asset->add_option("--seed", ao.seed, "Noise seed (default 1; fog-sphere ignores it)");
 
     SlabOptions so;
     auto* slab = app.add_subcommand(
@@ -77,19 +103,23 @@ int main(int argc, char** argv) {
                      "With --shader: slab thickness in metres (default: a deep column)")
         ->check(CLI::Range(1e-9, 1e9));
     slab->add_flag("--spectral", so.spectral,
-                   "Flat 380–780 nm source: reflectance/transmittance per 5 nm bin");
-    slab->add_option("--g", so.g, "Henyey–Greenstein asymmetry")
+                   "Flat 380–780 nm source: reflectance, transmittance and fluorescence per "
+                   "5 nm bin (without it: 550 nm)");
+    slab->add_option("--g", so.g, "Henyey–Greenstein asymmetry (default 0; without --shader)")
         ->check(CLI::Range(-0.9999, 0.9999));
-    slab->add_option("--n", so.n, "Refractive index of the slab")->check(CLI::Range(0.01, 100.0));
+    slab->add_option("--n", so.n, "Refractive index of the slab (default 1)")
+        ->check(CLI::Range(0.01, 100.0));
     slab->add_option("--n-outside", so.nOutside, "Refractive index around the slab (default 1)")
         ->check(CLI::Range(0.01, 100.0));
-    slab->add_option("--incidence", so.incidence, "normal (collimated) or diffuse (Lambertian)")
+    slab->add_option("--incidence", so.incidence,
+                     "normal (collimated, the default) or diffuse (Lambertian)")
         ->check(CLI::IsMember({"normal", "diffuse"}));
-    slab->add_option("--photons", so.photons, "Photons to trace")
+    slab->add_option("--photons", so.photons, "Photons to trace (default 1000000)")
         ->check(CLI::Range(uint64_t(1), uint64_t(1) << 40));
-    slab->add_option("--seed", so.seed, "Random seed");
+    slab->add_option("--seed", so.seed, "Random seed (default 0)");
     slab->add_option("--max-events", so.maxEvents,
-                     "Cap on scatterings + internal reflections per photon (capped: reported)")
+                     "Cap on scatterings + internal reflections per photon (default 1000000; "
+                     "capped photons are reported)")
         ->check(CLI::Range(int64_t(1), int64_t(1) << 40));
     slab->add_option("--threads", so.threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 4096));
@@ -111,43 +141,66 @@ int main(int argc, char** argv) {
                          "Samples per pixel of a rendered reference (default: 4x the sweep's "
                          "highest, at least 256)")
         ->check(CLI::Range(1, 1 << 20));
-    tradeoff->add_option("--set", to.overrides, "Override a scene value: key.path=value")
+    tradeoff
+        ->add_option("--set", to.overrides,
+                     "Override scene values before the varied keys: key.path=value …")
         ->take_all();
-    tradeoff->add_option("--resolution", to.resolution, "Image size WxH");
+    tradeoff->add_option("--resolution", to.resolution,
+                         "Image size WxH (overrides film.resolution)");
     tradeoff->add_option("--spp", to.spp, "Samples per pixel unless varied")
         ->check(CLI::Range(1, 1 << 20));
-    tradeoff->add_option("--integrator", to.integrator, "single, volpath or photon unless varied");
+    tradeoff->add_option("--integrator", to.integrator,
+                         "single, volpath or photon unless varied (default: the scene's)");
     tradeoff->add_option("--threads", to.threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 4096));
-    tradeoff->add_option("--seed", to.seed, "Random seed")->check(CLI::Range(int64_t(0), INT64_MAX));
-    tradeoff->add_option("--repeats", to.repeats, "Renders per setting; the median time is kept")
+    tradeoff->add_option("--seed", to.seed, "Random seed (default: film.seed)")
+        ->check(CLI::Range(int64_t(0), INT64_MAX));
+    tradeoff
+        ->add_option("--repeats", to.repeats,
+                     "Renders per setting; the median time is kept (default 1)")
         ->check(CLI::Range(1, 1000));
     tradeoff->add_option("-o,--output", to.prefix,
                          "Prefix of the output files <prefix>tradeoff.csv, .png, reference.exr");
-    tradeoff->add_option("--ocio", to.ocioConfig, "OCIO config (default: $OCIO, else built-in)");
+    tradeoff->add_option("--ocio", to.ocioConfig,
+                         "OCIO config file (default: $OCIO, else built-in)");
     tradeoff->add_flag("-q,--quiet", to.quiet, "No progress output");
 
     RaypathOptions rp;
     auto* raypath = app.add_subcommand(
         "raypath", "Trace one curved light path through a refractive-index profile");
-    raypath->add_option("--profile", rp.profile, "linear (n = n0 + k·y) or atmosphere")
+    raypath
+        ->add_option("--profile", rp.profile,
+                     "linear (n = n0 + k·y, the default) or atmosphere (US Standard "
+                     "Atmosphere 1976, y = height above sea level)")
         ->check(CLI::IsMember({"linear", "atmosphere"}));
-    raypath->add_option("--n0", rp.n0, "linear: index at y = 0")->check(CLI::PositiveNumber);
-    raypath->add_option("--k", rp.k, "linear: dn/dy in 1/m");
-    raypath->add_option("--origin", rp.origin, "Start point x,y,z in metres");
-    raypath->add_option("--direction", rp.direction, "Start direction x,y,z (normalised)");
-    raypath->add_option("--length", rp.length, "Arc length to trace, m")
+    raypath->add_option("--n0", rp.n0, "linear: index at y = 0 (default 1)")
         ->check(CLI::PositiveNumber);
-    raypath->add_option("--tolerance", rp.tolerance, "rk45: error tolerance per step")
+    raypath->add_option("--k", rp.k, "linear: dn/dy in 1/m (default 0)");
+    raypath->add_option("--origin", rp.origin, "Start point x,y,z in metres (default 0,0,0)");
+    raypath->add_option("--direction", rp.direction,
+                        "Start direction x,y,z, any length (default 1,0,0)");
+    raypath->add_option("--length", rp.length, "Arc length to trace, m (default 1)")
+        ->check(CLI::PositiveNumber);
+    raypath
+        ->add_option("--tolerance", rp.tolerance,
+                     "rk45: largest accepted error estimate per step, absolute (default 1e-6)")
         ->check(CLI::Range(1e-16, 1.0));
-    raypath->add_option("--method", rp.method, "rk45 (Dormand-Prince 5(4)) or euler")
+    raypath
+        ->add_option("--method", rp.method,
+                     "rk45 (Dormand-Prince 5(4), the default) or euler (fixed step)")
         ->check(CLI::IsMember({"rk45", "euler"}));
-    raypath->add_option("--step", rp.step, "euler: fixed step, m")->check(CLI::PositiveNumber);
+    raypath->add_option("--step", rp.step, "euler: fixed step, m (default 0.01)")
+        ->check(CLI::PositiveNumber);
     raypath->add_option("--max-step", rp.maxStep, "rk45: largest step, m (default unlimited)")
         ->check(CLI::PositiveNumber);
-    raypath->add_option("--max-steps", rp.maxSteps, "Hard cap on steps (reached: reported)")
+    raypath
+        ->add_option("--max-steps", rp.maxSteps,
+                     "Cap on accepted + rejected steps (default 10000000); reaching it is an "
+                     "error")
         ->check(CLI::PositiveNumber);
-    raypath->add_option("--wavelength", rp.wavelength, "Wavelength, nm")
+    raypath
+        ->add_option("--wavelength", rp.wavelength,
+                     "Wavelength, nm (default 550; matters for dispersive fields)")
         ->check(CLI::Range(360.0, 830.0));
     raypath->add_option("--inversion", rp.inversions,
                         "atmosphere: a layer BASE,TOP,DT[,BLEND] (m, m, K, m) warmer by DT "
@@ -155,7 +208,7 @@ int main(int argc, char** argv) {
                         "repeatable");
     raypath->add_flag("--json", rp.json, "Print the result as JSON");
 
-    // Command-line syntax errors exit 2 (README "Input rules"); CLI11's own codes (105 for a
+    // Command-line syntax errors exit 2 (docs/cli.md); CLI11's own codes (105 for a
     // bad option value, 106 for a missing one, ...) would tell a farm wrapper nothing stable.
     try {
         app.parse(argc, argv);

@@ -32,7 +32,7 @@ void applyFrameSettings(Scene& scene, const std::string& input, const FrameSetti
     s.progress = cli.quiet ? Progress::Mode::Quiet : Progress::Mode::Auto;
 }
 
-// Measured on assets/scenes/fog_sphere.toml (README, "Speed and accuracy"): the fastest measured
+// Measured on assets/scenes/fog_sphere.toml (docs/performance.md): the fastest measured
 // setting within 2.5× of relMSE 1e-1 (draft), 1e-2 (preview), 1e-3 (final); the photon preview
 // and final are the best measured (relMSE 0.036 and 0.011). {name, spp, photons, k, path spp}.
 const std::vector<QualityPreset>& qualityPresets() {

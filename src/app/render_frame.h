@@ -29,8 +29,9 @@ struct FrameSettings {
 // framed for a new aspect ratio). Throws MirageError for a malformed --resolution.
 void applyFrameSettings(Scene& scene, const std::string& input, const FrameSettings& cli);
 
-// `--quality draft|preview|final`: points on the measured speed↔accuracy curves (README,
-// "Speed and accuracy"). The photon integrator takes spp, photons and k; the others spp only.
+// `--quality draft|preview|final`: points on the measured speed↔accuracy curves
+// (docs/performance.md, "Quality presets"). The photon integrator takes spp, photons and k; the
+// others spp only.
 struct QualityPreset {
     std::string name;
     int spp = 0;            // photon integrator: samples per pixel

@@ -1,6 +1,6 @@
 // `mirage slab`: total reflectance and transmittance of a plane-parallel slab by photon tracing,
 // the instrument that checks the photon pass's transport against published adding-doubling
-// values (Prahl's iadpython tests; /work/shared/data/README.md).
+// values (Prahl's iadpython tests; ../shared/data/README.md).
 //
 //   mirage slab --albedo A --tau T [--g G] [--n N] [--n-outside M] [--incidence normal|diffuse]
 //               [--photons P] [--seed S] [--max-events E] [--threads K] [--json] [-q]

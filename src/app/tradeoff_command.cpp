@@ -1,4 +1,4 @@
-// `mirage tradeoff`: the speed↔accuracy instrument (DESIGN.md, "Speed against accuracy").
+// `mirage tradeoff`: the speed↔accuracy instrument (docs/design.md, "Speed against accuracy").
 //
 //   mirage tradeoff SCENE.toml [--reference ref.exr] --vary photons=1e4,1e5,1e6
 //                   [--vary estimate=beam,point] [--vary k=16,64,256] [--set key=value …]

@@ -13,12 +13,13 @@ namespace mirage {
 
 namespace air {
 // Cauchy dispersion of the refractivity at the reference density: n(λ) − 1 = a(1 + b/λ²),
-// λ in µm, with the values the issue prescribes (from the seed paper): a = 29.79e−5,
+// λ in µm, with the values of Gutierrez et al. 2005: a = 29.79e−5,
 // b = 5.67e−5 µm². Note on realism: the textbook Cauchy coefficients for air at 0 °C and
 // 101325 Pa are A = 28.79e−5, B = 5.67e−3 µm² (B = 5.67e−11 cm²), and Edlén's 1966 formula (15 °C)
 // gives (n−1)(400 nm)/(n−1)(700 nm) = 1.0252, which B = 5.67e−3 µm² reproduces (1.0239) while the
-// prescribed b = 5.67e−5 µm² gives 1.00024: about a hundredth of the real dispersion. a = 29.79e−5
-// is 3.5 % above the textbook 28.79e−5. Kept as prescribed; air_index_test.cpp measures both.
+// paper's b = 5.67e−5 µm² gives 1.00024: about a hundredth of the real dispersion. a = 29.79e−5
+// is 3.5 % above the textbook 28.79e−5. Kept as the paper gives them; air_index_test.cpp
+// measures both.
 constexpr double kCauchyA = 29.79e-5;
 constexpr double kCauchyBum2 = 5.67e-5;
 // The reference state of those coefficients: 0 °C, 101325 Pa.

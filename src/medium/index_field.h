@@ -1,6 +1,6 @@
 // Refractive-index fields n(x, λ) for curved light (Gutierrez et al. 2005, §4): the index, its
 // gradient, and bounds on |∇n| per region so that the straight-line code runs wherever the index
-// is constant ("model only what the scene requires", DESIGN.md).
+// is constant ("model only what a scene requires", docs/design.md).
 //
 // Double precision throughout: the index of air differs from 1 by ~3e-4, and a path stepper run
 // at tolerances down to 1e-14 needs the digits. Positions in metres, wavelengths in nanometres,
@@ -43,7 +43,7 @@ public:
     }
 };
 
-// The analytic validation profile n = n0 + k·(x − origin)·axis (the n = n0 + k·y with
+// The analytic validation profile n = n0 + k·(x − origin)·axis (n = n0 + k·y with
 // axis = +y). Not dispersive. Rays in it are catenaries (linear_profile_exact.h).
 class LinearIndexField final : public IndexField {
 public:

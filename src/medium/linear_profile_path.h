@@ -8,8 +8,8 @@
 //   (r − r0)·a = (n(l) − n(0)) / k = l (u + u0) / (n + n(0)),
 //   r⊥ − r0⊥  = w · I,   I = ∫ dl/n = (asinh(u/C) − asinh(u0/C)) / k,
 //   OPL = ∫ n dl = ½ [l·n + u0·l (u + u0)/(n + n(0))] + ½ C²·I.
-// Eliminating l: n = C cosh(k (s − s0)/C) along the distance s across the axis — the catenary
-// of the issue. Every expression is arranged so that k → 0 loses no digits (no division of
+// Eliminating l: n = C cosh(k (s − s0)/C) along the distance s across the axis — the catenary.
+// Every expression is arranged so that k → 0 loses no digits (no division of
 // nearly equal differences by k), and evaluated in long double.
 #pragma once
 

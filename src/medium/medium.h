@@ -2,7 +2,7 @@
 // transform, with a majorant grid for tracking; or a homogeneous medium, a shader whose
 // components are all constants over an explicit object-space box. It only reports
 // coefficients and majorants; free-flight sampling and transmittance are written once, in
-// transport/ (which takes a closed form for homogeneous media, DESIGN.md).
+// transport/ (which takes a closed form for homogeneous media, docs/design.md).
 #pragma once
 
 #include <array>
@@ -54,7 +54,7 @@ public:
     bool emissive() const { return mShader.emission.has_value(); }
     // Some component re-emits absorbed light (Γ > 0): the Γ roulette applies (reemission.h).
     bool fluorescent() const { return mFluorescent; }
-    // "Model only what a scene requires" (DESIGN.md): every component is linear with
+    // "Model only what a scene requires" (docs/design.md): every component is linear with
     // wavelength-independent σa and σs and none fluoresces, so σ is one number per component.
     // Then eval() computes one value per component instead of one per wavelength, and
     // Context::setWavelengths() keeps the constants it set once instead of re-sampling σ(λ) for

@@ -45,7 +45,7 @@ struct MediumComponent {
     // wavelength drawn from the Gaussian η(λ) of the given peak and FWHM, restricted to
     // λ ≥ λ_absorbed (Stokes shift) unless antiStokes.
     float quantumEfficiency = 0;  // Γ, 0..1
-    float emissionPeakNm = 685;   // chlorophyll a (seed paper; field data 683–687 nm)
+    float emissionPeakNm = 685;   // chlorophyll a (Gutierrez et al. 2005; field data 683–687 nm)
     float emissionFwhmNm = 25;
     bool antiStokes = false;
     bool fluorescent() const { return quantumEfficiency > 0.f; }

@@ -43,7 +43,7 @@ struct PhotonPassSettings {
     // When the render pass computes single scattering by shadow rays, the first interaction
     // of each photon must not be stored, or direct light would be counted twice.
     bool storeFirstInteraction = false;
-    // Curved light (issue 5): with a field, every flight follows its Fermat path
+    // Curved light (docs/curved-light.md): with a field, every flight follows its Fermat path
     // (PhotonWalk::flyCurved) over at most curvedMaxArc metres of path, then goes on straight.
     // Shadow rays do not follow such paths, so the caller then sets storeFirstInteraction, and
     // it also stores light arriving straight from a light at a diffuse surface (global map).

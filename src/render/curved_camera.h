@@ -10,7 +10,7 @@
 //
 // Paths scattered off the camera ray stay straight in the single and volpath integrators, and so
 // do their shadow rays. The photon integrator bends photons too (photon/photon_pass.h) and then
-// takes direct light from the photon maps, as the seed does where paths curve.
+// takes direct light from the photon maps, as Gutierrez et al. 2005 do where paths curve.
 #pragma once
 
 #include <memory>

@@ -1,4 +1,4 @@
-// [[material]] and [[shape]] tables. Keys (README.md, "Surfaces"):
+// [[material]] and [[shape]] tables. Keys (docs/scene-file.md, "Surfaces"):
 //   material: name, type = diffuse | mirror | dielectric; diffuse: reflectance (number or RGB,
 //             default 0.8), emission (radiance W·m⁻²·sr⁻¹·nm⁻¹, number or working-space RGB);
 //             mirror: reflectance (default 1); dielectric: ior (A, default 1.5), cauchy_b (B in

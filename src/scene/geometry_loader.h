@@ -1,4 +1,5 @@
-// Scene-file surfaces: [[material]] and [[shape]] tables → GeometryScene (README.md, "Surfaces").
+// Scene-file surfaces: [[material]] and [[shape]] tables → GeometryScene
+// (docs/scene-file.md, "Surfaces").
 #pragma once
 
 #include <functional>

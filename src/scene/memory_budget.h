@@ -36,7 +36,7 @@ struct MemoryEstimate {
 
 // Bytes per stored volume photon over the whole photon pipeline (pass with its per-block lists,
 // kd-tree, per-photon XYZ/phase/radius, beam disc BVH), measured as peak resident memory
-// against photon count (README, "Killed renders and memory").
+// against photon count (docs/hostile-input.md, "Killed renders, sequences and memory").
 constexpr uint64_t kBytesPerStoredPhoton = 112;
 // Per pixel: the film's sums (Film::Pixel, 40 B), the developed image (16 B), the output copy
 // (16 B), the partial file's staging record (56 B) and a resumed film's copy (40 B).

@@ -1,4 +1,4 @@
-// Scene files (TOML) → Scene. The schema is documented in README.md ("Scene files"); every
+// Scene files (TOML) → Scene. The schema is documented in docs/scene-file.md; every
 // table is read through TableReader, so unknown keys, wrong types and out-of-range values are
 // errors naming the file, line and column.
 #include <algorithm>
@@ -434,7 +434,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
             }
         }
         // Grid expressions (OpenVDB AX): the shader's first, over its slots, then the volume's,
-        // over the file's grid names (README "Grid expressions").
+        // over the file's grid names (docs/scene-file.md, "Grid expressions").
         addShaderExpression(shader, &rec);
         if (v.has("expression")) {
             const std::string code = v.getString("expression");

@@ -5,8 +5,8 @@
 // 1980; coefficients as in Hairer, Nørsett & Wanner, Solving ODEs I, table II.5.2): seven
 // stages, the last one reused as the first of the next step (FSAL), fifth-order solution kept,
 // the fourth-order companion used only for the error estimate that adapts the step. Forward
-// Euler is there for comparison (the seed's figure 1). Where the field promises a straight
-// stretch (∇n = 0, IndexField::straightDistance) the stretch is one exact chord.
+// Euler is there for comparison (figure 1 of Gutierrez et al. 2005). Where the field promises a
+// straight stretch (∇n = 0, IndexField::straightDistance) the stretch is one exact chord.
 //
 // Every accepted step is handed to a visitor as a chord (from → to): the renderer tests chords
 // against surfaces and accumulates optical depth along them; `mirage raypath` only counts.

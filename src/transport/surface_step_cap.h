@@ -1,4 +1,4 @@
-// The step cap near surfaces (issue 5: "a step cap near surfaces"), the rule that sets
+// The step cap near surfaces, the rule that sets
 // CurvedPathSettings::stepCap when a scene has surfaces.
 //
 // Every accepted step is a chord, and a surface hit is found on the chord: a chord of length h
@@ -27,7 +27,7 @@
 // error (sagitta of max_step / sin α).
 //
 // Cost: one ray query against the surfaces and one field evaluation per trial step of the path
-// (README: "Curved light in scenes" gives the measured cost).
+// (docs/curved-light.md, "Curved light in scenes", gives the measured cost).
 #pragma once
 
 #include <algorithm>

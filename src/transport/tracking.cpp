@@ -85,7 +85,7 @@ SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float t
     // Optical depths add over superposed media, so T is the product of each medium's
     // transmittance. Homogeneous media have Beer–Lambert's closed form, exp(−σt(λ) ℓ) with ℓ
     // the length of the ray inside the box (t is world metres in object space too, see
-    // Medium::toObject): exact and noiseless (DESIGN.md, "homogeneous closed-form
+    // Medium::toObject): exact and noiseless (docs/design.md, "homogeneous closed-form
     // transmittance where a medium is constant").
     SampledSpectrum tau(0.f);
     bool heterogeneous = false;

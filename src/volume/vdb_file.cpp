@@ -298,12 +298,12 @@ nanovdb::GridHandle<nanovdb::HostBuffer> readNanoVdbGrid(const std::string& path
     return handle;
 }
 
-// The voxel rule (README "Input rules"), in leaves (active and inactive values: the sampler
-// reads both) and tiles: NaN and negative values (−∞ included) become 0, +∞ and values above
-// kMaxVoxelValue become kMaxVoxelValue. Fog volumes are densities: a negative σ would make
-// free-flight sampling meaningless, a NaN poisons every pixel it reaches, and an unbounded
-// value overflows σ = scale × value × cross-section. Counts are of voxels (a tile counts all
-// of its voxels).
+// The voxel rule (docs/hostile-input.md, "Input rules"), in leaves (active and inactive values: the
+// sampler reads both) and tiles: NaN and negative values (−∞ included) become 0, +∞ and values
+// above kMaxVoxelValue become kMaxVoxelValue. Fog volumes are densities: a negative σ would make
+// free-flight sampling meaningless, a NaN poisons every pixel it reaches, and an unbounded value
+// overflows σ = scale × value × cross-section. Counts are of voxels (a tile counts all of its
+// voxels).
 struct SanitizeCounts {
     uint64_t zeroed = 0, clamped = 0;
     uint64_t total() const { return zeroed + clamped; }

@@ -57,7 +57,7 @@ VdbFileInfo inspectVdbFile(const std::string& path);
 // (float, half or double storage; Blosc/zip) or a NanoVDB file (.nvdb) and returns it as a
 // NanoVDB float grid. Voxels that are NaN or negative are set to 0, voxels that are +inf or
 // above kMaxVoxelValue are clamped to it, and both are reported by one warning per grid naming
-// the file, grid and counts (the documented rule, see README "Input rules").
+// the file, grid and counts (the documented rule, see docs/hostile-input.md, "Input rules").
 // Throws MirageError if the file or grid is missing, or the grid is not a scalar fog volume
 // (level set, vector, bool or integer grid, background other than 0, non-affine transform).
 FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName);

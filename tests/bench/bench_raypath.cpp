@@ -1,5 +1,5 @@
-// The speed↔accuracy trade of the Fermat path stepper, measured (the seed's figure 1: Gutierrez
-// et al. 2005, error and time of Dormand–Prince RK5(4)7M against tolerance, and against forward
+// The speed↔accuracy trade of the Fermat path stepper, measured (figure 1 of Gutierrez
+// et al. 2005: error and time of Dormand–Prince RK5(4)7M against tolerance, and against forward
 // Euler). Linear profile n = 1 + k·y, k ∈ {±0.1, ±0.05, ±0.01}, three start directions, 10 m of
 // arc length; the error is the distance of the end point from the exact catenary
 // (medium/linear_profile_path.h). RK45 runs tolerances 1e−3 … 1e−14, Euler fixed steps

@@ -2,8 +2,8 @@
 // the corpus replay test (tests/unit/fuzz_corpus_test.cpp, every build) share, so a crash the
 // fuzzer found stays caught by ctest once its input joins tests/fuzz/corpus/.
 //
-// Contract under test (DESIGN.md, "Errors"): arbitrary bytes given as a scene file or as a VDB
-// file either load or raise MirageError; anything else escaping (another exception type, a
+// Contract under test (docs/design.md, "Conventions"): arbitrary bytes given as a scene file or
+// as a VDB file either load or raise MirageError; anything else escaping (another exception type, a
 // crash, undefined behaviour under the sanitizers) is a finding.
 #pragma once
 

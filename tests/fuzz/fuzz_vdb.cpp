@@ -1,7 +1,7 @@
 // libFuzzer target: arbitrary bytes as a .vdb/.nvdb file through Mirage's VDB path (header and
 // offset scan, grid listing, grid loading with conversion to NanoVDB). Built by -DMIRAGE_FUZZ=ON
 // with clang; run by pipeline/fuzz.sh with a memory limit, because OpenVDB allocates what a
-// corrupt compressed block claims (see README, "Hostile input and sanitizers").
+// corrupt compressed block claims (see docs/hostile-input.md, "Hostile input and sanitizers").
 #include <cstddef>
 #include <cstdint>
 

@@ -1,4 +1,4 @@
-// The extremes matrix, slab limits (issue 6), through `mirage slab` (the photon walk of the
+// The extremes matrix, slab limits, through `mirage slab` (the photon walk of the
 // photon pass between two faces):
 //   thin slab, τ → 0, normal incidence, n = 1, isotropic phase, albedo a: single scattering
 //     R₁ = (a/2) ∫₀¹ μ/(1 + μ) (1 − e^{−τ(1 + 1/μ)}) dμ (scatter at depth τ' with e^{−τ'} dτ',

@@ -1,4 +1,4 @@
-// The extremes matrix (issue 6): every knob pushed to its end must leave the image finite,
+// The extremes matrix: every knob pushed to its end must leave the image finite,
 // the energy within what a furnace allows, the time bounded (caps counted), and the answer on
 // the closed form where one exists.
 //

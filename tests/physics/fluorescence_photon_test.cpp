@@ -1,6 +1,6 @@
 // Fluorescence in the photon map against the reference path tracer. Scene: a 2 m cube of
 // chlorophyll-rich sea water (pure water + 30 mg/m³ chlorophyll a, a bloom, with Γ = 0.1, the
-// top of the seed paper's range, band 685 nm / FWHM 25 nm) lit from above by a blue sun
+// top of Gutierrez et al. 2005's range, band 685 nm / FWHM 25 nm) lit from above by a blue sun
 // (400–500 nm only), seen from the front. The photon pass stores every re-emission at its new
 // wavelength with the isotropic lobe (photon_pass.h, volume_estimate.h); volpath samples the
 // inelastic source backwards (transport/reemission.h). Both carry energy, so both scale a

@@ -1,5 +1,5 @@
 // `mirage slab` against known answers: the adding-doubling rows of Prahl's iadpython tests
-// (/work/shared/data/README.md), Fresnel reflection of a clear dielectric slab, Beer–Lambert
+// (../shared/data/README.md), Fresnel reflection of a clear dielectric slab, Beer–Lambert
 // and the exponential integral for a pure absorber, and thread-count independence. Each run
 // goes through the CLI and its JSON, so the command itself is what is tested.
 //

@@ -1,5 +1,5 @@
 // The refractive index of air (medium/air_index.h): US Standard Atmosphere 1976 check values,
-// Gladstone–Dale against the temperature law, the dispersion the prescribed Cauchy b gives
+// Gladstone–Dale against the temperature law, the dispersion the paper's Cauchy b gives
 // against Edlén 1966, ∇n of the stratified field against finite differences, and the inferior
 // mirage: over a road 30 K hotter than the air above, a ray launched slightly downward from
 // 1–10 m turns up before it reaches the ground, at the height Snell's invariant predicts.
@@ -48,12 +48,12 @@ double edlen(double lambdaNm) {
 
 TEST(AirIndex, PrescribedCauchyBGivesAHundredthOfEdlenDispersion) {
     const double edlenRatio = edlen(400) / edlen(700);
-    const double issueRatio = airRefractivity(400) / airRefractivity(700);
+    const double paperRatio = airRefractivity(400) / airRefractivity(700);
     const double textbookRatio = airRefractivity(400, 28.79e-5, 5.67e-3) /
                                  airRefractivity(700, 28.79e-5, 5.67e-3);
     EXPECT_NEAR(edlenRatio, 1.0252, 1e-4);
     EXPECT_NEAR(textbookRatio - 1, edlenRatio - 1, 0.1 * (edlenRatio - 1));
-    EXPECT_LT(issueRatio - 1, 0.02 * (edlenRatio - 1));  // as the README says
+    EXPECT_LT(paperRatio - 1, 0.02 * (edlenRatio - 1));  // as docs/curved-light.md says
     EXPECT_NEAR(edlen(550), air::kStamN0 - 1, 1e-8);     // Stam & Languenou's n0
 }
 

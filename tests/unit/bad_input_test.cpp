@@ -1,4 +1,4 @@
-// The bad-input matrix (issue 6, "Hostile input"): every broken file, wrong grid and absurd
+// The bad-input matrix (docs/hostile-input.md): every broken file, wrong grid and absurd
 // scene value must give one MirageError that names the file (and line, for scenes), the key or
 // grid, and what was expected, in a single bounded line; none may crash. Through the library
 // (loadScene, loadFloatGrid) for speed; a few cases through the `mirage` binary for the exit

@@ -1,5 +1,5 @@
-// What `mirage info FILE.vdb` and a render print for a person: every grid field the
-// vertical-slice issue lists (name, type, class, voxel size, index and world bounds, active
+// What `mirage info FILE.vdb` and a render print for a person: every grid field a person
+// needs (name, type, class, voxel size, index and world bounds, active
 // voxels, memory, transform) with the active-voxel count and index bounds agreeing with
 // OpenVDB's own `vdb_print`; the physics terms and why; the plain progress log when stderr is
 // not a terminal; the end-of-frame summary (phases, samples, peak memory); and silence with

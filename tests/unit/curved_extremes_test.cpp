@@ -1,4 +1,4 @@
-// The curved-path cells of the extremes matrix (issue 6): the path stepper (transport/
+// The curved-path cells of the extremes matrix: the path stepper (transport/
 // curved_path.h) at the ends of its knobs and fields, against the exact path in the linear
 // profile n = n0 + k·y (medium/linear_profile_path.h, a catenary in the ray's plane).
 //   - tolerance 1e−3 and 1e−14: the end point within the tolerance of the exact one (1e−14 is
@@ -36,7 +36,7 @@ struct Worst {
 };
 
 // The worst end-point error against the exact path over k ∈ ±{0.01, 0.05, 0.1} and three start
-// directions, 10 m each (the paths of the README's tolerance table).
+// directions, 10 m each (the paths of the tolerance table in docs/curved-light.md).
 Worst worstOverProfiles(double tolerance) {
     Worst w;
     const Vec3d o(0, 0.5, 0);

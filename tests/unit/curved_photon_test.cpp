@@ -1,6 +1,6 @@
-// Photons on curved paths (issue 5): with a [refraction] field the photon pass follows Fermat
-// paths chord by chord (PhotonWalk::flyCurved), and the render pass takes direct light from the
-// photon maps. A collimated beam bent by n = n0 + k·y lands where the exact catenary
+// Photons on curved paths (docs/curved-light.md): with a [refraction] field the photon pass follows
+// Fermat paths chord by chord (PhotonWalk::flyCurved), and the render pass takes direct light from
+// the photon maps. A collimated beam bent by n = n0 + k·y lands where the exact catenary
 // (linear_profile_path.h) meets the ground; a field too weak to bend anything gives the same
 // photon-map image as straight photons with shadow rays, within the noise.
 #include <gtest/gtest.h>

@@ -1,8 +1,7 @@
-// The hard cap on ODE steps per curved path (CurvedPathSettings::maxSteps, the scene's
-// [refraction] max_steps) is reported, never silent (issue 6: "a hard cap on path length and
-// ODE steps, reported when hit"): a photon flight or a camera ray stopped by it goes on straight
-// and is counted in the capped paths of the photon pass, of the render summary and of the EXR
-// metadata; the image stays finite.
+// The hard cap on ODE steps per curved path (CurvedPathSettings::maxSteps, the scene's [refraction]
+// max_steps) is reported, never silent (docs/curved-light.md, "The step cap"): a photon flight or a
+// camera ray stopped by it goes on straight and is counted in the capped paths of the photon pass,
+// of the render summary and of the EXR metadata; the image stays finite.
 #include <gtest/gtest.h>
 
 #include <cmath>

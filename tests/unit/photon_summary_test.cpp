@@ -1,6 +1,6 @@
 // `mirage render --integrator photon` reports its two passes: the summary line and the EXR
 // header carry photons traced and stored, photon-pass seconds and rate, map and disc-BVH build
-// times and the estimate time (issue 3, "Performance"). A 16×16 fog sphere keeps it short.
+// times and the estimate time (docs/cli.md, "mirage render"). A 16×16 fog sphere keeps it short.
 #include <gtest/gtest.h>
 
 #include <fstream>

@@ -209,7 +209,7 @@ TEST(Tradeoff, QualityPresetsSetSamplesUnlessOverridden) {
     EXPECT_EQ(photonsOf("--quality draft --set render.photons=2000"), 2000);
 
     std::string out;
-    // A command-line error exits 2 (README "Input rules"), with the option named.
+    // A command-line error exits 2 (docs/cli.md), with the option named.
     const int code =
         test::runMirage("render '" + scene + "' --quality best -o '" + dir + "/x.exr'", &out);
     EXPECT_EQ(code, 2) << out;

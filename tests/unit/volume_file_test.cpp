@@ -292,7 +292,7 @@ TEST(VolumeFile, TruncatedCopiesGiveClearErrors) {
         SCOPED_TRACE(copy);
         expectBadFile(copy, "truncated");
     }
-    // The message the README promises, with both byte counts.
+    // The message docs/hostile-input.md promises, with both byte counts.
     const std::string half = dir + "/smoke1_" + std::to_string(bytes.size() / 2) + ".vdb";
     expectFileError([&] { validateVdbFile(half); }, half,
                     "grid 'density' ends at byte " + std::to_string(bytes.size()) +

@@ -171,3 +171,58 @@ TEST(Tracking, SpectralTrackingWeightsAreUnbiasedAtEveryWavelength) {
         EXPECT_LT(se, 0.02 + 0.05 * expected) << w.lambda[size_t(k)] << " nm";
     }
 }
+
+namespace {
+
+// `count` grid media: count − 1 thin boxes off the ray (a row along z from z = 2 m), then one
+// dense box (σa = 3/m) on the ray, last in the context.
+std::vector<std::unique_ptr<Medium>> boxesLastDense(int count) {
+    std::vector<std::unique_ptr<Medium>> media;
+    for (int i = 0; i + 1 < count; ++i)
+        media.push_back(makeMedium([](int, int, int) { return 1.f; }, 0.1f, 0.f,
+                                   Transform::translate(Vec3d(0.0, 0.0, 2.0 + 1.5 * i))));
+    media.push_back(makeMedium([](int, int, int) { return 1.f; }, 3.f, 0.f));
+    return media;
+}
+
+}  // namespace
+
+TEST(Tracking, EveryVolumeOfManyIsTracked) {
+    // The last of 33 (and of 300) volumes is as opaque to ratio tracking and to delta tracking
+    // as it is alone: T = e^{−σL} through it, and the fraction of free flights that collide
+    // in it is 1 − e^{−σL}.
+    for (int count : {33, 300}) {
+        auto media = boxesLastDense(count);
+        std::vector<const Medium*> ptrs;
+        for (auto& m : media) ptrs.push_back(m.get());
+        TrackingContext ctx(ptrs);
+        Vec3 a(float(2 * kH), float(16 * kH), float(16 * kH));
+        const float L = float(27 * kH);
+        const Ray r{a, Vec3(1, 0, 0), L};
+        const double exact = std::exp(-3.0 * L);
+        const int n = 4000;
+        double sumT = 0, sumT2 = 0;
+        int collided = 0, lastMedium = 0;
+        for (int i = 0; i < n; ++i) {
+            Sampler s(23, uint64_t(i), 0);
+            ctx.setWavelengths(SampledWavelengths::sampleVisible(s.get1D()));
+            const double T = transmittance(ctx, r, L, s)[0];
+            sumT += T;
+            sumT2 += T * T;
+            trackCollisions(ctx, r, L, s, [&](const Collision& c) {
+                if (s.get1D() < eventProbabilities(c).pAbsorb) {
+                    ++collided;
+                    lastMedium += c.medium == count - 1;
+                    return Track::Stop;
+                }
+                return Track::Continue;
+            });
+        }
+        const double mean = sumT / n;
+        const double se = std::sqrt(std::max(0.0, sumT2 / n - mean * mean) / n);
+        EXPECT_NEAR(mean, exact, 4 * se + 1e-4) << count << " volumes";
+        const double p = 1.0 - exact;
+        EXPECT_NEAR(double(collided) / n, p, 4 * std::sqrt(p * (1 - p) / n)) << count;
+        EXPECT_EQ(lastMedium, collided) << count << " volumes";
+    }
+}

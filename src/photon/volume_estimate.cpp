@@ -52,7 +52,7 @@ float ScatteringProbe::reemissionDensity(const Vec3& worldP, float lambdaInNm) {
 }
 
 VolumePhotons::VolumePhotons(PhotonList photons, const std::vector<const Medium*>& media)
-    : mMap(std::move(photons)) {
+    : mMap(std::move(photons)), mMedia(media) {
     const size_t n = mMap.size();
     mFluxXyz.resize(n);
     for (size_t i = 0; i < n; ++i)

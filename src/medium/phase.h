@@ -21,15 +21,31 @@ public:
     }
     float eval(const Vec3& wi, const Vec3& wo) const { return eval(dot(wi, wo)); }
 
+    // The inverse of the HG CDF in cosθ at u ∈ [0, 1]: with s = (1 − g²)/(1 + g a), a = 2u − 1,
+    //     cosθ = (1 + g² − s²) / (2g)
+    //          = [a (1 + g²) + (g/2)((a² + 3) + g² (a² − 1))] / (1 + g a)²,
+    // the second form expanded so that nothing cancels as g → 0 (the first loses ~ε/g, a
+    // visible error below |g| ≈ 1e-3, and divides by zero at g = 0, where the second is a,
+    // uniform in cosθ). The second cancels instead near a = −1 when g → 1 (its numerator is
+    // −(1 − g)²), where the first is exact: each is used where it is stable. The expanded form
+    // takes u ↦ 1 − u (as uniform), so that g = 0 gives the 1 − 2u it always did.
+    static float sampleCosTheta(float g, float u) {
+        float cosTheta;
+        if (std::abs(g) < 0.1f) {
+            const float a = 1.f - 2.f * u;
+            const float d = 1.f + g * a;
+            cosTheta = (a * (1.f + g * g) + 0.5f * g * ((a * a + 3.f) + g * g * (a * a - 1.f))) /
+                       (d * d);
+        } else {
+            const float sq = (1.f - g * g) / (1.f - g + 2.f * g * u);
+            cosTheta = (1.f + g * g - sq * sq) / (2.f * g);
+        }
+        return clamp(cosTheta, -1.f, 1.f);
+    }
+
     // Samples wo given wi by inverting the HG CDF in cosθ; returns wo, *pdf = p(wi, wo).
     Vec3 sample(const Vec3& wi, float u1, float u2, float* pdf) const {
-        float cosTheta;
-        if (std::abs(mG) < 1e-3f) {
-            cosTheta = 1.f - 2.f * u1;
-        } else {
-            float sq = (1.f - mG * mG) / (1.f - mG + 2.f * mG * u1);
-            cosTheta = clamp((1.f + mG * mG - sq * sq) / (2.f * mG), -1.f, 1.f);
-        }
+        const float cosTheta = sampleCosTheta(mG, u1);
         float sinTheta = safeSqrt(1.f - cosTheta * cosTheta);
         float phi = 2.f * kPi * u2;
         Frame f(wi);

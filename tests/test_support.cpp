@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -137,7 +138,7 @@ RenderSettings smallRenderSettings(int spp, uint64_t seed, int width, int height
 
 ImageError compareImages(const Image& image, const Image& ref) {
     constexpr int B = 4;
-    double sumR = 0, sumI = 0, sq = 0, blockSq = 0;
+    double sumR[3] = {0, 0, 0}, sumI[3] = {0, 0, 0}, sq[3] = {0, 0, 0}, blockSq[3] = {0, 0, 0};
     int n = 0, blocks = 0;
     for (int by = 0; by < ref.height / B; ++by)
         for (int bx = 0; bx < ref.width / B; ++bx) {
@@ -150,23 +151,32 @@ ImageError compareImages(const Image& image, const Image& ref) {
                     covered &= r[3] >= 0.5f;
                     if (r[3] < 0.5f) continue;
                     for (int c = 0; c < 3; ++c) {
-                        sumR += r[c];
-                        sumI += v[c];
-                        sq += (v[c] - r[c]) * (v[c] - r[c]);
+                        sumR[c] += r[c];
+                        sumI[c] += v[c];
+                        sq[c] += (v[c] - r[c]) * (v[c] - r[c]);
                         blockR[c] += r[c];
                         blockI[c] += v[c];
-                        ++n;
                     }
+                    ++n;
                 }
             if (!covered) continue;
             for (int c = 0; c < 3; ++c) {
                 double d = (blockI[c] - blockR[c]) / (B * B);
-                blockSq += d * d;
-                ++blocks;
+                blockSq[c] += d * d;
             }
+            ++blocks;
         }
-    const double mean = sumR / n;
-    return {std::sqrt(sq / n) / mean, std::sqrt(blockSq / blocks) / mean, (sumI - sumR) / sumR};
+    ImageError e{0, 0, 0, {0, 0, 0}, 0};
+    const double totalR = sumR[0] + sumR[1] + sumR[2], totalI = sumI[0] + sumI[1] + sumI[2];
+    for (int c = 0; c < 3; ++c) {
+        const double mean = sumR[c] / n;
+        e.relRmse = std::max(e.relRmse, std::sqrt(sq[c] / n) / mean);
+        e.blockRmse = std::max(e.blockRmse, std::sqrt(blockSq[c] / blocks) / mean);
+        e.channelBias[c] = (sumI[c] - sumR[c]) / sumR[c];
+        if (std::abs(e.channelBias[c]) > std::abs(e.bias)) e.bias = e.channelBias[c];
+        e.chromaticity = std::max(e.chromaticity, std::abs(sumI[c] / totalI - sumR[c] / totalR));
+    }
+    return e;
 }
 
 }  // namespace mirage::test

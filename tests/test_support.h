@@ -68,11 +68,18 @@ std::unique_ptr<Medium> gridMedium(const std::function<float(int, int, int)>& va
 RenderSettings smallRenderSettings(int spp, uint64_t seed, int width = 32, int height = 32);
 
 // An image against a reference over the pixels the reference covers (alpha ≥ 0.5: background
-// and fringes excluded), in scene-linear RGB, relative to the reference's mean.
+// and fringes excluded), in scene-linear RGB, each channel on its own relative to that
+// channel's mean in the reference: an error in one colour is not diluted by the other two (a
+// sum over channels would pass a red image with the right brightness for a grey reference).
 struct ImageError {
-    double relRmse;    // √(mean (I − R)²) / mean R over the covered pixels and channels
+    // The worst channel of each measure.
+    double relRmse;    // √(mean (I_c − R_c)²) / mean R_c over the covered pixels
     double blockRmse;  // the same on the means of 4×4-pixel blocks wholly covered
-    double bias;       // (mean I − mean R) / mean R over the covered pixels
+    double bias;       // (mean I_c − mean R_c) / mean R_c, the channel of largest magnitude
+    double channelBias[3];
+    // The largest |c_I − c_R| of the mean chromaticities c = (R, G, B) / (R + G + B): a shift
+    // of colour at the same brightness.
+    double chromaticity;
 };
 ImageError compareImages(const Image& image, const Image& ref);
 

@@ -107,11 +107,7 @@ ShapeInfo shapeInfo(ShapeType type, int material, int interiorMedium) {
     return info;
 }
 
-float maxAbs(const Vec3& p) { return std::max(std::abs(p.x), std::max(std::abs(p.y), std::abs(p.z))); }
-
 }  // namespace
-
-float surfaceEpsilon(const Vec3& p) { return 2e-5f * std::max(1.f, maxAbs(p)); }
 
 Ray spawnRay(const SurfaceHit& hit, const Vec3& dir, float tMax) {
     float eps = surfaceEpsilon(hit.p);

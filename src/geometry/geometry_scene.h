@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/region.h"
+#include "core/surface_epsilon.h"
 #include "core/transform.h"
 #include "geometry/material.h"
 
@@ -123,8 +124,5 @@ private:
 // A ray leaving a surface hit along dir, its origin pushed off the surface to dir's side by a
 // few ulps of the position's magnitude, so that it does not hit the surface it starts on.
 Ray spawnRay(const SurfaceHit& hit, const Vec3& dir, float tMax = kInfinity);
-// The distance to keep short of a target point that lies on a surface (a quad light on a
-// ceiling), for occluded() from a spawned origin.
-float surfaceEpsilon(const Vec3& p);
 
 }  // namespace mirage

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/surface_epsilon.h"
 #include "medium/phase.h"
 #include "spectrum/spectrum_sampling.h"
 
@@ -269,10 +270,13 @@ public:
     }
     float emittedPower(const Bounds3&) const override { return mPower; }
     // Constant radiance: the origin is uniform over the area, the direction cosine-weighted
-    // about the normal (dΦ = L cosθ dA dω), so the photon weight is exactly 1.
+    // about the normal (dΦ = L cosθ dA dω), so the photon weight is exactly 1. The origin is
+    // pushed off the quad to its emitting side, as a ray spawned at a surface is: a light
+    // lying on a ceiling would otherwise send photons that hit the ceiling at t ≈ 0.
     bool emitPhoton(const Bounds3&, Sampler& s, PhotonEmission* out) const override {
         float u1 = s.get1D(), u2 = s.get1D();
-        out->origin = mCorner + mU * u1 + mV * u2;
+        const Vec3 q = mCorner + mU * u1 + mV * u2;
+        out->origin = q + mN * surfaceEpsilon(q);
         float u3 = s.get1D(), u4 = s.get1D();
         out->direction = sampleCosineHemisphere(mN, u3, u4);
         out->lambda = mLambda.sample(s.get1D());

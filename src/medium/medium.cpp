@@ -165,7 +165,7 @@ void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantRes
             if (!grid) mMajorant.addConstant(scale);
             else mMajorant.addGrid(*grid, scale);
         }
-        mPhases.emplace_back(c.phase, c.g);
+        mPhases.emplace_back(c.phase, c.g, c.g2, c.phaseWeight);
         greyAll &= c.kind != ComponentKind::Chlorophyll && c.sigmaA.isConstant() &&
                    c.sigmaS.isConstant() && !c.fluorescent();
         mFluorescent |= c.fluorescent();

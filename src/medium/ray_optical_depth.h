@@ -24,6 +24,12 @@
 // estimate's own (O(h²f″/24) per interval). Between nodes τ is interpolated linearly. At most
 // kMaxNodes intervals per ray; a longer ray gets a coarser step.
 //
+// The march is a bias, not noise: it does not fall with more photons. On the sharpest field a
+// grid holds (voxels 0 or 1 at random) it measured, per ray, on the light an estimate gathers
+// (∫ T σt dt): mean −8e-5, RMS 1.4e-3 at σt = 4/m and mean −4.4e-3, RMS 6.6e-3, worst 2.2e-2
+// at σt = 40/m, against ~0.1 RMS per pixel of photon noise at the final quality preset
+// (tests/unit/volume_estimate_test.cpp holds it below a tenth of that).
+//
 // One instance per thread: it holds grid accessors and reuses its buffers, so marching
 // allocates nothing once the buffers have grown to the longest ray.
 #pragma once

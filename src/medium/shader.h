@@ -30,9 +30,11 @@ struct MediumComponent {
     std::string grid;          // grid slot the component reads; "" = homogeneous
     float concentration = 1;   // scale applied to grid values, or the constant value
     Spectrum sigmaA, sigmaS;   // 1/m per unit concentration (Chlorophyll: per unit C^exponent)
-    float g = 0;               // HG asymmetry
+    float g = 0;               // HG asymmetry (Schlick: the g it imitates; DoubleHG: lobe 1)
     ComponentKind kind = ComponentKind::Linear;
     PhaseKind phase = PhaseKind::HenyeyGreenstein;
+    float g2 = 0;              // DoubleHG: the second lobe's asymmetry
+    float phaseWeight = 1;     // DoubleHG: the first lobe's weight w (medium/phase.h)
     // Chlorophyll only: σa = sigmaA(λ) · C^sigmaAExponent(λ), σs = sigmaS(λ) · C^sigmaSExponent,
     // with C = concentration × density scale × grid value. Both exponents are ≥ 0 (1 − B ∈
     // [0.62, 1.02] for Bricaud's B), so σ grows with C and the majorant bounds it at the

@@ -1,6 +1,7 @@
 #include "photon/beam_estimate.h"
 
 #include <embree3/rtcore.h>
+#include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
 #include <string>
@@ -26,6 +27,12 @@ struct BeamEstimator::Bvh {
         if (scene) rtcReleaseScene(scene);
         if (device) rtcReleaseDevice(device);
     }
+};
+
+// One ScatteringProbe (grid accessors, per-medium contexts) per thread that estimates.
+struct BeamEstimator::Probes {
+    explicit Probes(const std::vector<const Medium*>& media) : perThread(media) {}
+    tbb::enumerable_thread_specific<ScatteringProbe> perThread;
 };
 
 namespace {
@@ -69,7 +76,11 @@ void collectHit(const RTCFilterFunctionNArguments* args) {
 
 BeamEstimator::BeamEstimator(const VolumePhotons& photons, std::vector<float> radii,
                              BeamKernel kernel)
-    : mPhotons(&photons), mRadii(std::move(radii)), mKernel(kernel), mBvh(std::make_unique<Bvh>()) {
+    : mPhotons(&photons),
+      mRadii(std::move(radii)),
+      mKernel(kernel),
+      mBvh(std::make_unique<Bvh>()),
+      mProbes(std::make_unique<Probes>(photons.media())) {
     MIRAGE_CHECK(mRadii.size() == photons.size());
     const size_t n = photons.size();
     if (n == 0) return;
@@ -139,16 +150,21 @@ void BeamEstimator::query(const Ray& ray, float tMin, float tMax,
 Vec3 BeamEstimator::estimate(const Ray& ray, float tMax, const RayOpticalDepth& depth,
                              std::vector<BeamHit>* hits, const ViewWeight& view) const {
     if (depth.empty()) return Vec3(0.f);
-    // Not clipped to the span of `depth`: a photon near an edge of a medium's box may project
-    // just outside the ray's span in the box, and its disc still belongs to the estimate (T is
-    // held at its end values beyond the span).
+    // Not clipped to the span of `depth`: the σs ratio decides where a disc counts. One whose
+    // photon projects where nothing scatters (outside every medium's box or region) adds
+    // nothing; T is held at its end values beyond the span.
     query(ray, 0.f, tMax, hits);
+    ScatteringProbe& probe = mProbes->perThread.local();
     const Vec3 wo = -ray.d;
     Vec3 sum(0.f);
     for (const BeamHit& h : *hits) {
         const Photon& ph = mPhotons->map()[h.slot];
+        const float atPhoton = mPhotons->sigmaS(h.slot);
+        if (!(atPhoton > 0.f)) continue;
+        const float here = probe.eventDensity(ray.at(h.t), ph);
+        if (!(here > 0.f)) continue;
         float w = kernelValue(h.d2, mRadii[h.slot]) * depth.transmittance(h.t, ph.lambda) *
-                  mPhotons->phase(h.slot, wo) * view(ph.lambda);
+                  mPhotons->phase(h.slot, wo) * (here / atPhoton) * view(ph.lambda);
         sum += mPhotons->fluxXyz(h.slot) * w;
     }
     return sum;

@@ -8,8 +8,14 @@
 // transmittance from the camera to x_i', θ_i the angle between the photon's direction and the
 // direction towards the camera. It replaces the ray march of point queries by one query per
 // ray and integrates the photon density along the ray exactly (no step size). As in
-// volume_estimate.h the result is CIE XYZ, each photon at its own wavelength; σs does not
-// appear, for the same reason as in the point estimate.
+// volume_estimate.h the result is CIE XYZ, each photon at its own wavelength.
+//
+// Heterogeneous media: each photon is weighted by σs(x_i', λ_i)/σs(x_i, λ_i), the paper's form
+// being the uniform case where the ratio is 1. A photon samples the fluence at x_i as
+// ΔΦ/σs(x_i) per unit volume; the camera ray in-scatters it at x_i' with its own σs(x_i').
+// Without the ratio a disc carries light from dense smoke across its radius into thin smoke,
+// empty space or through a glass wall (the point estimate's weight, volume_estimate.h). A
+// re-emitted photon is weighted by the ratio of re-emission densities likewise.
 //
 // Kernel: the photon's flux is spread over its disc by a normalised 2D kernel (∫ K dA = 1).
 // Default: the Silverman biweight K(d) = 3/(π r²)(1 − d²/r²)² (Silverman 1986, eq. 4.5), which
@@ -65,7 +71,8 @@ public:
 
     // L_b along `ray` over (0, tMax) as XYZ (W·m⁻²·sr⁻¹·nm⁻¹); `depth` has been marched along
     // the same ray and gives T at each photon's wavelength; `view` weights each photon by what
-    // the camera path puts in front of this ray (view_weight.h).
+    // the camera path puts in front of this ray (view_weight.h). σs at the photons' projections
+    // is read through a ScatteringProbe of the calling thread, kept by the estimator.
     Vec3 estimate(const Ray& ray, float tMax, const RayOpticalDepth& depth,
                   std::vector<BeamHit>* scratch, const ViewWeight& view = ViewWeight()) const;
 
@@ -80,11 +87,13 @@ public:
 
 private:
     struct Bvh;
+    struct Probes;
 
     const VolumePhotons* mPhotons;
     std::vector<float> mRadii;
     BeamKernel mKernel;
     std::unique_ptr<Bvh> mBvh;
+    std::unique_ptr<Probes> mProbes;
 };
 
 }  // namespace mirage

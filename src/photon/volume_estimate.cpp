@@ -52,7 +52,7 @@ float ScatteringProbe::reemissionDensity(const Vec3& worldP, float lambdaInNm) {
 }
 
 VolumePhotons::VolumePhotons(PhotonList photons, const std::vector<const Medium*>& media)
-    : mMap(std::move(photons)) {
+    : mMap(std::move(photons)), mMedia(media) {
     const size_t n = mMap.size();
     mFluxXyz.resize(n);
     for (size_t i = 0; i < n; ++i)
@@ -68,7 +68,8 @@ VolumePhotons::VolumePhotons(PhotonList photons, const std::vector<const Medium*
     // The lobes of every component of every medium, in order. One lobe, or lobes that are all
     // the same, need no per-photon weights.
     for (const Medium* m : media)
-        for (const MediumComponent& c : m->shader().components) mLobes.emplace_back(c.phase, c.g);
+        for (const MediumComponent& c : m->shader().components)
+            mLobes.emplace_back(c.phase, c.g, c.g2, c.phaseWeight);
     bool same = true;
     for (const ComponentPhase& l : mLobes) same &= l == mLobes.front();
     if (mLobes.empty()) mLobes.emplace_back();

@@ -66,6 +66,8 @@ public:
     VolumePhotons(PhotonList photons, const std::vector<const Medium*>& media);
 
     const PhotonMap& map() const { return mMap; }
+    // The media the photons were traced in (they must outlive this object).
+    const std::vector<const Medium*>& media() const { return mMedia; }
     size_t size() const { return mMap.size(); }
     // Φ_p cmf(λ_p) / ∫ȳ, W (see above).
     const Vec3& fluxXyz(size_t slot) const { return mFluxXyz[slot]; }
@@ -78,6 +80,7 @@ public:
 
 private:
     PhotonMap mMap;
+    std::vector<const Medium*> mMedia;
     std::vector<float> mSigmaS;
     std::vector<Vec3> mFluxXyz;
     std::vector<ComponentPhase> mLobes;

@@ -1,6 +1,7 @@
 #include "scene/shader_loader.h"
 
 #include <cstdlib>
+#include <utility>
 #include <filesystem>
 
 #include "medium/ocean_components.h"
@@ -53,6 +54,37 @@ Spectrum readCoefficientSpectrum(const TableReader& t, const std::string& key, f
 
 namespace {
 
+// A linear component's phase function (medium/phase.h) and its parameters; a parameter the
+// chosen lobe does not take is left unread, so that finish() reports it.
+void readPhase(const TableReader& c, MediumComponent* mc) {
+    static const std::pair<const char*, PhaseKind> kinds[] = {
+        {"hg", PhaseKind::HenyeyGreenstein}, {"water", PhaseKind::Water},
+        {"schlick", PhaseKind::Schlick},     {"rayleigh", PhaseKind::Rayleigh},
+        {"mie_hazy", PhaseKind::MieHazy},    {"mie_murky", PhaseKind::MieMurky},
+        {"double_hg", PhaseKind::DoubleHG}};
+    const std::string phase = c.getString("phase", "hg");
+    std::string names;
+    bool found = false;
+    for (const auto& k : kinds) {
+        names += std::string(names.empty() ? "" : ", ") + "\"" + k.first + "\"";
+        if (phase == k.first) {
+            mc->phase = k.second;
+            found = true;
+        }
+    }
+    if (!found) c.fail("phase", "expected one of " + names);
+    switch (mc->phase) {
+        case PhaseKind::HenyeyGreenstein:
+        case PhaseKind::Schlick: mc->g = float(c.getNumber("g", 0.0, -1.0, 1.0)); break;
+        case PhaseKind::DoubleHG:
+            mc->g = float(c.getNumber("g", 0.0, -1.0, 1.0));
+            mc->g2 = float(c.getNumber("g2", 0.0, -1.0, 1.0));
+            mc->phaseWeight = float(c.getNumber("lobe_weight", 0.5, 0.0, 1.0));
+            break;
+        default: break;
+    }
+}
+
 // One [[component]]. Its kind (shader.h) decides which keys it takes: a linear component
 // gives its cross-sections, the sea-water kinds take theirs from the published laws
 // (medium/ocean_components.h), so sigma_a / sigma_s there are reported as unexpected keys.
@@ -65,10 +97,7 @@ MediumComponent readComponent(const TableReader& c, size_t index) {
     if (kind == "linear") {
         mc.sigmaA = readCoefficientSpectrum(c, "sigma_a", 0.f);
         mc.sigmaS = readCoefficientSpectrum(c, "sigma_s", 0.f);
-        mc.g = float(c.getNumber("g", 0.0, -1.0, 1.0));
-        std::string phase = c.getString("phase", "hg");
-        if (phase == "water") mc.phase = PhaseKind::Water;
-        else if (phase != "hg") c.fail("phase", "expected \"hg\" or \"water\"");
+        readPhase(c, &mc);
     } else if (kind == "water") {
         makeWater(&mc);
     } else if (kind == "cdom") {

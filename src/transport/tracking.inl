@@ -2,20 +2,31 @@
 #pragma once
 
 #include <cmath>
+#include <vector>
 
 namespace mirage {
 
 template <typename F>
 bool trackCollisions(TrackingContext& ctx, const Ray& worldRay, float tMax, Sampler& sampler,
                      F&& f) {
-    // A handful of media at most in practice; a fixed array keeps the hot path free of heap.
-    constexpr size_t kMaxMedia = 32;
+    // One stream of tentative collisions per medium, every medium of the context: a volume left
+    // out would be invisible to tracking yet still attenuate closed-form shadow rays and the
+    // photon estimates. A handful of media is the common case and stays on the stack; a shot
+    // with hundreds of caches takes one heap block per flight. Local (not kept in ctx) because
+    // f may itself track through the same context (a shadow ray at a collision).
+    constexpr size_t kInlineMedia = 16;
     struct Stream {
         Ray objectRay;
         float tEnd, tNext, sigmaMaj;
     };
-    Stream streams[kMaxMedia];
-    const size_t n = std::min(ctx.size(), kMaxMedia);
+    const size_t n = ctx.size();
+    Stream inlineStreams[kInlineMedia];
+    std::vector<Stream> heapStreams;
+    Stream* streams = inlineStreams;
+    if (n > kInlineMedia) {
+        heapStreams.resize(n);
+        streams = heapStreams.data();
+    }
     auto exp1 = [&] { return -std::log1p(-sampler.get1D()); };
 
     for (size_t i = 0; i < n; ++i) {

@@ -6,6 +6,7 @@
 // exact, not statistical.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <string>
@@ -31,22 +32,25 @@ std::string ceilingScene(const std::string& dir, const std::string& name,
     return path;
 }
 
-double meanRed(const std::string& scene, const std::string& exr) {
+// The image's mean of each of R, G, B.
+std::array<double, 3> meanRgb(const std::string& scene, const std::string& exr) {
     std::string log;
     EXPECT_EQ(test::runMirage("render '" + scene + "' -o '" + exr + "' --threads 2 --quiet", &log),
               0)
         << log;
     const Image im = readExr(exr);
-    double sum = 0;
+    std::array<double, 3> sum{0, 0, 0};
     for (int y = 0; y < im.height; ++y)
-        for (int x = 0; x < im.width; ++x) sum += im.pixel(x, y)[0];
-    return sum / (double(im.width) * im.height);
+        for (int x = 0; x < im.width; ++x)
+            for (int c = 0; c < 3; ++c) sum[size_t(c)] += im.pixel(x, y)[c];
+    for (double& v : sum) v /= double(im.width) * im.height;
+    return sum;
 }
 
 TEST(CurvedRadianceLaw, RadianceScalesAsTheSquareOfTheIndexRatio) {
     const std::string dir = test::tempDir();
-    const double plain = meanRed(ceilingScene(dir, "plain", ""), dir + "/plain.exr");
-    ASSERT_GT(plain, 0.01);
+    const auto plain = meanRgb(ceilingScene(dir, "plain", ""), dir + "/plain.exr");
+    for (double v : plain) ASSERT_GT(v, 0.01);
     struct Case {
         double n0, k;  // n = n0 + k·y: n1 = n0 at the camera, n2 = n0 + k at the ceiling
     };
@@ -56,12 +60,14 @@ TEST(CurvedRadianceLaw, RadianceScalesAsTheSquareOfTheIndexRatio) {
         const std::string refraction = "[refraction]\nprofile = \"linear\"\nn0 = " +
                                        std::to_string(c.n0) + "\nk = " + std::to_string(c.k) +
                                        "\n";
-        const double bent = meanRed(ceilingScene(dir, name, refraction), dir + "/" + name + ".exr");
+        const auto bent = meanRgb(ceilingScene(dir, name, refraction), dir + "/" + name + ".exr");
         const double n1 = c.n0, n2 = c.n0 + c.k;
         const double expected = (n1 / n2) * (n1 / n2);
-        std::printf("n1 %.3f, n2 %.3f: radiance ratio %.6f, (n1/n2)² = %.6f\n", n1, n2,
-                    bent / plain, expected);
-        EXPECT_NEAR(bent / plain, expected, 1e-3 * expected) << name;
+        std::printf("n1 %.3f, n2 %.3f: radiance ratio R %.6f G %.6f B %.6f, (n1/n2)² = %.6f\n",
+                    n1, n2, bent[0] / plain[0], bent[1] / plain[1], bent[2] / plain[2], expected);
+        for (int ch = 0; ch < 3; ++ch)
+            EXPECT_NEAR(bent[size_t(ch)] / plain[size_t(ch)], expected, 1e-3 * expected)
+                << name << " channel " << ch;
     }
 }
 

@@ -73,13 +73,13 @@ RenderSettings smallRenderSettings(int spp, uint64_t seed, int width = 32, int h
 // sum over channels would pass a red image with the right brightness for a grey reference).
 struct ImageError {
     // The worst channel of each measure.
-    double relRmse;    // √(mean (I_c − R_c)²) / mean R_c over the covered pixels
-    double blockRmse;  // the same on the means of 4×4-pixel blocks wholly covered
-    double bias;       // (mean I_c − mean R_c) / mean R_c, the channel of largest magnitude
-    double channelBias[3];
+    double relRmse = 0;    // √(mean (I_c − R_c)²) / mean R_c over the covered pixels
+    double blockRmse = 0;  // the same on the means of 4×4-pixel blocks wholly covered
+    double bias = 0;       // (mean I_c − mean R_c) / mean R_c, the channel of largest magnitude
+    double channelBias[3] = {0, 0, 0};
     // The largest |c_I − c_R| of the mean chromaticities c = (R, G, B) / (R + G + B): a shift
     // of colour at the same brightness.
-    double chromaticity;
+    double chromaticity = 0;
 };
 ImageError compareImages(const Image& image, const Image& ref);
 

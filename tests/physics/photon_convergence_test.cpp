@@ -63,7 +63,8 @@ TEST(PhotonConvergence, PhotonMapConvergesToVolPath) {
     std::printf("volpath 256 spp vs reference: rel. RMSE %.4f (4×4 blocks %.4f) bias %+.4f\n",
                 floor.relRmse, floor.blockRmse, floor.bias);
 
-    ImageError previous{kInfinity, kInfinity, 0.0};
+    ImageError previous;
+    previous.relRmse = previous.blockRmse = kInfinity;
     for (uint64_t photons : {uint64_t(1000), uint64_t(10000), uint64_t(100000)}) {
         PhotonIntegratorSettings ps;
         ps.photons = photons;

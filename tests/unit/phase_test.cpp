@@ -202,8 +202,8 @@ INSTANTIATE_TEST_SUITE_P(
                       Lobe{"double_hg", ComponentPhase(PhaseKind::DoubleHG, 0.8f, -0.4f, 0.7f)},
                       Lobe{"double_hg_one", ComponentPhase(PhaseKind::DoubleHG, 0.5f, -0.9f, 1.f)},
                       Lobe{"water", ComponentPhase(PhaseKind::Water)}),
-    [](const ::testing::TestParamInfo<Lobe>& info) {
-        std::string n = info.param.name;
+    [](const ::testing::TestParamInfo<Lobe>& lobe) {
+        std::string n = lobe.param.name;
         for (char& ch : n)
             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
         return n;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/math.h"
+#include "core/sampling.h"
 
 namespace mirage {
 
@@ -33,7 +34,7 @@ public:
         float sinTheta = safeSqrt(1.f - cosTheta * cosTheta);
         float phi = 2.f * kPi * u2;
         Frame f(wi);
-        Vec3 wo = f.toWorld(Vec3(sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta));
+        Vec3 wo = f.toWorld(sphericalDirection(sinTheta, cosTheta, phi));
         if (pdf) *pdf = eval(cosTheta);
         return wo;
     }
@@ -71,7 +72,7 @@ public:
         float sinTheta = safeSqrt(1.f - cosTheta * cosTheta);
         float phi = 2.f * kPi * u2;
         Frame f(wi);
-        Vec3 wo = f.toWorld(Vec3(sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta));
+        Vec3 wo = f.toWorld(sphericalDirection(sinTheta, cosTheta, phi));
         if (pdf) *pdf = eval(cosTheta);
         return wo;
     }
@@ -100,13 +101,5 @@ private:
     HGPhase mHG;
     WaterPhase mWater;
 };
-
-// Uniform direction on the sphere (isotropic re-emission, light emission).
-inline Vec3 sampleUniformSphere(float u1, float u2) {
-    float z = 1.f - 2.f * u1;
-    float r = safeSqrt(1.f - z * z);
-    float phi = 2.f * kPi * u2;
-    return {r * std::cos(phi), r * std::sin(phi), z};
-}
 
 }  // namespace mirage

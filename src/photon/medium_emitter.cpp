@@ -5,7 +5,7 @@
 #include <unordered_map>
 
 #include "core/error.h"
-#include "medium/phase.h"
+#include "core/sampling.h"
 
 namespace mirage {
 

@@ -1,4 +1,4 @@
-#include "medium/ray_optical_depth.h"
+#include "transport/ray_optical_depth.h"
 
 #include <algorithm>
 #include <cmath>

@@ -19,8 +19,8 @@
 
 #include "medium/medium.h"
 #include "medium/phase.h"
-#include "photon/photon_map.h"
 #include "transport/ray_optical_depth.h"
+#include "photon/photon_map.h"
 
 namespace mirage {
 

@@ -27,13 +27,13 @@ public:
     }
 
     // σt ≤ C · (max σa + max σs): the two maxima may sit at different wavelengths.
-    double sigmaTBound(double C) const override {
-        return C * (double(mMaxSigmaA) + mMaxSigmaS);
-    }
+    double sigmaTBound(double C) const override { return C * (double(mMaxSigmaA) + mMaxSigmaS); }
     void addToMajorant(MajorantGrid* majorant, const FloatGrid* grid, float k) const override {
         const float scale = k * (mMaxSigmaA + mMaxSigmaS);
-        if (grid) majorant->addGrid(*grid, scale);
-        else majorant->addConstant(scale);
+        if (grid)
+            majorant->addGrid(*grid, scale);
+        else
+            majorant->addConstant(scale);
     }
 
     void sampleWavelengths(const SampledWavelengths& w, float k,
@@ -70,8 +70,8 @@ public:
         for (int i = 0; i + 1 < Spectrum::kDenseSamples; ++i) {
             float l0 = kLambdaMin + float(i), l1 = l0 + 1.f;
             float e0 = c.sigmaAExponent(l0), e1 = c.sigmaAExponent(l1);
-            mIntervals.push_back({std::max(c.sigmaA(l0), c.sigmaA(l1)), std::min(e0, e1),
-                                  std::max(e0, e1)});
+            mIntervals.push_back(
+                {std::max(c.sigmaA(l0), c.sigmaA(l1)), std::min(e0, e1), std::max(e0, e1)});
         }
     }
     // Non-decreasing in C (every exponent is ≥ 0). The relative margin covers float exp/log.
@@ -163,9 +163,7 @@ public:
         }
     }
 
-    double sigmaTBound(double C) const override {
-        return double(mBound(float(std::min(C, 3e38))));
-    }
+    double sigmaTBound(double C) const override { return double(mBound(float(std::min(C, 3e38)))); }
     void addToMajorant(MajorantGrid* majorant, const FloatGrid* grid, float k) const override {
         if (!grid) {
             majorant->addConstant(mBound(k));
@@ -231,8 +229,10 @@ std::shared_ptr<const ComponentModel> ComponentModel::make(const MediumComponent
     switch (c.kind) {
         case ComponentKind::Linear:
         case ComponentKind::Water:
-        case ComponentKind::Cdom: return std::make_shared<LinearComponent>(c);
-        case ComponentKind::Chlorophyll: return std::make_shared<PowerLawComponent>(c);
+        case ComponentKind::Cdom:
+            return std::make_shared<LinearComponent>(c);
+        case ComponentKind::Chlorophyll:
+            return std::make_shared<PowerLawComponent>(c);
     }
     return std::make_shared<LinearComponent>(c);
 }

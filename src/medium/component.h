@@ -74,8 +74,10 @@ public:
     // lookup of smoke and fog takes, is inlined here; the others are a virtual call.
     void evalPath(const PathCoefficients& pc, float v, SampledSpectrum* sigmaA,
                   SampledSpectrum* sigmaS) const {
-        if (mLinear) evalLinear(pc, v, sigmaA, sigmaS);
-        else evalLaw(pc, v, sigmaA, sigmaS);
+        if (mLinear)
+            evalLinear(pc, v, sigmaA, sigmaS);
+        else
+            evalLaw(pc, v, sigmaA, sigmaS);
     }
 
     // Optical depth at any wavelength from integrals along the ray: σt(C, λ) is written as

@@ -87,7 +87,8 @@ void Medium::resolveSlots() {
         throw MirageError("shader '" + mShader.name + "' reads grid slot(s) " +
                           quotedList(slots) + ", but " + std::to_string(mGrids.size()) +
                           " grid(s) are bound" +
-                          (missing.empty() ? std::string() : "; no grid for " + quotedList(missing)));
+                          (missing.empty() ? std::string()
+                                           : "; no grid for " + quotedList(missing)));
     }
     auto indexOf = [&](const std::string& name) {
         if (name.empty()) return -1;

@@ -67,6 +67,7 @@
 #include "core/error.h"
 #include "core/progress.h"
 #include "core/rng.h"
+#include "core/sampling.h"
 #include "geometry/material.h"
 #include "photon/photon_walk.h"
 #include "scene/shader_loader.h"
@@ -171,8 +172,8 @@ void tracePhoton(const Slab& slab, uint64_t index, uint64_t seed, PhotonWalk& wa
     // Incident direction (travelling +z into the slab, whose top face is z = 0).
     Vec3 d(0.f, 0.f, 1.f);
     if (slab.diffuse) {
-        float r = std::sqrt(s.get1D()), phi = 2.f * kPi * s.get1D();
-        d = Vec3(r * std::cos(phi), r * std::sin(phi), safeSqrt(1.f - r * r));
+        float u1 = s.get1D(), u2 = s.get1D();
+        d = sampleCosineHemispherePolar(u1, u2);
     }
     double cosT;
     if (s.get1D() < fresnel(d.z, slab.nOut, slab.nIn, &cosT)) {

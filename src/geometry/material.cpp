@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "core/sampling.h"
+
 namespace mirage {
 
 Material Material::diffuse(std::string name, Spectrum reflectance, Spectrum emission) {
@@ -79,22 +81,6 @@ bool refract(const Vec3& wi, const Vec3& n, float eta, Vec3* wt) {
     float cosT = safeSqrt(1.f - sin2T);
     *wt = -wi / eta + n * (cosI / eta - cosT);
     return true;
-}
-
-Vec3 sampleCosineHemisphere(float u1, float u2) {
-    // Concentric disc mapping (Shirley & Chiu 1997), then lift to the hemisphere.
-    float a = 2.f * u1 - 1.f, b = 2.f * u2 - 1.f;
-    if (a == 0.f && b == 0.f) return {0.f, 0.f, 1.f};
-    float r, phi;
-    if (std::abs(a) > std::abs(b)) {
-        r = a;
-        phi = 0.25f * kPi * (b / a);
-    } else {
-        r = b;
-        phi = 0.5f * kPi - 0.25f * kPi * (a / b);
-    }
-    float x = r * std::cos(phi), y = r * std::sin(phi);
-    return {x, y, safeSqrt(1.f - x * x - y * y)};
 }
 
 bool Material::sample(const Vec3& wo, float uc, float u1, float u2, const SampledWavelengths& w,

@@ -94,7 +94,4 @@ float fresnelDielectric(float cosThetaI, float eta);
 // relative index eta = n_t / n_i; false under total internal reflection.
 bool refract(const Vec3& wi, const Vec3& n, float eta, Vec3* wt);
 
-// Cosine-weighted hemisphere (Malley's method), +z up; pdf cos θ / π.
-Vec3 sampleCosineHemisphere(float u1, float u2);
-
 }  // namespace mirage

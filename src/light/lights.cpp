@@ -7,8 +7,8 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/sampling.h"
 #include "core/surface_epsilon.h"
-#include "medium/phase.h"
 #include "spectrum/spectrum_sampling.h"
 
 namespace mirage {
@@ -27,14 +27,6 @@ std::string vecStr(const Vec3& v) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "(%g, %g, %g)", v.x, v.y, v.z);
     return buf;
-}
-
-// Cosine-weighted direction about n (Malley's method: uniform on the unit disc, lifted to the
-// hemisphere), pdf cosθ/π: a Lambertian emitter's radiance is constant, so its flux leaves
-// ∝ cosθ.
-Vec3 sampleCosineHemisphere(const Vec3& n, float u1, float u2) {
-    float r = std::sqrt(u1), phi = 2.f * kPi * u2;
-    return Frame(n).toWorld(Vec3(r * std::cos(phi), r * std::sin(phi), safeSqrt(1.f - u1)));
 }
 
 // Direction and distance from a shaded point p to a point emitter at q; false when they
@@ -75,13 +67,6 @@ AimCone sceneCone(const Vec3& p, const Bounds3& b) {
     return cone;
 }
 
-// Uniform direction in the cone about `axis` with cos θ ≥ cosMax (pdf 1 / 2π(1 − cosMax)).
-Vec3 sampleCone(const Vec3& axis, float cosMax, float u1, float u2) {
-    const float cosT = 1.f - u1 * (1.f - cosMax), sinT = safeSqrt(1.f - cosT * cosT);
-    const float phi = 2.f * kPi * u2;
-    return Frame(axis).toWorld(Vec3(sinT * std::cos(phi), sinT * std::sin(phi), cosT));
-}
-
 class PointLight : public Light {
 public:
     PointLight(const Vec3& p, float power, const Spectrum& c)
@@ -107,8 +92,8 @@ public:
         out->origin = mP;
         float u1 = s.get1D(), u2 = s.get1D();
         const AimCone cone = sceneCone(mP, b);
-        out->direction =
-            cone.valid ? sampleCone(cone.axis, cone.cosMax, u1, u2) : sampleUniformSphere(u1, u2);
+        out->direction = cone.valid ? sampleUniformCone(cone.axis, cone.cosMax, u1, u2)
+                                    : sampleUniformSphere(u1, u2);
         out->lambda = mLambda.sample(s.get1D());
         out->weight = 1.f;
         return mPower > 0.f;
@@ -164,11 +149,11 @@ public:
         const AimCone cone = sceneCone(mP, b);
         out->origin = mP;
         if (cone.valid && cone.cosMax > mCosOuter) {
-            out->direction = sampleCone(cone.axis, cone.cosMax, u1, u2);
+            out->direction = sampleUniformCone(cone.axis, cone.cosMax, u1, u2);
             out->weight = falloff(dot(out->direction, mDir)) * (1.f - cone.cosMax) /
                           (1.f - 0.5f * (mCosInner + mCosOuter));
         } else {
-            out->direction = sampleCone(mDir, mCosOuter, u1, u2);
+            out->direction = sampleUniformCone(mDir, mCosOuter, u1, u2);
             out->weight = falloff(dot(out->direction, mDir)) * mWeightScale;
         }
         out->lambda = mLambda.sample(s.get1D());
@@ -278,7 +263,8 @@ public:
         const Vec3 q = mCorner + mU * u1 + mV * u2;
         out->origin = q + mN * surfaceEpsilon(q);
         float u3 = s.get1D(), u4 = s.get1D();
-        out->direction = sampleCosineHemisphere(mN, u3, u4);
+        // Lambertian: the radiance is constant, so the flux leaves ∝ cos θ about the normal.
+        out->direction = Frame(mN).toWorld(sampleCosineHemispherePolar(u3, u4));
         out->lambda = mLambda.sample(s.get1D());
         out->weight = 1.f;
         return mPower > 0.f;

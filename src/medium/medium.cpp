@@ -22,69 +22,11 @@ void checkComponentCount(const ShaderDesc& shader) {
                           std::to_string(shader.components.size()));
 }
 
-// Upper bound over all wavelengths of σt of a chlorophyll component at concentration C:
-// σa(λ) = A(λ) C^e(λ) and σs(λ) = b(λ) C^s with A, e, b linear between whole nanometres (the
-// dense form of Spectrum). Within one such interval C^e is monotone in λ, so its maximum is at
-// an end, and the product is bounded by the larger A times the larger C^e of the two ends.
-class PowerLawBound {
-public:
-    explicit PowerLawBound(const MediumComponent& c)
-        : mSigmaSMax(c.sigmaS.maxValue()), mExponentS(c.sigmaSExponent) {
-        for (int i = 0; i + 1 < Spectrum::kDenseSamples; ++i) {
-            float l0 = kLambdaMin + float(i), l1 = l0 + 1.f;
-            float e0 = c.sigmaAExponent(l0), e1 = c.sigmaAExponent(l1);
-            mIntervals.push_back({std::max(c.sigmaA(l0), c.sigmaA(l1)), std::min(e0, e1),
-                                  std::max(e0, e1)});
-        }
-    }
-    // Non-decreasing in C (every exponent is ≥ 0). The relative margin covers float exp/log.
-    float operator()(float C) const {
-        if (!(C > 0.f)) return 0.f;
-        double lc = std::log(double(C)), m = 0.0;
-        for (const Interval& iv : mIntervals)
-            m = std::max(m, iv.aMax * std::exp((lc >= 0.0 ? iv.eMax : iv.eMin) * lc));
-        return float((m + mSigmaSMax * std::exp(mExponentS * lc)) * (1.0 + 1e-4));
-    }
-
-private:
-    struct Interval {
-        double aMax, eMin, eMax;
-    };
-    std::vector<Interval> mIntervals;
-    double mSigmaSMax, mExponentS;
-};
-
-// PowerLawBound on the grid values of a majorant's cells, through a table at geometrically
-// spaced concentrations (ratio 10^(4/255) ≈ 1.037) from 1e-4 × the largest to the largest: a
-// cell gets the bound at the next tabulated C above its own, which is ≥ its bound because the
-// bound grows with C. 256 × 470 exponentials instead of one PowerLawBound per cell.
-class TabulatedBound {
-public:
-    TabulatedBound(const PowerLawBound& f, float cMax) : mF(f) {
-        mC0 = cMax * 1e-4f;
-        mLogStep = std::log(1e4) / (kSize - 1);
-        for (int k = 0; k < kSize; ++k) {
-            mC[k] = float(mC0 * std::exp(k * mLogStep));
-            mValue[k] = f(mC[k]);
-        }
-        mC[kSize - 1] = cMax;
-        mValue[kSize - 1] = f(cMax);
-    }
-    float operator()(float C) const {
-        if (!(C > 0.f)) return 0.f;
-        if (!(mC0 > 0.0)) return mF(C);  // an empty grid: no table
-        int k = C <= mC0 ? 0 : int(std::ceil(std::log(double(C) / mC0) / mLogStep));
-        k = std::max(k - 1, 0);
-        while (k < kSize && mC[k] < C) ++k;  // the first tabulated C ≥ C, despite rounding
-        return k < kSize ? mValue[k] : mF(C);
-    }
-
-private:
-    static constexpr int kSize = 256;
-    const PowerLawBound& mF;
-    double mC0, mLogStep;
-    std::array<float, kSize> mC, mValue;
-};
+std::string quotedList(const std::vector<std::string>& names) {
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "'" : ", '") + n + "'";
+    return list;
+}
 
 }  // namespace
 
@@ -96,17 +38,13 @@ Medium::Medium(ShaderDesc shader, std::vector<FloatGrid> grids, const Transform&
       mWorldToObject(objectToWorld.inverse()),
       mDensityScale(densityScale) {
     checkComponentCount(mShader);
-    auto slots = mShader.gridSlots();
-    MIRAGE_CHECK(slots.size() == mGrids.size());
+    resolveSlots();
 
     // Object bounds: union of the grids the components read. A medium made only of
     // homogeneous components has no extent of its own and is rejected by the scene loader.
     Bounds3 objectBounds;
-    for (const auto& c : mShader.components) {
-        if (c.grid.empty()) continue;
-        size_t slot = std::find(slots.begin(), slots.end(), c.grid) - slots.begin();
-        objectBounds.expand(mGrids[slot].objectBounds());
-    }
+    for (int slot : mComponentSlot)
+        if (slot >= 0) objectBounds.expand(mGrids[size_t(slot)].objectBounds());
     if (objectBounds.empty())
         throw MirageError("shader '" + mShader.name +
                           "': no component reads a grid with active voxels, so the medium has "
@@ -130,6 +68,7 @@ Medium::Medium(ShaderDesc shader, const Bounds3& objectBox, const Transform& obj
         throw MirageError("shader '" + mShader.name +
                           "': emission needs a temperature grid, which a homogeneous medium "
                           "does not have");
+    resolveSlots();
     if (objectBox.empty() || !isFinite(objectBox.lo) || !isFinite(objectBox.hi))
         throw MirageError("shader '" + mShader.name +
                           "': a homogeneous medium needs a finite, non-empty box");
@@ -137,37 +76,51 @@ Medium::Medium(ShaderDesc shader, const Bounds3& objectBox, const Transform& obj
     buildMajorantAndPhases(objectBox, 1);
 }
 
+// Every grid slot the shader names gets the index of its grid, once: the lookups index grids()
+// directly. The slots are the shader's own (gridSlots), so a slot without a grid is a caller
+// that bound fewer grids than the shader reads.
+void Medium::resolveSlots() {
+    const std::vector<std::string> slots = mShader.gridSlots();
+    if (slots.size() != mGrids.size()) {
+        std::vector<std::string> missing;
+        for (size_t i = mGrids.size(); i < slots.size(); ++i) missing.push_back(slots[i]);
+        throw MirageError("shader '" + mShader.name + "' reads grid slot(s) " +
+                          quotedList(slots) + ", but " + std::to_string(mGrids.size()) +
+                          " grid(s) are bound" +
+                          (missing.empty() ? std::string()
+                                           : "; no grid for " + quotedList(missing)));
+    }
+    auto indexOf = [&](const std::string& name) {
+        if (name.empty()) return -1;
+        return int(std::find(slots.begin(), slots.end(), name) - slots.begin());
+    };
+    for (const auto& c : mShader.components) {
+        mComponentSlot.push_back(indexOf(c.grid));
+        mModels.push_back(ComponentModel::make(c));
+    }
+    if (!mShader.emission) return;
+    if (mShader.emission->temperatureGrid.empty())
+        throw MirageError("shader '" + mShader.name +
+                          "': [emission] names no temperature grid slot");
+    mTemperatureSlot = indexOf(mShader.emission->temperatureGrid);
+}
+
 void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantResolution) {
     mWorldBounds = mObjectToWorld.apply(objectBounds);
 
-    // Majorant: Σ_c concentration_c · max_λ(σa,c + σs,c) · max of the grid over each cell.
-    auto slots = mShader.gridSlots();
+    // Majorant: Σ_c of each component's bound at the largest concentration in each cell.
     mMajorant = MajorantGrid(objectBounds, majorantResolution);
     bool greyAll = true;
     double sigmaMax = 0.0;  // the largest σt anywhere, summed over components, 1/m
-    for (const auto& c : mShader.components) {
+    for (size_t i = 0; i < mShader.components.size(); ++i) {
+        const MediumComponent& c = mShader.components[i];
         const float k = c.concentration * mDensityScale;
-        const FloatGrid* grid = nullptr;
-        if (!c.grid.empty())
-            grid = &mGrids[std::find(slots.begin(), slots.end(), c.grid) - slots.begin()];
-        sigmaMax += checkedSigmaMax(c, grid, k);
-        if (c.kind == ComponentKind::Chlorophyll) {
-            // σ is non-linear in C: bound it at each cell's largest C = k × grid max.
-            PowerLawBound bound(c);
-            if (!grid) {
-                mMajorant.addConstant(bound(k));
-            } else {
-                TabulatedBound table(bound, k * grid->maxValue());
-                mMajorant.addGridMonotone(*grid, [&](float v) { return table(k * v); });
-            }
-        } else {
-            float scale = k * (c.sigmaA.maxValue() + c.sigmaS.maxValue());
-            if (!grid) mMajorant.addConstant(scale);
-            else mMajorant.addGrid(*grid, scale);
-        }
+        const int slot = mComponentSlot[i];
+        const FloatGrid* grid = slot < 0 ? nullptr : &mGrids[size_t(slot)];
+        sigmaMax += checkedSigmaMax(int(i), grid, k);
+        mModels[i]->addToMajorant(&mMajorant, grid, k);
         mPhases.emplace_back(c.phase, c.g, c.g2, c.phaseWeight);
-        greyAll &= c.kind != ComponentKind::Chlorophyll && c.sigmaA.isConstant() &&
-                   c.sigmaS.isConstant() && !c.fluorescent();
+        greyAll &= mModels[i]->grey() && !c.fluorescent();
         mFluorescent |= c.fluorescent();
         mFluorescence.push_back(c.fluorescent() ? FluorescenceEmission(c.emissionPeakNm,
                                                                        c.emissionFwhmNm,
@@ -189,9 +142,8 @@ void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantRes
 void Medium::checkEmissionBound(double sigmaMax) const {
     if (!mShader.emission || mGrids.empty()) return;
     const EmissionSpec& e = *mShader.emission;
-    auto slots = mShader.gridSlots();
-    size_t slot = std::find(slots.begin(), slots.end(), e.temperatureGrid) - slots.begin();
-    if (slot >= mGrids.size()) return;
+    if (mTemperatureSlot < 0) return;
+    const size_t slot = size_t(mTemperatureSlot);
     double T = double(mGrids[slot].maxValue()) * e.temperatureScale + e.temperatureOffset;
     double leMax = 0.0;  // Planck's maximum over the visible: sampled every 5 nm
     for (float l = kLambdaMin; l <= kLambdaMax; l += 5.f)
@@ -208,11 +160,10 @@ void Medium::checkEmissionBound(double sigmaMax) const {
 // product cannot overflow before it is compared. Refuses (MirageError naming the shader,
 // component and grid) a product above kMaxSigma: beyond it, float sums of σ, optical depths
 // and σa·Le overflow to ∞ and every estimate that touches the medium is lost.
-double Medium::checkedSigmaMax(const MediumComponent& c, const FloatGrid* grid, float k) const {
+double Medium::checkedSigmaMax(int i, const FloatGrid* grid, float k) const {
+    const MediumComponent& c = mShader.components[size_t(i)];
     const double gridMax = grid ? double(grid->maxValue()) : 1.0;
-    double sigma = c.kind == ComponentKind::Chlorophyll
-                       ? double(PowerLawBound(c)(float(std::min(double(k) * gridMax, 3e38))))
-                       : double(k) * gridMax * (double(c.sigmaA.maxValue()) + c.sigmaS.maxValue());
+    const double sigma = mModels[size_t(i)]->sigmaTBound(double(k) * gridMax);
     if (!(sigma <= kMaxSigma))
         throw MirageError("shader '" + mShader.name + "': component '" + c.name + "'" +
                           (grid ? " on grid '" + grid->name() + "' (max value " +
@@ -226,18 +177,12 @@ double Medium::checkedSigmaMax(const MediumComponent& c, const FloatGrid* grid, 
 }
 
 Medium::Context::Context(const Medium& m) : mMedium(&m) {
-    auto slots = m.mShader.gridSlots();
     for (const auto& g : m.mGrids) mAcc.push_back(g.accessor());
     for (size_t i = 0; i < m.mShader.components.size(); ++i) {
-        const auto& c = m.mShader.components[i];
-        mSlot[i] = c.grid.empty()
-                       ? -1
-                       : int(std::find(slots.begin(), slots.end(), c.grid) - slots.begin());
+        mSlot[i] = m.mComponentSlot[i];
+        mModel[i] = m.mModels[i].get();
     }
-    if (m.mShader.emission)
-        mTemperatureSlot = int(std::find(slots.begin(), slots.end(),
-                                         m.mShader.emission->temperatureGrid) -
-                               slots.begin());
+    mTemperatureSlot = m.mTemperatureSlot;
     // Grey: the coefficients do not depend on λ, so they are set here once, at any λ.
     if (m.greyPath()) {
         setWavelengths(SampledWavelengths::sampleVisible(0.5f));
@@ -248,17 +193,11 @@ Medium::Context::Context(const Medium& m) : mMedium(&m) {
 void Medium::Context::setWavelengths(const SampledWavelengths& w) {
     mLambda = w;
     if (mGrey) return;  // σ(λ) is constant: nothing to re-sample
+    // What depends only on λ is evaluated here, once per path, not per lookup.
     const auto& comps = mMedium->mShader.components;
-    for (size_t i = 0; i < comps.size(); ++i) {
-        float k = comps[i].concentration * mMedium->mDensityScale;
-        mPowerLaw[i] = comps[i].kind == ComponentKind::Chlorophyll;
-        mScale[i] = k;
-        // What depends only on λ is evaluated here, once per path, not per lookup.
-        float linear = mPowerLaw[i] ? 1.f : k;
-        mSigmaA[i] = comps[i].sigmaA.sample(w) * linear;
-        mSigmaS[i] = comps[i].sigmaS.sample(w) * linear;
-        if (mPowerLaw[i]) mExponentA[i] = comps[i].sigmaAExponent.sample(w);
-    }
+    for (size_t i = 0; i < comps.size(); ++i)
+        mModel[i]->sampleWavelengths(w, comps[i].concentration * mMedium->mDensityScale,
+                                     &mPath[i]);
 }
 
 void Medium::confineTo(std::shared_ptr<const Region> region) {
@@ -295,10 +234,9 @@ void Medium::evalUnconfined(const Vec3& p, Context& ctx, MediumPoint* out) const
         // One number per component, broadcast to the path's wavelengths once.
         float sigmaA = 0.f, sigmaS = 0.f;
         for (int i = 0; i < out->components; ++i) {
-            int slot = ctx.mSlot[i];
-            float c = slot < 0 ? 1.f : mGrids[slot].sample(ctx.mAcc[slot], p);
-            float s = ctx.mSigmaS[i][0] * c;
-            sigmaA += ctx.mSigmaA[i][0] * c;
+            float c = gridValue(ctx, i, p);
+            float s = ctx.mPath[i].sigmaS[0] * c;
+            sigmaA += ctx.mPath[i].sigmaA[0] * c;
             sigmaS += s;
             if (out->components > 1) out->sigmaSComponent[i] = SampledSpectrum(s);
         }
@@ -307,14 +245,8 @@ void Medium::evalUnconfined(const Vec3& p, Context& ctx, MediumPoint* out) const
         if (out->components == 1) out->sigmaSComponent[0] = out->sigmaS;
     } else {
         for (int i = 0; i < out->components; ++i) {
-            int slot = ctx.mSlot[i];
-            float c = slot < 0 ? 1.f : mGrids[slot].sample(ctx.mAcc[slot], p);
-            if (ctx.mPowerLaw[i]) {
-                powerLawAt(ctx, i, c, &out->sigmaA, &out->sigmaSComponent[i]);
-            } else {
-                out->sigmaA += ctx.mSigmaA[i] * c;
-                out->sigmaSComponent[i] = ctx.mSigmaS[i] * c;
-            }
+            ctx.mModel[i]->evalPath(ctx.mPath[i], gridValue(ctx, i, p), &out->sigmaA,
+                                    &out->sigmaSComponent[i]);
             out->sigmaS += out->sigmaSComponent[i];
         }
     }
@@ -332,34 +264,15 @@ void Medium::evalUnconfined(const Vec3& p, Context& ctx, MediumPoint* out) const
     }
 }
 
-void Medium::powerLawAt(const Context& ctx, int i, float gridValue, SampledSpectrum* sigmaA,
-                        SampledSpectrum* sigmaS) const {
-    // C^e = exp(e ln C): one logarithm for the four wavelengths and both coefficients.
-    float C = ctx.mScale[i] * gridValue;
-    if (!(C > 0.f)) {
-        *sigmaS = SampledSpectrum(0.f);
-        return;
-    }
-    float lc = std::log(C);
-    for (int j = 0; j < kSpectrumSamples; ++j)
-        (*sigmaA)[j] += ctx.mSigmaA[i][j] * std::exp(ctx.mExponentA[i][j] * lc);
-    *sigmaS = ctx.mSigmaS[i] * std::exp(mShader.components[i].sigmaSExponent * lc);
-}
-
 float Medium::sigmaSAt(const Vec3& p, Context& ctx, float lambdaNm) const {
     float sigmaS = 0.f;
     if (!inRegion(p)) return 0.f;
     for (size_t i = 0; i < mShader.components.size(); ++i) {
         const MediumComponent& comp = mShader.components[i];
-        float xs = comp.sigmaS(lambdaNm);
-        if (xs == 0.f) continue;
-        int slot = ctx.mSlot[i];
-        float c = slot < 0 ? 1.f : mGrids[slot].sample(ctx.mAcc[slot], p);
-        float C = c * comp.concentration * mDensityScale;
-        if (comp.kind == ComponentKind::Chlorophyll)
-            sigmaS += C > 0.f ? xs * std::pow(C, comp.sigmaSExponent) : 0.f;
-        else
-            sigmaS += C * xs;
+        // A component that does not scatter at λ needs no grid lookup.
+        if (comp.sigmaS(lambdaNm) == 0.f) continue;
+        float C = gridValue(ctx, int(i), p) * comp.concentration * mDensityScale;
+        sigmaS += mModels[i]->sigmaS(C, lambdaNm);
     }
     return sigmaS;
 }
@@ -373,15 +286,8 @@ void Medium::sigmaAComponentsAt(const Vec3& p, Context& ctx, float lambdaNm,
             continue;
         }
         const MediumComponent& comp = mShader.components[i];
-        int slot = ctx.mSlot[i];
-        float c = slot < 0 ? 1.f : mGrids[slot].sample(ctx.mAcc[slot], p);
-        float C = c * comp.concentration * mDensityScale;
-        if (comp.kind == ComponentKind::Chlorophyll)
-            sigmaA[i] = C > 0.f ? comp.sigmaA(lambdaNm) *
-                                      std::pow(C, comp.sigmaAExponent(lambdaNm))
-                                : 0.f;
-        else
-            sigmaA[i] = C * comp.sigmaA(lambdaNm);
+        float C = gridValue(ctx, int(i), p) * comp.concentration * mDensityScale;
+        sigmaA[i] = mModels[i]->sigmaA(C, lambdaNm);
     }
 }
 

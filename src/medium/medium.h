@@ -11,6 +11,7 @@
 
 #include "core/region.h"
 #include "core/transform.h"
+#include "medium/component.h"
 #include "medium/fluorescence.h"
 #include "medium/phase.h"
 #include "medium/shader.h"
@@ -35,7 +36,8 @@ constexpr double kMaxSigma = 1e30;
 
 class Medium {
 public:
-    // `grids` holds one grid per entry of shader.gridSlots(), in that order.
+    // `grids` holds one grid per entry of shader.gridSlots(), in that order; a slot without a
+    // grid is refused (MirageError naming it).
     Medium(ShaderDesc shader, std::vector<FloatGrid> grids, const Transform& objectToWorld,
            float densityScale, int majorantResolution = 64);
     // A homogeneous medium filling objectBox: every component must have grid == "" and the
@@ -47,6 +49,12 @@ public:
 
     const ShaderDesc& shader() const { return mShader; }
     const std::vector<FloatGrid>& grids() const { return mGrids; }
+    // The law of component i (medium/component.h).
+    const ComponentModel& componentModel(int i) const { return *mModels[size_t(i)]; }
+    // Index into grids() of the grid component i reads, −1 for a constant component; and of the
+    // emission's temperature grid, −1 without emission. Resolved once, when the medium is built.
+    int componentSlot(int i) const { return mComponentSlot[size_t(i)]; }
+    int temperatureSlot() const { return mTemperatureSlot; }
     const Transform& objectToWorld() const { return mObjectToWorld; }
     Bounds3 worldBounds() const { return mWorldBounds; }
     Bounds3 objectBounds() const { return mMajorant.bounds(); }
@@ -116,12 +124,10 @@ public:
         const Medium* mMedium;
         SampledWavelengths mLambda;
         std::vector<FloatGrid::Accessor> mAcc;
-        // Linear components: σ per unit grid value (concentration × density scale folded in).
-        // Chlorophyll: σa = mSigmaA · C^mExponentA, σs = mSigmaS · C^exponent, C = mScale × grid.
-        std::array<SampledSpectrum, kMaxComponents> mSigmaA, mSigmaS, mExponentA;
-        std::array<float, kMaxComponents> mScale;
-        std::array<bool, kMaxComponents> mPowerLaw;
-        std::array<int, kMaxComponents> mSlot;  // grid index per component, -1 homogeneous
+        // Per component: its coefficients at the path's wavelengths, its law, its grid index.
+        std::array<PathCoefficients, kMaxComponents> mPath;
+        std::array<const ComponentModel*, kMaxComponents> mModel;
+        std::array<int, kMaxComponents> mSlot;
         int mTemperatureSlot = -1;
         bool mGrey = false;  // the medium's grey path: σ set once, scalar eval
     };
@@ -151,17 +157,23 @@ public:
                      SampledSpectrum* weight, float* pdf) const;
 
 private:
+    void resolveSlots();
     void buildMajorantAndPhases(const Bounds3& objectBounds, int majorantResolution);
-    double checkedSigmaMax(const MediumComponent& c, const FloatGrid* grid, float k) const;
+    double checkedSigmaMax(int i, const FloatGrid* grid, float k) const;
     void checkEmissionBound(double sigmaMax) const;
-    // A chlorophyll component's σa (added to *sigmaA) and σs (written) at grid value c.
-    void powerLawAt(const Context& ctx, int i, float gridValue, SampledSpectrum* sigmaA,
-                    SampledSpectrum* sigmaS) const;
+    // Component i's grid value at an object-space point (1 for a constant component).
+    float gridValue(const Context& ctx, int i, const Vec3& p) const {
+        int slot = ctx.mSlot[size_t(i)];
+        return slot < 0 ? 1.f : mGrids[size_t(slot)].sample(ctx.mAcc[size_t(slot)], p);
+    }
 
     ShaderDesc mShader;
     std::vector<FloatGrid> mGrids;
     Transform mObjectToWorld, mWorldToObject;
     float mDensityScale;
+    std::vector<std::shared_ptr<const ComponentModel>> mModels;
+    std::vector<int> mComponentSlot;
+    int mTemperatureSlot = -1;
     Bounds3 mWorldBounds;
     MajorantGrid mMajorant;
     std::vector<ComponentPhase> mPhases;

@@ -5,16 +5,15 @@
 #pragma once
 
 #include "core/math.h"
+#include "core/sampling.h"
 
 namespace mirage {
 
 // The direction at angle θ (cosTheta) from wi, at azimuth 2π·u about it: every lobe below is
 // symmetric about wi and samples its cosθ alone.
 inline Vec3 directionAbout(const Vec3& wi, float cosTheta, float u) {
-    float sinTheta = safeSqrt(1.f - cosTheta * cosTheta);
-    float phi = 2.f * kPi * u;
-    Frame f(wi);
-    return f.toWorld(Vec3(sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta));
+    return Frame(wi).toWorld(
+        sphericalDirection(safeSqrt(1.f - cosTheta * cosTheta), cosTheta, 2.f * kPi * u));
 }
 
 // Henyey–Greenstein (1941): p(θ) = (1 − g²) / (4π (1 + g² − 2g cosθ)^{3/2}); mean cosine g.
@@ -245,13 +244,5 @@ private:
     RayleighPhase mRayleigh;
     MiePhase mMie;
 };
-
-// Uniform direction on the sphere (isotropic re-emission, light emission).
-inline Vec3 sampleUniformSphere(float u1, float u2) {
-    float z = 1.f - 2.f * u1;
-    float r = safeSqrt(1.f - z * z);
-    float phi = 2.f * kPi * u2;
-    return {r * std::cos(phi), r * std::sin(phi), z};
-}
 
 }  // namespace mirage

@@ -17,7 +17,8 @@
 namespace mirage {
 
 // What a component is, as written in the shader (`kind = …`). The scene loader turns every
-// kind into spectra below; the medium only distinguishes linear from chlorophyll.
+// kind into spectra below; medium/component.h turns it into the law of its concentration
+// (ComponentModel::make), which decides everything the medium does with it.
 //  - Linear: σ = C · σ_c(λ), the cross-section model of smoke and fog.
 //  - Water: pure sea water, σa = a_w(λ) (Pope & Fry 1997), σs = b_w(λ) (Morel 1974), water lobe.
 //  - Cdom: dissolved organic matter, σa = a_y(440) · exp(−S(λ − 440)), C = a_y(440) in 1/m.

@@ -1,11 +1,12 @@
 #include "photon/medium_emitter.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <unordered_map>
 
 #include "core/error.h"
-#include "medium/phase.h"
+#include "core/sampling.h"
 
 namespace mirage {
 
@@ -82,27 +83,20 @@ MediumEmitter::MediumEmitter(const Medium& medium) : mMedium(&medium) {
     const ShaderDesc& shader = medium.shader();
     MIRAGE_CHECK(shader.emission.has_value() && !medium.homogeneous());
     const EmissionSpec& e = *shader.emission;
-    const auto slots = shader.gridSlots();
-    mTemperatureSlot =
-        int(std::find(slots.begin(), slots.end(), e.temperatureGrid) - slots.begin());
-    for (const auto& c : shader.components)
-        mComponentSlot.push_back(
-            c.grid.empty() ? -1
-                           : int(std::find(slots.begin(), slots.end(), c.grid) - slots.begin()));
-
-    const FloatGrid& tgrid = medium.grids()[size_t(mTemperatureSlot)];
+    const FloatGrid& tgrid = medium.grids()[size_t(medium.temperatureSlot())];
     const float tMax =
         std::max(tgrid.maxValue() * e.temperatureScale + e.temperatureOffset, e.temperatureOffset);
     mTMin = e.minTemperature;
     if (!(tMax > mTMin) || !(e.intensity > 0.f)) return;
 
-    // Per-component ∫ σa_c(λ) B(λ,T) dλ over T ∈ [mTMin, tMax].
+    // Per linear component, ∫ σa_c(λ) B(λ,T) dλ per unit concentration over T ∈ [mTMin, tMax];
+    // the others are integrated at each point, at its concentration.
     int steps = std::min(kMaxIntegralSteps, int(std::ceil((tMax - mTMin) / kMaxIntegralStepK)) + 1);
     steps = std::max(steps, 2);
     mTStep = (tMax - mTMin) / float(steps - 1);
     mIntegral.resize(shader.components.size());
     for (size_t c = 0; c < shader.components.size(); ++c) {
-        if (shader.components[c].kind == ComponentKind::Chlorophyll) continue;  // per point
+        if (!medium.componentModel(int(c)).linear()) continue;
         mIntegral[c].resize(size_t(steps));
         for (int k = 0; k < steps; ++k)
             mIntegral[c][size_t(k)] =
@@ -200,23 +194,24 @@ double MediumEmitter::powerDensityAt(const Vec3& p,
     const ShaderDesc& shader = mMedium->shader();
     const EmissionSpec& e = *shader.emission;
     const auto& grids = mMedium->grids();
-    const size_t ts = size_t(mTemperatureSlot);
+    const size_t ts = size_t(mMedium->temperatureSlot());
     const float T = grids[ts].sample(acc[ts], p) * e.temperatureScale + e.temperatureOffset;
     if (!(T > mTMin)) return 0.0;  // Medium::eval emits nothing there either
     double sum = 0.0;
     for (size_t c = 0; c < shader.components.size(); ++c) {
         const MediumComponent& comp = shader.components[c];
-        const int slot = mComponentSlot[c];
+        const ComponentModel& model = mMedium->componentModel(int(c));
+        const int slot = mMedium->componentSlot(int(c));
         const float v = slot < 0 ? 1.f : grids[size_t(slot)].sample(acc[size_t(slot)], p);
         const float C = comp.concentration * mMedium->densityScale() * v;
         if (!(C > 0.f)) continue;
-        if (comp.kind != ComponentKind::Chlorophyll) {
+        if (model.linear()) {
             sum += double(C) * componentIntegral(int(c), T);
         } else {
-            // σa = A(λ) C^e(λ) (medium.h): not linear in C, so integrated here, per point.
-            const float lc = std::log(C);
-            sum += planckIntegral(
-                [&](float l) { return comp.sigmaA(l) * std::exp(comp.sigmaAExponent(l) * lc); }, T);
+            // Not linear in C: its absorption spectrum at this C, integrated here.
+            std::array<float, Spectrum::kDenseSamples> sigmaA;
+            model.sigmaADense(C, sigmaA.data());
+            sum += planckIntegral([&](float l) { return sigmaA[size_t(l - kLambdaMin)]; }, T);
         }
     }
     return kFourPi * double(e.intensity) * sum;
@@ -233,7 +228,7 @@ bool MediumEmitter::sample(Sampler& sampler, Medium::Context& ctx, PhotonEmissio
     if (!(cellPower > 0.0)) return false;
 
     // A uniform point of the dual cell (index space maps affinely to object and world space).
-    const nanovdb::FloatGrid& g = *mMedium->grids()[size_t(mTemperatureSlot)].grid();
+    const nanovdb::FloatGrid& g = *mMedium->grids()[size_t(mMedium->temperatureSlot())].grid();
     const float u0 = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
     nanovdb::Vec3f po =
         g.indexToWorldF(nanovdb::Vec3f(float(cell.i) + u0, float(cell.j) + u1, float(cell.k) + u2));

@@ -67,8 +67,6 @@ private:
     double powerDensityAt(const Vec3& pObject, const std::vector<FloatGrid::Accessor>& acc) const;
 
     const Medium* mMedium;
-    int mTemperatureSlot = 0;
-    std::vector<int> mComponentSlot;  // grid index per component, −1 = constant
     float mTMin = 0, mTStep = 1, mSamplerStep = 1;
     std::vector<std::vector<float>> mIntegral;  // per component, per T step (W·m⁻²·sr⁻¹ · 1/m)
     std::vector<SpectrumSampler> mSamplers;  // Planck spectra at mTMin + k · mSamplerStep

@@ -23,6 +23,7 @@
 #include <optional>
 
 #include "core/interrupt.h"
+#include "core/sampling.h"
 #include "photon/medium_emitter.h"
 #include "photon/photon_walk.h"
 #include "transport/path_vertex.h"

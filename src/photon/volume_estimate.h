@@ -19,7 +19,7 @@
 
 #include "medium/medium.h"
 #include "medium/phase.h"
-#include "medium/ray_optical_depth.h"
+#include "transport/ray_optical_depth.h"
 #include "photon/photon_map.h"
 #include "photon/view_weight.h"
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <utility>
 
-#include "medium/ray_optical_depth.h"
+#include "transport/ray_optical_depth.h"
 #include "transport/surface_step_cap.h"
 #include "transport/tracking.h"
 

@@ -23,7 +23,7 @@
 // reaches a diffuse surface straight from a light; the single-scatter part keeps only emission.
 //
 // Transmittance from the camera to each photon is the deterministic march of
-// medium/ray_optical_depth.h at the photon's wavelength, done once per camera ray.
+// transport/ray_optical_depth.h at the photon's wavelength, done once per camera ray.
 //
 // Light emitted by the media themselves (fire) reaches the camera directly through the single-
 // scatter integrator; the photon pass emits it too (photon/medium_emitter.h) and stores every

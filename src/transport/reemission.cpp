@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <array>
 
-#include "medium/phase.h"
+#include "core/sampling.h"
 
 namespace mirage {
 

@@ -12,8 +12,8 @@
 #include <cmath>
 
 #include "geometry/shape_region.h"
-#include "medium/ray_optical_depth.h"
 #include "render/integrator.h"
+#include "transport/ray_optical_depth.h"
 #include "transport/tracking.h"
 
 using namespace mirage;

@@ -10,10 +10,10 @@
 #include "chi_square.h"
 #include "core/rng.h"
 #include "medium/medium.h"
-#include "medium/ray_optical_depth.h"
 #include "medium/ocean_components.h"
 #include "spectrum/ocean_spectra.h"
 #include "test_support.h"
+#include "transport/ray_optical_depth.h"
 
 using namespace mirage;
 

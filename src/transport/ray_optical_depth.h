@@ -8,14 +8,14 @@
 //     τ_c(t) = ∫₀ᵗ k_c(s) ds,  k_c = concentration_c · densityScale · grid_c(x(s))   (m)
 //     T(t, λ) = exp(−Σ_c σt,c(λ) τ_c(t)),  σt,c = σa,c + σs,c  (1/m per unit concentration)
 //
-// Components whose cross-sections do not depend on λ are folded into one grey channel that
-// holds σt,c·τ_c directly, so a grey scene costs one channel whatever its component count.
+// Components whose cross-sections do not depend on λ (ComponentModel::grey) are folded into one
+// grey channel that holds σt,c·τ_c directly, so a grey scene costs one channel whatever its
+// component count.
 //
-// Chlorophyll components are not linear in their concentration C: σa = A(λ) C^e(λ),
-// σs = b(λ) C^s. Their channels integrate C^e_m for exponents e_m spaced 0.02 apart over the
-// range of e(λ), plus C^s; at a wavelength, ∫ C^e(λ) is interpolated linearly in e between the
-// two nearest e_m. ∫ C^e ds is smooth in e (d²/de² = ∫ C^e ln²C ds), so the relative error is
-// ≤ (0.02)²/8 · max ln²C: below 0.05 % for C within 0.05–20 mg/m³ of the grid's unit.
+// Every other component writes σt(C, λ) as Σ_m w_m(λ) C^p_m (ComponentModel::depthPowers): one
+// channel per power integrates ∫ C^p_m ds, and the component combines them at a wavelength
+// (ComponentModel::opticalDepth). A linear component has one power, 1; chlorophyll, whose σ is
+// not linear in C, has the powers its law needs (medium/component.cpp).
 //
 // Quadrature: the midpoint rule on intervals of h = stepVoxels × the finest voxel of the media
 // the ray crosses (a majorant cell for a homogeneous medium), clipped to each medium's box so
@@ -55,24 +55,17 @@ public:
     bool empty() const { return !(mT0 < mT1); }
     float step() const { return mH; }
     // True when every component is grey: T does not depend on λ.
-    bool grey() const { return mSpectral.empty() && mPowerLaw.empty(); }
+    bool grey() const { return mSpectral.empty(); }
 
     // Transmittance from the ray origin to t at wavelength lambdaNm (nm).
     float transmittance(float t, float lambdaNm) const;
 
 private:
-    // A component whose σt varies with wavelength: its own channel.
-    struct SpectralChannel {
-        const Spectrum* sigmaA;
-        const Spectrum* sigmaS;
-        int channel;
-    };
-    // A chlorophyll component: channels first … first + count − 1 hold ∫ C^(eLo + m·de),
-    // channel sChannel ∫ C^s.
-    struct PowerLawChannels {
-        const MediumComponent* component;
-        int first, count, sChannel;
-        float eLo, de;
+    // A component whose σt varies with wavelength: channels first, first + 1, … hold the
+    // integrals of its depthPowers().
+    struct SpectralComponent {
+        const ComponentModel* model;
+        int first;
     };
     // What one medium contributes to the channels at a point.
     struct Term {
@@ -87,12 +80,9 @@ private:
         std::vector<FloatGrid::Accessor> accessors;
         float voxel;  // finest object-space voxel (a majorant cell when it has no grid)
     };
-    // The channels of a chlorophyll component (k = concentration · densityScale).
-    void addPowerLaw(const MediumComponent& c, const Term& base, float k, MediumInfo* info);
-
     std::vector<MediumInfo> mMedia;
-    std::vector<SpectralChannel> mSpectral;
-    std::vector<PowerLawChannels> mPowerLaw;
+    // Linear components first, then the others: the order their optical depths are summed in.
+    std::vector<SpectralComponent> mSpectral;
     int mChannels = 1;
     float mStepVoxels;
 

@@ -1,4 +1,4 @@
-#include "medium/ray_optical_depth.h"
+#include "transport/ray_optical_depth.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,6 +10,7 @@ namespace mirage {
 RayOpticalDepth::RayOpticalDepth(const std::vector<const Medium*>& media, float stepVoxels)
     : mStepVoxels(stepVoxels) {
     MIRAGE_CHECK(stepVoxels > 0.f);
+    std::vector<SpectralComponent> linear, nonLinear;
     for (const Medium* m : media) {
         MediumInfo info;
         info.medium = m;
@@ -25,63 +26,35 @@ RayOpticalDepth::RayOpticalDepth(const std::vector<const Medium*>& media, float 
             for (int a = 0; a < 3; ++a)
                 info.voxel = std::min(info.voxel, diag[a] / float(std::max(maj.res(a), 1)));
         }
-        auto slots = m->shader().gridSlots();
-        for (const MediumComponent& c : m->shader().components) {
+        const auto& components = m->shader().components;
+        for (int i = 0; i < int(components.size()); ++i) {
+            const MediumComponent& c = components[size_t(i)];
+            const ComponentModel& model = m->componentModel(i);
+            const float k = c.concentration * m->densityScale();
             Term term;
-            term.grid = c.grid.empty()
-                            ? -1
-                            : int(std::find(slots.begin(), slots.end(), c.grid) - slots.begin());
-            float k = c.concentration * m->densityScale();
-            if (c.kind == ComponentKind::Chlorophyll) {
-                addPowerLaw(c, term, k, &info);
-                continue;
-            }
-            if (c.sigmaA.isConstant() && c.sigmaS.isConstant()) {
+            term.grid = m->componentSlot(i);
+            term.scale = k;
+            if (model.grey()) {
                 float sigmaT = c.sigmaA.constantValue() + c.sigmaS.constantValue();
-                if (!(sigmaT * k > 0.f)) continue;  // a component that neither absorbs nor scatters
+                // A component that neither absorbs nor scatters adds nothing.
+                if (!(sigmaT * k > 0.f)) continue;
                 term.scale = k * sigmaT;
                 term.channel = 0;
-            } else {
-                term.scale = k;
-                term.channel = mChannels++;
-                mSpectral.push_back({&c.sigmaA, &c.sigmaS, term.channel});
+                info.terms.push_back(term);
+                continue;
             }
-            info.terms.push_back(term);
+            (model.linear() ? linear : nonLinear).push_back({&model, mChannels});
+            for (float power : model.depthPowers()) {
+                term.channel = mChannels++;
+                term.exponent = power;
+                info.terms.push_back(term);
+            }
         }
         mMedia.push_back(std::move(info));
     }
+    mSpectral = std::move(linear);
+    mSpectral.insert(mSpectral.end(), nonLinear.begin(), nonLinear.end());
     mIntegrand.resize(size_t(mChannels));
-}
-
-void RayOpticalDepth::addPowerLaw(const MediumComponent& c, const Term& base, float k,
-                                  MediumInfo* info) {
-    float eLo = kInfinity, eHi = -kInfinity;
-    for (int i = 0; i < Spectrum::kDenseSamples; ++i) {
-        float e = c.sigmaAExponent(kLambdaMin + float(i));
-        eLo = std::min(eLo, e);
-        eHi = std::max(eHi, e);
-    }
-    constexpr float kExponentStep = 0.02f;
-    PowerLawChannels pl;
-    pl.component = &c;
-    pl.eLo = eLo;
-    pl.count = std::max(2, int(std::ceil((eHi - eLo) / kExponentStep)) + 1);
-    pl.de = (eHi - eLo) / float(pl.count - 1);
-    if (!(pl.de > 0.f)) pl.de = 1.f;  // a constant exponent: both channels hold the same
-    pl.first = mChannels;
-    for (int m = 0; m < pl.count; ++m) {
-        Term t = base;
-        t.scale = k;
-        t.channel = mChannels++;
-        t.exponent = eLo + float(m) * pl.de;
-        info->terms.push_back(t);
-    }
-    Term t = base;
-    t.scale = k;
-    t.channel = pl.sChannel = mChannels++;
-    t.exponent = c.sigmaSExponent;
-    info->terms.push_back(t);
-    mPowerLaw.push_back(pl);
 }
 
 void RayOpticalDepth::march(const Ray& ray, float tMax) {
@@ -160,18 +133,9 @@ float RayOpticalDepth::transmittance(float t, float lambdaNm) const {
     const size_t C = size_t(mChannels);
     const float* a = &mTau[size_t(j) * C];
     const float* b = a + C;
-    auto at = [&](int c) { return a[c] + f * (b[c] - a[c]); };
-    float tau = at(0);
-    for (const SpectralChannel& s : mSpectral)
-        tau += ((*s.sigmaA)(lambdaNm) + (*s.sigmaS)(lambdaNm)) * at(s.channel);
-    for (const PowerLawChannels& pl : mPowerLaw) {
-        const MediumComponent& c = *pl.component;
-        float x = clamp((c.sigmaAExponent(lambdaNm) - pl.eLo) / pl.de, 0.f, float(pl.count - 1));
-        int m = std::min(int(x), pl.count - 2);
-        float w = x - float(m);
-        float integral = (1.f - w) * at(pl.first + m) + w * at(pl.first + m + 1);
-        tau += c.sigmaA(lambdaNm) * integral + c.sigmaS(lambdaNm) * at(pl.sChannel);
-    }
+    float tau = a[0] + f * (b[0] - a[0]);
+    for (const SpectralComponent& s : mSpectral)
+        tau += s.model->opticalDepth(lambdaNm, DepthIntegrals{a + s.first, b + s.first, f});
     return std::exp(-tau);
 }
 

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "volume/stored_values.h"
 
 namespace mirage {
 
@@ -14,30 +15,8 @@ namespace {
 // every stored value counts: all leaf values, all tile values of the internal and root nodes,
 // and the background (what lies outside every tile).
 float maxStoredValue(const nanovdb::FloatGrid& grid) {
-    const auto& tree = grid.tree();
-    float m = tree.background();
-    const auto* leaf = tree.getFirstLeaf();
-    for (uint32_t i = 0; i < tree.nodeCount(0); ++i) {
-        const float* v = leaf[i].data()->mValues;
-        for (int k = 0; k < 512; ++k) m = std::max(m, v[k]);
-    }
-    const auto* lower = tree.getFirstLower();
-    for (uint32_t i = 0; i < tree.nodeCount(1); ++i) {
-        const auto* data = lower[i].data();
-        for (uint32_t n = 0; n < 4096; ++n)
-            if (!data->isChild(n)) m = std::max(m, data->mTable[n].value);
-    }
-    const auto* upper = tree.getFirstUpper();
-    for (uint32_t i = 0; i < tree.nodeCount(2); ++i) {
-        const auto* data = upper[i].data();
-        for (uint32_t n = 0; n < 32768; ++n)
-            if (!data->isChild(n)) m = std::max(m, data->mTable[n].value);
-    }
-    const auto* root = tree.root().data();
-    for (uint32_t t = 0; t < root->mTableSize; ++t) {
-        const auto* tile = root->tile(t);
-        if (!tile->isChild()) m = std::max(m, tile->value);
-    }
+    float m = grid.tree().background();
+    forEachStoredValue(grid.tree(), [&m](const float& v, uint64_t) { m = std::max(m, v); });
     return m;
 }
 

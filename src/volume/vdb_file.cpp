@@ -27,6 +27,7 @@
 
 #include "core/error.h"
 #include "volume/openvdb_expression.h"
+#include "volume/stored_values.h"
 #include "volume/vdb_format.h"
 #include "volume/vdb_tree.h"
 
@@ -320,22 +321,7 @@ SanitizeCounts sanitize(nanovdb::FloatGrid& grid) {
             count.clamped += voxels;
         }
     };
-    auto& tree = grid.tree();
-    auto* leaf = tree.getFirstLeaf();
-    for (uint32_t i = 0; i < tree.nodeCount(0); ++i)
-        for (float& v : leaf[i].data()->mValues) fix(v, 1);
-    auto* lower = tree.getFirstLower();
-    for (uint32_t i = 0; i < tree.nodeCount(1); ++i)
-        for (uint32_t n = 0; n < 4096; ++n)
-            if (!lower[i].data()->isChild(n)) fix(lower[i].data()->mTable[n].value, 512);
-    auto* upper = tree.getFirstUpper();
-    for (uint32_t i = 0; i < tree.nodeCount(2); ++i)
-        for (uint32_t n = 0; n < 32768; ++n)
-            if (!upper[i].data()->isChild(n))
-                fix(upper[i].data()->mTable[n].value, uint64_t(128) * 128 * 128);
-    auto* root = tree.root().data();
-    for (uint32_t t = 0; t < root->mTableSize; ++t)
-        if (!root->tile(t)->isChild()) fix(root->tile(t)->value, uint64_t(4096) * 4096 * 4096);
+    forEachStoredValue(grid.tree(), fix);
     if (count.total() > 0) {
         // The node statistics (min/max) and the checksum describe the old values.
         nanovdb::gridStats(grid, nanovdb::StatsMode::All);

@@ -13,6 +13,7 @@
 #include "app/render_frame.h"
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "core/text.h"
 #include "film/color.h"
 #include "film/image_io.h"
 #include "film/partial_film.h"
@@ -63,24 +64,12 @@ std::vector<float> outputChromaticities(const std::string& config, const std::st
 // Checks the output colour space and preview display/view before a long render, not after.
 void checkOutputSettings(const Scene& scene, const ColorPipeline& color) {
     const OutputSettings& out = scene.output;
-    auto list = [](const std::vector<std::string>& v) {
-        std::string s;
-        for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
-        return s;
-    };
-    auto spaces = color.colorSpaces();
-    if (!out.colorSpace.empty() &&
-        std::find(spaces.begin(), spaces.end(), out.colorSpace) == spaces.end())
-        throw MirageError(scene.source + ": [output] color_space '" + out.colorSpace +
-                          "' is not in the OCIO config; it has: " + list(spaces));
-    auto displays = color.displays();
-    if (std::find(displays.begin(), displays.end(), out.display) == displays.end())
-        throw MirageError(scene.source + ": [output] display '" + out.display +
-                          "' is not in the OCIO config; it has: " + list(displays));
-    auto views = color.views(out.display);
-    if (std::find(views.begin(), views.end(), out.view) == views.end())
-        throw MirageError(scene.source + ": [output] view '" + out.view + "' is not a view of display '" +
-                          out.display + "'; it has: " + list(views));
+    auto miss = findUnknownOutputName(color, out.colorSpace, out.display, out.view);
+    if (!miss) return;
+    const std::string what = miss->key == "view" ? "' is not a view of display '" + out.display + "'"
+                                                 : "' is not in the OCIO config";
+    throw MirageError(scene.source + ": [output] " + miss->key + " '" + miss->value + what +
+                      "; it has: " + joinList(miss->known));
 }
 
 }  // namespace

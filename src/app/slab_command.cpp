@@ -65,6 +65,7 @@
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "core/progress.h"
 #include "core/rng.h"
 #include "geometry/material.h"
@@ -256,14 +257,14 @@ ShaderDesc slabShader(const SlabOptions& o) {
         if (end == kv.c_str() + eq + 1 || *end != '\0' || !std::isfinite(v) || v < 0.0)
             throw MirageError("slab: --set " + kv + ": expected a number ≥ 0");
         MediumComponent* c = nullptr;
-        std::string names;
-        for (auto& comp : shader.components) {
+        for (auto& comp : shader.components)
             if (comp.name == key) c = &comp;
-            names += (names.empty() ? "" : ", ") + comp.name;
-        }
         if (!c)
             throw MirageError("slab: --set " + kv + ": shader '" + shader.name +
-                              "' has no component '" + key + "' (it has " + names + ")");
+                              "' has no component '" + key + "' (it has " +
+                              joinList(shader.components,
+                                       [](const MediumComponent& mc) { return mc.name; }) +
+                              ")");
         if (field == "concentration") {
             c->concentration = float(v);
         } else if (field == "quantum_efficiency" && v <= 1.0) {

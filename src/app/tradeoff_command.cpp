@@ -36,11 +36,12 @@
 #include <fstream>
 #include <map>
 #include <memory>
-#include <unistd.h>
 
 #include "app/commands.h"
 #include "app/render_frame.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "film/color.h"
 #include "film/image_io.h"
 #include "film/plot.h"
@@ -143,8 +144,7 @@ VariedKey parseVary(const std::string& option) {
             known = true;
         }
     if (!known && vk.name.find('.') == std::string::npos) {
-        std::string names;
-        for (const auto& k : kKeys) names += std::string(names.empty() ? "" : ", ") + k.name;
+        const std::string names = joinList(kKeys, [](const KeyInfo& k) { return std::string(k.name); });
         throw MirageError("--vary '" + option + "': unknown key '" + vk.name + "'; expected one of " +
                           names + ", or a dotted scene key such as volume.0.density_scale");
     }
@@ -218,25 +218,6 @@ void compare(const Image& x, const Image& r, Setting* s) {
     s->rmse = std::sqrt(se / double(3 * n));
     s->relMse = rel / double(3 * n);
     s->meanBias = (meanX - meanR) / meanR;
-}
-
-// Writes `text` to `path` through a temporary file and a rename (as the image writers do).
-void writeTextFile(const std::string& path, const std::string& text) {
-    fs::path target(path), dir = target.parent_path();
-    std::error_code ec;
-    if (!dir.empty()) fs::create_directories(dir, ec);
-    fs::path tmp = (dir.empty() ? fs::path(".") : dir) /
-                   ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()));
-    {
-        std::ofstream out(tmp);
-        out << text;
-        if (!out.flush()) throw MirageError(FileLoc{path, 0, 0}, "cannot write the file");
-    }
-    fs::rename(tmp, target, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw MirageError(FileLoc{path, 0, 0}, "cannot write the file: " + ec.message());
-    }
 }
 
 std::string format(const char* fmt, double v) {
@@ -370,7 +351,8 @@ int runTradeoff(const TradeoffOptions& o) {
                     s.seconds, s.rmse, s.relMse, s.meanBias);
     }
     const std::string csvPath = o.prefix + "tradeoff.csv", pngPath = o.prefix + "tradeoff.png";
-    writeTextFile(csvPath, csv);
+    createParentFolders(csvPath);
+    writeTextFileAtomically(csvPath, csv);
 
     // The plot: one polyline per value of the last varied key, points in the sweep's order.
     LogLogPlot plot;

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include "core/grid_name.h"
+#include "core/text.h"
 #include "film/color.h"
 #include "medium/ocean_components.h"
 #include "scene/geometry_loader.h"
@@ -189,17 +191,16 @@ std::vector<std::pair<std::string, std::string>> bindGrids(
         bool found = (isIndex && (nano || indexInRange)) || nano ||
                      std::find(names.begin(), names.end(), target) != names.end();
         if (!found && !bound && slots.size() == 1 && names.size() == 1) {
-            target = names[0].empty() ? "#0" : names[0];  // the file's only grid
+            target = gridName(names[0], 0);  // the file's only grid
             found = true;
         }
-        if (nano && slots.size() == 1 && target == slot) target = "#0";
+        if (nano && slots.size() == 1 && target == slot) target = gridIndexName(0);
         if (!found) {
-            std::string list;
-            for (size_t i = 0; i < names.size(); ++i)
-                list += (i ? ", " : "") + (names[i].empty() ? "#" + std::to_string(i) : "'" + names[i] + "'");
+            std::vector<std::string> quoted;
+            for (size_t i = 0; i < names.size(); ++i) quoted.push_back(quotedGridName(names[i], i));
             throw MirageError(where, "shader '" + shader.name + "' reads grid slot '" + slot +
                                          "', but " + file + " has no grid '" + target +
-                                         "' (it has: " + list + "); bind one with bind = { " +
+                                         "' (it has: " + joinList(quoted) + "); bind one with bind = { " +
                                          slot + " = \"<grid>\" }");
         }
         out.emplace_back(slot, target);
@@ -207,8 +208,8 @@ std::vector<std::pair<std::string, std::string>> bindGrids(
     if (unused)
         for (size_t i = 0; i < names.size(); ++i) {
             bool used = false;
-            for (const auto& b : out) used |= b.second == names[i] || b.second == "#" + std::to_string(i);
-            if (!used) unused->push_back(names[i].empty() ? "#" + std::to_string(i) : names[i]);
+            for (const auto& b : out) used |= b.second == names[i] || b.second == gridIndexName(i);
+            if (!used) unused->push_back(gridName(names[i], i));
         }
     return out;
 }
@@ -256,7 +257,7 @@ static std::unique_ptr<Medium> buildMedium(const ShaderDesc& shader, VolumeRecor
         for (const std::string& gridName : toRead) {
             uint64_t bytes = 0;
             for (size_t i = 0; i < info.grids.size(); ++i)
-                if (info.grids[i].name == gridName || "#" + std::to_string(i) == gridName)
+                if (info.grids[i].name == gridName || gridIndexName(i) == gridName)
                     bytes = std::max(info.grids[i].memoryBytes, info.grids[i].activeVoxels * 4);
             options.beforeGridLoad(scene, rec.file, gridName, bytes);
         }
@@ -331,17 +332,10 @@ static void readSettings(const TableReader& top,
         scene.output.display = o->getString("display", "sRGB");
         scene.output.view = o->getString("view", "Standard");
         // Checked here, against the OCIO config in use, so that the message names the line.
-        auto oneOf = [&](const char* key, const std::string& value,
-                         const std::vector<std::string>& names) {
-            if (std::find(names.begin(), names.end(), value) != names.end()) return;
-            std::string list;
-            for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-            o->fail(key, "'" + value + "' is not in the OCIO config; it has: " + list);
-        };
-        if (!scene.output.colorSpace.empty())
-            oneOf("color_space", scene.output.colorSpace, color.colorSpaces());
-        oneOf("display", scene.output.display, color.displays());
-        oneOf("view", scene.output.view, color.views(scene.output.display));
+        if (auto miss = findUnknownOutputName(color, scene.output.colorSpace,
+                                              scene.output.display, scene.output.view))
+            o->fail(miss->key, "'" + miss->value + "' is not in the OCIO config; it has: " +
+                                   joinList(miss->known));
         o->finish();
     }
 }
@@ -400,10 +394,9 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
                 auto it = std::find_if(comps.begin(), comps.end(),
                                        [&](const MediumComponent& mc) { return mc.name == k; });
                 if (it == comps.end()) {
-                    std::string list;
-                    for (const auto& mc : comps) list += (list.empty() ? "" : ", ") + mc.name;
                     c->fail(k, "shader '" + shader.name + "' has no component '" + k +
-                                   "'; its components are: " + list);
+                                   "'; its components are: " +
+                                   joinList(comps, [](const MediumComponent& mc) { return mc.name; }));
                 }
                 it->concentration = float(c->getNumber(k, 0.0, 0.0, 1e12));
             }
@@ -425,10 +418,8 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
             for (const auto& k : b->keys()) {
                 auto slots = shader.gridSlots();
                 if (std::find(slots.begin(), slots.end(), k) == slots.end()) {
-                    std::string list;
-                    for (const auto& s : slots) list += (list.empty() ? "" : ", ") + s;
                     b->fail(k, "shader '" + shader.name + "' has no grid slot '" + k +
-                                   "'; its slots are: " + list);
+                                   "'; its slots are: " + joinList(slots));
                 }
                 bind.emplace_back(k, b->getString(k));
             }

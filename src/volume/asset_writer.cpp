@@ -7,16 +7,16 @@
 #include <openvdb/tools/Prune.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <functional>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/rng.h"
+#include "core/text.h"
 #include "volume/vdb_format.h"
 
 namespace mirage {
@@ -315,25 +315,20 @@ void writeAtomically(const std::string& path, const openvdb::GridPtrVec& grids,
     std::error_code ec;
     if (target.has_parent_path() && !fs::is_directory(target.parent_path(), ec))
         fail(path, "cannot write: folder " + target.parent_path().string() + " does not exist");
-    static std::atomic<uint64_t> counter{0};
-    const std::string tmp =
-        path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1));
-    try {
-        openvdb::io::File file(tmp);
-        file.setCompression(compression);
-        file.write(grids, meta);
-        file.close();
-        vdbformat::scanFile(tmp);
-    } catch (const std::exception& e) {
-        fs::remove(tmp, ec);
-        fail(path, "cannot write: " + boundedMessage(e.what()));
-    }
-    fs::rename(tmp, target, ec);
-    if (ec) {
-        std::error_code ignored;
-        fs::remove(tmp, ignored);
-        fail(path, "cannot write: " + ec.message());
-    }
+    replaceFileAtomically(
+        path,
+        [&](const std::string& tmp) {
+            try {
+                openvdb::io::File file(tmp);
+                file.setCompression(compression);
+                file.write(grids, meta);
+                file.close();
+                vdbformat::scanFile(tmp);
+            } catch (const std::exception& e) {
+                fail(path, "cannot write: " + boundedMessage(e.what()));
+            }
+        },
+        "cannot write");
 }
 
 openvdb::math::Transform::Ptr makeTransform(double voxelSize, const Vec3d& origin) {
@@ -398,10 +393,8 @@ void writeProceduralAsset(const std::string& kind, const std::string& path, int 
     } else if (kind == "ocean") {
         field = oceanField(seed);
     } else {
-        std::string valid;
-        for (const auto& k : proceduralAssetKinds()) valid += (valid.empty() ? "" : ", ") + k;
         throw MirageError("unknown asset kind '" + boundedMessage(kind, 60) +
-                          "' (valid kinds: " + valid + ")");
+                          "' (valid kinds: " + joinList(proceduralAssetKinds()) + ")");
     }
     if (resolution < 8 || resolution > 1024)
         throw MirageError("asset resolution " + std::to_string(resolution) +

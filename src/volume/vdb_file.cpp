@@ -26,6 +26,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/grid_name.h"
 #include "volume/openvdb_expression.h"
 #include "volume/vdb_format.h"
 #include "volume/vdb_tree.h"
@@ -461,8 +462,7 @@ FloatGrid finishGrid(const std::string& path, const FileLayout& layout, int inde
                      nanovdb::GridHandle<nanovdb::HostBuffer> handle, const std::string& label) {
     const SanitizeCounts sanitized = sanitize(*handle.grid<float>());
     if (sanitized.total() > 0) warnSanitizedOnce(path, label, sanitized);
-    const std::string& own = layout.grids[size_t(index)].name;
-    std::string name = own.empty() ? "#" + std::to_string(index) : own;
+    std::string name = gridName(layout.grids[size_t(index)].name, size_t(index));
     return FloatGrid(std::move(handle), std::move(name), sanitized.total());
 }
 
@@ -532,8 +532,7 @@ std::vector<FloatGrid> loadFloatGrids(const std::string& path,
     // Each grid is read once, by index, and carries the name AX will look it up by: its name
     // in the file, or "#N" when it has none.
     auto canonicalName = [&](int index) {
-        const std::string& name = layout.grids[size_t(index)].name;
-        return name.empty() ? "#" + std::to_string(index) : name;
+        return gridName(layout.grids[size_t(index)].name, size_t(index));
     };
     std::map<int, openvdb::FloatGrid::Ptr> grids;
     auto read = [&](int index) {

@@ -20,7 +20,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::vector<fs::path> corpusFiles(const std::string& kind) {
-    const fs::path dir = fs::path(test::sourceDir()) / "tests" / "fuzz" / "corpus" / kind;
+    const fs::path dir = fs::path(::mirage::test::sourceDir()) / "tests" / "fuzz" / "corpus" / kind;
     std::vector<fs::path> files;
     for (const auto& entry : fs::directory_iterator(dir))
         if (entry.is_regular_file()) files.push_back(entry.path());

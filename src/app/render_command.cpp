@@ -1,4 +1,5 @@
 // `mirage render`: load → render → develop → write, per frame, with a summary at the end.
+#include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -10,7 +11,6 @@
 
 #include "app/commands.h"
 #include "app/render_checkpoint.h"
-#include "app/render_frame.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/text.h"
@@ -18,6 +18,7 @@
 #include "film/image_io.h"
 #include "film/partial_film.h"
 #include "scene/memory_budget.h"
+#include "scene/render_frame.h"
 #include "scene/scene.h"
 
 namespace mirage {
@@ -273,6 +274,42 @@ int runRender(const RenderOptions& o) {
                      formatSeconds(secondsSince(t0)).c_str(), skips.c_str());
     }
     return 0;
+}
+
+Command addRenderCommand(CLI::App& app) {
+    auto o = std::make_shared<RenderOptions>();
+    auto* render = app.add_subcommand("render", "Render a scene file (.toml) or a bare VDB");
+    render->add_option("input", o->input, "Scene .toml, or a .vdb/.nvdb for a quick look")
+        ->required();
+    render->add_option("-o,--output", o->output,
+                       "Output EXR (frame patterns $F4 or #### allowed); default: the scene's");
+    render->add_option("--preview", o->preview, "Also write an sRGB preview (PNG/JPEG)");
+    render->add_option("--frame", o->frame, "Frame number substituted into $F patterns");
+    render->add_option("--frames", o->frames, "Frame range A-B (inclusive)")->excludes("--frame");
+    render->add_option("--set", o->overrides, "Override a scene value: key.path=value")
+        ->take_all();
+    render->add_option("--resolution", o->resolution, "Image size WxH");
+    render->add_option("--spp", o->spp, "Samples per pixel")->check(CLI::Range(1, 1 << 20));
+    render->add_option("--threads", o->threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(1, 4096));
+    render->add_option("--seed", o->seed, "Random seed")->check(CLI::Range(int64_t(0), INT64_MAX));
+    render->add_option("--turntable", o->turntable, "Render N frames orbiting the volume")
+        ->check(CLI::Range(1, 100000));
+    render->add_option("--integrator", o->integrator,
+                       "single (single scattering + emission) or volpath (reference path tracer)");
+    render->add_option("--quality", o->quality,
+                       "Preset samples/photons/k measured on the speed-accuracy curves")
+        ->check(CLI::IsMember({"draft", "preview", "final"}));
+    render->add_flag("--float", o->floatExr, "Write 32-bit float EXR instead of half");
+    render->add_flag("-q,--quiet", o->quiet, "No progress output");
+    render->add_option("--ocio", o->ocioConfig, "OCIO config (default: $OCIO, else built-in)");
+    render->add_flag("--resume", o->resume,
+                     "Continue a killed frame from <out>.partial (same scene and settings)");
+    render->add_flag("--skip-existing", o->skipExisting,
+                     "Skip frames whose output EXR is complete (mirage:complete = true)");
+    render->add_option("--max-memory", o->maxMemory,
+                       "Fail early when the frame's estimated memory exceeds SIZE (4G, 512M)");
+    return {render, [o] { return runRender(*o); }};
 }
 
 }  // namespace mirage

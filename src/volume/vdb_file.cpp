@@ -15,7 +15,6 @@
 #include <openvdb/io/Compression.h>
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
-#include <openvdb/tools/Interpolation.h>
 
 #include <cmath>
 #include <cstdio>
@@ -583,23 +582,6 @@ std::vector<FloatGrid> loadFloatGrids(const std::string& path,
         out.push_back(finishGrid(path, layout, index, std::move(handle), label));
     }
     return out;
-}
-
-std::vector<double> openvdbSampleForTest(const std::string& path, const std::string& gridName,
-                                         const std::vector<Vec3d>& points, bool indexSpace) {
-    const FileLayout layout = vdbformat::scanFile(path);
-    if (layout.format != Format::OpenVdb) fail(path, "not an OpenVDB file");
-    const int index = requireGrid(path, layout, gridName);
-    openvdb::FloatGrid::Ptr grid =
-        readFogVolume(path, layout, index);
-    std::vector<double> values;
-    values.reserve(points.size());
-    openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(*grid);
-    for (const Vec3d& p : points) {
-        openvdb::Vec3d q(p.x, p.y, p.z);
-        values.push_back(indexSpace ? sampler.isSample(q) : sampler.wsSample(q));
-    }
-    return values;
 }
 
 }  // namespace mirage

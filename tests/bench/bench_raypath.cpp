@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "core/atomic_file.h"
-#include "film/plot.h"
+#include "tools/plot.h"
 #include "medium/index_field.h"
 #include "medium/linear_profile_path.h"
 #include "transport/curved_path.h"

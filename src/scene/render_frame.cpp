@@ -1,4 +1,4 @@
-#include "app/render_frame.h"
+#include "scene/render_frame.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -11,17 +11,19 @@
 // arc_length, steps (accepted), rejected, straight_chords, evaluations (of n and ∇n), capped
 // (the step cap was reached first), seconds (the trace alone). For the linear profile the exact
 // answer (medium/linear_profile_path.h) and the distance to it are printed as well.
+#include <CLI/CLI.hpp>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <sstream>
 
-#include "app/commands.h"
 #include "core/error.h"
 #include "medium/air_index.h"
 #include "medium/index_field.h"
 #include "medium/linear_profile_path.h"
+#include "tools/tools.h"
 #include "transport/curved_path.h"
 
 namespace mirage {
@@ -139,6 +141,37 @@ int runRaypath(const RaypathOptions& o) {
         return 1;
     }
     return 0;
+}
+
+Command addRaypathCommand(CLI::App& app) {
+    auto o = std::make_shared<RaypathOptions>();
+    auto* raypath = app.add_subcommand(
+        "raypath", "Trace one curved light path through a refractive-index profile");
+    raypath->add_option("--profile", o->profile, "linear (n = n0 + k·y) or atmosphere")
+        ->check(CLI::IsMember({"linear", "atmosphere"}));
+    raypath->add_option("--n0", o->n0, "linear: index at y = 0")->check(CLI::PositiveNumber);
+    raypath->add_option("--k", o->k, "linear: dn/dy in 1/m");
+    raypath->add_option("--origin", o->origin, "Start point x,y,z in metres");
+    raypath->add_option("--direction", o->direction, "Start direction x,y,z (normalised)");
+    raypath->add_option("--length", o->length, "Arc length to trace, m")
+        ->check(CLI::PositiveNumber);
+    raypath->add_option("--tolerance", o->tolerance, "rk45: error tolerance per step")
+        ->check(CLI::Range(1e-16, 1.0));
+    raypath->add_option("--method", o->method, "rk45 (Dormand-Prince 5(4)) or euler")
+        ->check(CLI::IsMember({"rk45", "euler"}));
+    raypath->add_option("--step", o->step, "euler: fixed step, m")->check(CLI::PositiveNumber);
+    raypath->add_option("--max-step", o->maxStep, "rk45: largest step, m (default unlimited)")
+        ->check(CLI::PositiveNumber);
+    raypath->add_option("--max-steps", o->maxSteps, "Hard cap on steps (reached: reported)")
+        ->check(CLI::PositiveNumber);
+    raypath->add_option("--wavelength", o->wavelength, "Wavelength, nm")
+        ->check(CLI::Range(360.0, 830.0));
+    raypath->add_option("--inversion", o->inversions,
+                        "atmosphere: a layer BASE,TOP,DT[,BLEND] (m, m, K, m) warmer by DT "
+                        "between BASE and TOP, edges blended over BLEND (default 1 m); "
+                        "repeatable");
+    raypath->add_flag("--json", o->json, "Print the result as JSON");
+    return {raypath, [o] { return runRaypath(*o); }};
 }
 
 }  // namespace mirage

@@ -1,6 +1,6 @@
 // `mirage slab`: total reflectance and transmittance of a plane-parallel slab by photon tracing,
 // the instrument that checks the photon pass's transport against published adding-doubling
-// values (Prahl's iadpython tests; /work/shared/data/README.md).
+// values (Prahl's iadpython tests).
 //
 //   mirage slab --albedo A --tau T [--g G] [--n N] [--n-outside M] [--incidence normal|diffuse]
 //               [--photons P] [--seed S] [--max-events E] [--threads K] [--json] [-q]
@@ -51,6 +51,7 @@
 // reflection and Snell refraction, with total internal reflection past the critical angle.
 // Parallel over blocks of photons, each photon's random numbers keyed by (seed, index), the
 // tallies summed in block order: the output depends on the seed only, not on the threads.
+#include <CLI/CLI.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -63,14 +64,14 @@
 #include <string>
 #include <vector>
 
-#include "app/commands.h"
 #include "core/error.h"
-#include "core/text.h"
 #include "core/progress.h"
 #include "core/rng.h"
+#include "core/text.h"
 #include "geometry/material.h"
 #include "photon/photon_walk.h"
 #include "scene/shader_loader.h"
+#include "tools/tools.h"
 
 namespace mirage {
 
@@ -468,6 +469,45 @@ int runSlab(const SlabOptions& o) {
                     formatSeconds(seconds).c_str(), n / seconds * 1e-6);
     }
     return 0;
+}
+
+Command addSlabCommand(CLI::App& app) {
+    auto o = std::make_shared<SlabOptions>();
+    auto* slab = app.add_subcommand(
+        "slab", "Reflectance and transmittance of a plane-parallel slab, by photon tracing");
+    slab->add_option("--albedo", o->albedo, "Single-scattering albedo σs/σt (without --shader)")
+        ->check(CLI::Range(0.0, 1.0));
+    slab->add_option("--tau", o->tau,
+                     "Optical thickness σt·d; inf for a semi-infinite slab (without --shader)");
+    slab->add_option("--shader", o->shader,
+                     "Shader (name or .toml) made homogeneous, instead of --albedo/--tau/--g");
+    slab->add_option("--set", o->sets,
+                     "With --shader: NAME=C sets a component's concentration (e.g. "
+                     "chlorophyll=5), NAME.quantum_efficiency=Γ its fluorescence")
+        ->take_all();
+    slab->add_option("--thickness", o->thickness,
+                     "With --shader: slab thickness in metres (default: a deep column)")
+        ->check(CLI::Range(1e-9, 1e9));
+    slab->add_flag("--spectral", o->spectral,
+                   "Flat 380–780 nm source: reflectance/transmittance per 5 nm bin");
+    slab->add_option("--g", o->g, "Henyey–Greenstein asymmetry")
+        ->check(CLI::Range(-0.9999, 0.9999));
+    slab->add_option("--n", o->n, "Refractive index of the slab")->check(CLI::Range(0.01, 100.0));
+    slab->add_option("--n-outside", o->nOutside, "Refractive index around the slab (default 1)")
+        ->check(CLI::Range(0.01, 100.0));
+    slab->add_option("--incidence", o->incidence, "normal (collimated) or diffuse (Lambertian)")
+        ->check(CLI::IsMember({"normal", "diffuse"}));
+    slab->add_option("--photons", o->photons, "Photons to trace")
+        ->check(CLI::Range(uint64_t(1), uint64_t(1) << 40));
+    slab->add_option("--seed", o->seed, "Random seed");
+    slab->add_option("--max-events", o->maxEvents,
+                     "Cap on scatterings + internal reflections per photon (capped: reported)")
+        ->check(CLI::Range(int64_t(1), int64_t(1) << 40));
+    slab->add_option("--threads", o->threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(1, 4096));
+    slab->add_flag("--json", o->json, "Print the result as JSON");
+    slab->add_flag("-q,--quiet", o->quiet, "No progress output");
+    return {slab, [o] { return runSlab(*o); }};
 }
 
 }  // namespace mirage

@@ -1,4 +1,4 @@
-#include "film/plot.h"
+#include "tools/plot.h"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>

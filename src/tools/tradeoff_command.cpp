@@ -8,7 +8,7 @@
 // Each --vary names a scene key and its values; several --vary form the Cartesian product.
 // Short names: photons, estimate, k, max_radius ([render]), spp (film.spp), integrator
 // (render.integrator); any dotted key is taken as a --set override. Every setting is rendered
-// in-process by the same code as `mirage render` (app/render_frame.h) and compared with the
+// in-process by the same code as `mirage render` (scene/render_frame.h) and compared with the
 // reference in scene-linear RGB (alpha ignored), over all N pixels × 3 channels:
 //
 //   RMSE      = sqrt( Σ (x − r)² / 3N )
@@ -27,6 +27,7 @@
 // Output: <prefix>tradeoff.csv (setting, seconds, rmse, relmse, mean_bias, one column per
 // varied key), a table on stdout, and <prefix>tradeoff.png, relMSE against seconds on log-log
 // axes with one polyline per value of the last varied key (in sweep order).
+#include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -37,15 +38,15 @@
 #include <map>
 #include <memory>
 
-#include "app/commands.h"
-#include "app/render_frame.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/text.h"
 #include "film/color.h"
 #include "film/image_io.h"
-#include "film/plot.h"
+#include "scene/render_frame.h"
 #include "scene/scene.h"
+#include "tools/plot.h"
+#include "tools/tools.h"
 
 namespace mirage {
 
@@ -380,6 +381,40 @@ int runTradeoff(const TradeoffOptions& o) {
     writePlotPng(pngPath, drawLogLogPlot(plot));
     std::printf("%s\n%s\n", csvPath.c_str(), pngPath.c_str());
     return 0;
+}
+
+Command addTradeoffCommand(CLI::App& app) {
+    auto o = std::make_shared<TradeoffOptions>();
+    auto* tradeoff = app.add_subcommand(
+        "tradeoff", "Error against a reference versus render time over a sweep of settings");
+    tradeoff->add_option("input", o->input, "Scene .toml")->required();
+    tradeoff->add_option("--vary", o->vary,
+                         "NAME=v1,v2,…: photons, estimate, k, max_radius, spp, integrator or "
+                         "any dotted scene key; several form the Cartesian product")
+        ->required();
+    tradeoff->add_option("--reference", o->reference,
+                         "Reference EXR (default: render one with volpath, write "
+                         "<prefix>reference.exr)");
+    tradeoff->add_option("--reference-spp", o->referenceSpp,
+                         "Samples per pixel of a rendered reference (default: 4x the sweep's "
+                         "highest, at least 256)")
+        ->check(CLI::Range(1, 1 << 20));
+    tradeoff->add_option("--set", o->overrides, "Override a scene value: key.path=value")
+        ->take_all();
+    tradeoff->add_option("--resolution", o->resolution, "Image size WxH");
+    tradeoff->add_option("--spp", o->spp, "Samples per pixel unless varied")
+        ->check(CLI::Range(1, 1 << 20));
+    tradeoff->add_option("--integrator", o->integrator, "single, volpath or photon unless varied");
+    tradeoff->add_option("--threads", o->threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(1, 4096));
+    tradeoff->add_option("--seed", o->seed, "Random seed")->check(CLI::Range(int64_t(0), INT64_MAX));
+    tradeoff->add_option("--repeats", o->repeats, "Renders per setting; the median time is kept")
+        ->check(CLI::Range(1, 1000));
+    tradeoff->add_option("-o,--output", o->prefix,
+                         "Prefix of the output files <prefix>tradeoff.csv, .png, reference.exr");
+    tradeoff->add_option("--ocio", o->ocioConfig, "OCIO config (default: $OCIO, else built-in)");
+    tradeoff->add_flag("-q,--quiet", o->quiet, "No progress output");
+    return {tradeoff, [o] { return runTradeoff(*o); }};
 }
 
 }  // namespace mirage

@@ -23,6 +23,7 @@
 #include "medium/air_index.h"
 #include "medium/index_field.h"
 #include "medium/linear_profile_path.h"
+#include "tools/json_report.h"
 #include "tools/tools.h"
 #include "transport/curved_path.h"
 
@@ -72,8 +73,46 @@ std::unique_ptr<IndexField> makeProfile(const RaypathOptions& o) {
     return std::make_unique<AtmosphereIndexField>(atm);
 }
 
-void printVec(const char* key, const Vec3d& v, const char* tail) {
-    std::printf("  \"%s\": [%.17g, %.17g, %.17g]%s\n", key, v.x, v.y, v.z, tail);
+// Full double precision: a validation instrument reports the path to the last bit.
+JsonReport exact(double v) { return jsonNumber(v, 17); }
+JsonReport exact(const Vec3d& v) { return {exact(v.x), exact(v.y), exact(v.z)}; }
+
+void printRaypathJson(const RaypathOptions& o, const Vec3d& origin, const Vec3d& direction,
+                      const CurvedPathResult& r, double seconds) {
+    JsonReport j;
+    j["profile"] = o.profile;
+    j["method"] = o.method;
+    j["end_point"] = exact(r.end.r);
+    j["end_direction"] = exact(r.end.direction());
+    j["optical_path_length"] = exact(r.end.opl);
+    j["arc_length"] = exact(r.end.arc);
+    j["steps"] = r.steps;
+    j["rejected"] = r.rejected;
+    j["straight_chords"] = r.straightChords;
+    j["evaluations"] = r.evaluations;
+    j["capped"] = r.capped;
+    if (o.profile == "linear") {
+        const LinearProfilePath ex =
+            exactLinearProfilePath(o.n0, o.k, Vec3d(0, 1, 0), origin, direction, r.end.arc);
+        j["exact_end_point"] = exact(ex.endPoint);
+        j["exact_optical_path_length"] = exact(ex.opticalPathLength);
+        j["end_point_error"] = jsonNumber(length(r.end.r - ex.endPoint), 6);
+    }
+    j["seconds"] = jsonNumber(seconds, 6);
+    std::fputs(formatJsonReport(j).c_str(), stdout);
+}
+
+void printRaypathTable(const RaypathOptions& o, const CurvedPathResult& r, double seconds) {
+    const Vec3d endDir = r.end.direction();
+    std::printf("raypath: %s profile, %s, %g m at %g nm\n", o.profile.c_str(),
+                o.method.c_str(), o.length, o.wavelength);
+    std::printf("  end point      %.12g %.12g %.12g\n", r.end.r.x, r.end.r.y, r.end.r.z);
+    std::printf("  end direction  %.12g %.12g %.12g\n", endDir.x, endDir.y, endDir.z);
+    std::printf("  optical path   %.15g m over %.15g m\n", r.end.opl, r.end.arc);
+    std::printf("  %lld steps (%lld rejected, %lld straight), %lld evaluations, %.3g s%s\n",
+                (long long)r.steps, (long long)r.rejected, (long long)r.straightChords,
+                (long long)r.evaluations, seconds,
+                r.capped ? "; STEP CAP REACHED before the length was covered" : "");
 }
 
 }  // namespace
@@ -100,39 +139,10 @@ int runRaypath(const RaypathOptions& o) {
         traceCurvedPath(*field, origin, direction, o.wavelength, o.length, set);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const Vec3d endDir = r.end.direction();
-
-    if (o.json) {
-        std::printf("{\n  \"profile\": \"%s\",\n  \"method\": \"%s\",\n", o.profile.c_str(),
-                    o.method.c_str());
-        printVec("end_point", r.end.r, ",");
-        printVec("end_direction", endDir, ",");
-        std::printf("  \"optical_path_length\": %.17g,\n  \"arc_length\": %.17g,\n",
-                    r.end.opl, r.end.arc);
-        std::printf("  \"steps\": %lld,\n  \"rejected\": %lld,\n  \"straight_chords\": %lld,\n"
-                    "  \"evaluations\": %lld,\n  \"capped\": %s,\n",
-                    (long long)r.steps, (long long)r.rejected, (long long)r.straightChords,
-                    (long long)r.evaluations, r.capped ? "true" : "false");
-        if (o.profile == "linear") {
-            const LinearProfilePath ex = exactLinearProfilePath(
-                o.n0, o.k, Vec3d(0, 1, 0), origin, direction, r.end.arc);
-            printVec("exact_end_point", ex.endPoint, ",");
-            std::printf("  \"exact_optical_path_length\": %.17g,\n"
-                        "  \"end_point_error\": %.6g,\n",
-                        ex.opticalPathLength, length(r.end.r - ex.endPoint));
-        }
-        std::printf("  \"seconds\": %.6g\n}\n", seconds);
-    } else {
-        std::printf("raypath: %s profile, %s, %g m at %g nm\n", o.profile.c_str(),
-                    o.method.c_str(), o.length, o.wavelength);
-        std::printf("  end point      %.12g %.12g %.12g\n", r.end.r.x, r.end.r.y, r.end.r.z);
-        std::printf("  end direction  %.12g %.12g %.12g\n", endDir.x, endDir.y, endDir.z);
-        std::printf("  optical path   %.15g m over %.15g m\n", r.end.opl, r.end.arc);
-        std::printf("  %lld steps (%lld rejected, %lld straight), %lld evaluations, %.3g s%s\n",
-                    (long long)r.steps, (long long)r.rejected, (long long)r.straightChords,
-                    (long long)r.evaluations, seconds,
-                    r.capped ? "; STEP CAP REACHED before the length was covered" : "");
-    }
+    if (o.json)
+        printRaypathJson(o, origin, direction, r, seconds);
+    else
+        printRaypathTable(o, r, seconds);
     if (r.capped) {
         std::fprintf(stderr,
                      "mirage: error: raypath: the path reached the step cap (%lld steps) after "

@@ -53,7 +53,6 @@
 // tallies summed in block order: the output depends on the seed only, not on the threads.
 #include <CLI/CLI.hpp>
 #include <tbb/blocked_range.h>
-#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
 #include <chrono>
@@ -68,6 +67,7 @@
 #include "core/progress.h"
 #include "core/rng.h"
 #include "core/text.h"
+#include "core/thread_limit.h"
 #include "geometry/material.h"
 #include "photon/photon_walk.h"
 #include "scene/shader_loader.h"
@@ -487,10 +487,7 @@ void printSlabTable(const SlabOptions& o, const SlabSetup& s, const Medium& medi
 
 int runSlab(const SlabOptions& o) {
     validate(o);
-    std::unique_ptr<tbb::global_control> threads;
-    if (o.threads > 0)
-        threads = std::make_unique<tbb::global_control>(
-            tbb::global_control::max_allowed_parallelism, size_t(o.threads));
+    const auto threads = limitThreads(o.threads);
 
     const SlabSetup setup = slabSetup(o);
     Bounds3 box;

@@ -13,7 +13,7 @@ PACKAGES=(
   libopenimageio-dev openimageio-tools
   libopencolorio-dev opencolorio-tools
   libopenexr-dev libimath-dev openexr
-  libtbb-dev libtomlplusplus-dev libcli11-dev
+  libtbb-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   python3
 )

@@ -1,5 +1,8 @@
 // `mirage info`: what a VDB file holds, or what a scene loads and which physics it switches on.
+#include <CLI/CLI.hpp>
+
 #include <cstdio>
+#include <memory>
 
 #include "app/commands.h"
 #include "film/color.h"
@@ -100,6 +103,15 @@ int runInfo(const InfoOptions& o) {
     for (const auto& t : scene.physics())
         std::printf("  [%s] %-22s %s\n", t.active ? "on " : "off", t.name.c_str(), t.why.c_str());
     return 0;
+}
+
+Command addInfoCommand(CLI::App& app) {
+    auto o = std::make_shared<InfoOptions>();
+    auto* info = app.add_subcommand("info", "Describe a scene or a VDB file");
+    info->add_option("input", o->input, "Scene .toml or .vdb/.nvdb")->required();
+    info->add_option("--set", o->overrides, "Override scene values: key.path=value …")->take_all();
+    info->add_option("--ocio", o->ocioConfig, "OCIO config file (default: $OCIO, else built-in)");
+    return {info, [o] { return runInfo(*o); }};
 }
 
 }  // namespace mirage

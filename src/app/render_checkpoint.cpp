@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "scene/scene.h"
 
 namespace mirage {
@@ -101,13 +102,13 @@ PartialFilm loadPartialForResume(const std::string& partialPath, const FrameFing
     const std::string refuse = "--resume refused: this partial file was written by a different ";
     if (p.metadata["fingerprint"] != expected.hash) {
         auto was = parseLines(p.metadata["settings"]), now = parseLines(expected.settings);
-        std::string diff;
+        std::vector<std::string> changes;
         for (const auto& [k, v] : now) {
             auto it = was.find(k);
             std::string old = it == was.end() ? "(absent)" : it->second;
-            if (old != v)
-                diff += (diff.empty() ? "" : ", ") + k + " was '" + old + "', now '" + v + "'";
+            if (old != v) changes.push_back(k + " was '" + old + "', now '" + v + "'");
         }
+        const std::string diff = joinList(changes);
         if (!diff.empty())
             throw MirageError(FileLoc{partialPath, 0, 0}, refuse + "render: " + diff +
                                                               ". Render without --resume to start "

@@ -1,5 +1,5 @@
 // `mirage render`: load → render → develop → write, per frame, with a summary at the end.
-#include <tbb/global_control.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -7,16 +7,19 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "app/commands.h"
 #include "app/render_checkpoint.h"
-#include "app/render_frame.h"
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "core/text.h"
+#include "core/thread_limit.h"
 #include "film/color.h"
 #include "film/image_io.h"
 #include "film/partial_film.h"
 #include "scene/memory_budget.h"
+#include "scene/render_frame.h"
 #include "scene/scene.h"
 
 namespace mirage {
@@ -63,227 +66,357 @@ std::vector<float> outputChromaticities(const std::string& config, const std::st
 // Checks the output colour space and preview display/view before a long render, not after.
 void checkOutputSettings(const Scene& scene, const ColorPipeline& color) {
     const OutputSettings& out = scene.output;
-    auto list = [](const std::vector<std::string>& v) {
-        std::string s;
-        for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
-        return s;
-    };
-    auto spaces = color.colorSpaces();
-    if (!out.colorSpace.empty() &&
-        std::find(spaces.begin(), spaces.end(), out.colorSpace) == spaces.end())
-        throw MirageError(scene.source + ": [output] color_space '" + out.colorSpace +
-                          "' is not in the OCIO config; it has: " + list(spaces));
-    auto displays = color.displays();
-    if (std::find(displays.begin(), displays.end(), out.display) == displays.end())
-        throw MirageError(scene.source + ": [output] display '" + out.display +
-                          "' is not in the OCIO config; it has: " + list(displays));
-    auto views = color.views(out.display);
-    if (std::find(views.begin(), views.end(), out.view) == views.end())
-        throw MirageError(scene.source + ": [output] view '" + out.view + "' is not a view of display '" +
-                          out.display + "'; it has: " + list(views));
+    auto miss = findUnknownOutputName(color, out.colorSpace, out.display, out.view);
+    if (!miss) return;
+    const std::string what = miss->key == "view" ? "' is not a view of display '" + out.display + "'"
+                                                 : "' is not in the OCIO config";
+    throw MirageError(scene.source + ": [output] " + miss->key + " '" + miss->value + what +
+                      "; it has: " + joinList(miss->known));
+}
+
+// What the frames of one `mirage render` share.
+struct RenderSession {
+    explicit RenderSession(const RenderOptions& options)
+        : o(options),
+          color(options.ocioConfig),
+          memoryBudget(options.maxMemory.empty() ? 0 : parseMemorySize(options.maxMemory)) {}
+
+    const RenderOptions& o;
+    ColorPipeline color;
+    uint64_t memoryBudget;  // bytes; 0 = none
+    bool sequence = false;  // several frames: outputs without a pattern are numbered
+    int framesSkipped = 0;
+
+    void skip(int frame, const std::string& out) {
+        if (!o.quiet)
+            std::fprintf(stderr, "frame %d: %s is complete, skipped\n", frame, out.c_str());
+        ++framesSkipped;
+    }
+};
+
+// One frame's scene, loaded, with the command line applied and its output checked.
+struct FrameJob {
+    int frame = 0;
+    Scene scene;
+    std::string integratorName;
+    std::string out;  // the EXR
+    double loadSeconds = 0;
+};
+
+// With --max-memory, each grid is checked against the budget before it is read.
+LoadOptions frameLoadOptions(const RenderSession& rs, int frame) {
+    LoadOptions load{frame, rs.o.overrides};
+    if (rs.memoryBudget > 0)
+        load.beforeGridLoad = [&rs](const Scene& partial, const std::string& file,
+                                    const std::string& grid, uint64_t bytes) {
+            int w = partial.settings.width, h = partial.settings.height;
+            if (!rs.o.resolution.empty()) std::sscanf(rs.o.resolution.c_str(), "%dx%d", &w, &h);
+            checkMemoryBudget(estimateBeforeGrid(file, grid, bytes, w, h), rs.memoryBudget,
+                              rs.o.input, "loading grid '" + grid + "' would need");
+        };
+    return load;
+}
+
+// Loads the frame and applies the command line to it; nothing when --skip-existing finds its
+// output complete.
+std::optional<FrameJob> prepareFrame(RenderSession& rs, int frame) {
+    const RenderOptions& o = rs.o;
+    // With -o the output is known before loading: a complete frame costs no load at all.
+    if (o.skipExisting && !o.output.empty()) {
+        std::string out = framePath(o.output, frame, rs.sequence);
+        if (isCompleteFrame(out)) {
+            rs.skip(frame, out);
+            return std::nullopt;
+        }
+    }
+    auto tLoad = std::chrono::steady_clock::now();
+    FrameJob job;
+    job.frame = frame;
+    job.scene = loadScene(o.input, frameLoadOptions(rs, frame), rs.color);
+    Scene& scene = job.scene;
+    job.integratorName = o.integrator.empty() ? scene.integrator : o.integrator;
+    if (!o.quality.empty())
+        applyQualityPreset(scene, qualityPreset(o.quality), job.integratorName, o.overrides);
+    applyFrameSettings(scene, o.input, FrameSettings{o.resolution, o.spp, o.seed, o.quiet});
+    if (o.turntable > 0)
+        scene.render.camera =
+            orbitCamera(scene.render.camera, 360.f * float(frame - 1) / float(o.turntable));
+    checkOutputSettings(scene, rs.color);
+    job.out = framePath(o.output.empty() ? scene.output.path : o.output, frame, rs.sequence);
+    if (o.skipExisting && isCompleteFrame(job.out)) {
+        rs.skip(frame, job.out);
+        return std::nullopt;
+    }
+    if (rs.memoryBudget > 0) {
+        MemoryEstimate estimate = estimateFrameMemory(scene, job.integratorName);
+        checkMemoryBudget(estimate, rs.memoryBudget, scene.source);
+        if (!o.quiet)
+            std::fprintf(stderr, "frame %d: memory estimate %s (budget %s)\n", frame,
+                         estimate.describe().c_str(), formatBytes(rs.memoryBudget).c_str());
+    }
+    job.loadSeconds = secondsSince(tLoad);
+    return job;
+}
+
+// Killed renders: finished tiles go to <out>.partial as they finish (rate-limited), and
+// --resume starts from it when it matches this scene and these settings.
+struct FrameCheckpoint {
+    FrameCheckpoint(const RenderSession& rs, const FrameJob& job)
+        : FrameCheckpoint(rs, job, partialPathFor(job.out),
+                          frameFingerprint(job.scene, rs.o.input, job.integratorName, job.frame,
+                                           rs.o.overrides)) {}
+
+    std::string path;
+    PartialFilm resumed;
+    TileCheckpoint tiles;
+    PartialFilmWriter partial;
+    bool failed = false;  // a checkpoint could not be written: off for this frame
+
+private:
+    FrameCheckpoint(const RenderSession& rs, const FrameJob& job, std::string partialPath,
+                    const FrameFingerprint& fingerprint)
+        : path(std::move(partialPath)),
+          resumed(resumeIfAsked(rs.o, job, path, fingerprint)),
+          partial(path, job.scene.settings.tileSize, rs.color.xyzToWorking(),
+                  {{"fingerprint", fingerprint.hash},
+                   {"settings", fingerprint.settings},
+                   {"scene", job.scene.source},
+                   {"frame", std::to_string(job.frame)}},
+                  partialWriteInterval()) {
+        if (resumed.film) {
+            tiles.initial = resumed.film.get();
+            tiles.done = resumed.done;
+        }
+        tiles.tileFinished = [this](const Film& film, const std::vector<uint8_t>& done) {
+            if (failed) return;
+            try {
+                partial.tileFinished(film, done);
+            } catch (const MirageError& e) {
+                // A checkpoint that cannot be written costs the ability to resume, not the frame.
+                failed = true;
+                std::fprintf(stderr, "mirage: warning: %s (checkpointing off for this frame)\n",
+                             e.what());
+            }
+        };
+        tiles.stopAfterTiles = testStopAfterTiles();
+    }
+
+    // The partial file to continue from, with --resume; empty otherwise.
+    static PartialFilm resumeIfAsked(const RenderOptions& o, const FrameJob& job,
+                                     const std::string& path, const FrameFingerprint& fingerprint) {
+        const RenderSettings& s = job.scene.settings;
+        if (o.resume && fs::exists(path))
+            return loadPartialForResume(path, fingerprint, s.width, s.height, s.tileSize);
+        if (o.resume && !o.quiet)
+            std::fprintf(stderr, "frame %d: no %s to resume from; rendering the whole frame\n",
+                         job.frame, path.c_str());
+        else if (!o.resume && !o.quiet && fs::exists(path))
+            std::fprintf(stderr, "frame %d: %s exists; rendering afresh (--resume continues it)\n",
+                         job.frame, path.c_str());
+        return PartialFilm();
+    }
+};
+
+// An interrupted frame: flush what is finished (the final EXR is not touched) and say how to
+// continue. Returns the exit code.
+int stopInterrupted(FrameCheckpoint& cp, const RenderedFrame& rendered, int frame) {
+    const RenderStats& stats = rendered.stats;
+    if (stats.tilesDone > stats.tilesResumed && !cp.failed) {
+        try {
+            cp.partial.write(*rendered.film, cp.tiles.done);
+        } catch (const MirageError& e) {
+            std::fprintf(stderr, "mirage: warning: %s\n", e.what());
+        }
+    }
+    int signal = interruptSignal();
+    std::fprintf(stderr,
+                 "mirage: interrupted (%s): frame %d has %d of %d tiles, saved in %s "
+                 "(%d partial writes, %.3fs); continue with --resume\n",
+                 signal == SIGTERM ? "SIGTERM" : "SIGINT", frame, stats.tilesDone, stats.tiles,
+                 cp.path.c_str(), cp.partial.writes(), cp.partial.writeSeconds());
+    return interruptExitCode();
+}
+
+// Every sample or photon the guards dropped, and every path a cap cut, both passes.
+struct DroppedWork {
+    uint64_t nonFinitePhotons = 0, cappedPaths = 0;
+};
+
+DroppedWork droppedWork(const RenderedFrame& rendered) {
+    const Integrator* integrator = rendered.integrator.get();
+    return {integrator->nonFinitePhotons(), integrator->cappedPaths() +
+                                                rendered.stats.cappedFlights +
+                                                integrator->cappedPhotonPaths()};
+}
+
+// Converts the image into the scene's output colour space (if it names one) and fills the EXR
+// header: colour tags and the frame's metadata.
+ExrOptions outputExr(RenderSession& rs, const FrameJob& job, RenderedFrame& rendered) {
+    const Scene& scene = job.scene;
+    const RenderSettings& s = scene.settings;
+    const RenderStats& stats = rendered.stats;
+    const Integrator* integrator = rendered.integrator.get();
+    const DroppedWork dropped = droppedWork(rendered);
+    ExrOptions exr;
+    exr.halfFloat = !rs.o.floatExr && scene.output.halfFloat;
+    exr.colorSpace = rs.color.workingSpace();
+    exr.chromaticities = rs.color.workingChromaticities();
+    if (!scene.output.colorSpace.empty() && scene.output.colorSpace != rs.color.workingSpace()) {
+        rs.color.convert(rendered.image.rgba, 4, scene.output.colorSpace);
+        exr.colorSpace = scene.output.colorSpace;
+        exr.chromaticities = outputChromaticities(rs.o.ocioConfig, scene.output.colorSpace);
+    }
+    exr.metadata = {{"scene", scene.source},
+                    {"seed", std::to_string(s.seed)},
+                    {"spp", std::to_string(s.spp)},
+                    {"frame", std::to_string(job.frame)},
+                    {"integrator", integrator->name()},
+                    {"render_seconds", std::to_string(stats.seconds)},
+                    {"nonfinite_render", std::to_string(stats.nonFiniteSamples)},
+                    {"nonfinite_photons", std::to_string(dropped.nonFinitePhotons)},
+                    {"capped_paths", std::to_string(dropped.cappedPaths)},
+                    {"version", MIRAGE_VERSION},
+                    {"ocio_config", rs.color.configDescription()}};
+    exr.metadata["complete"] = "true";  // --skip-existing trusts only this
+    if (stats.tilesResumed > 0) exr.metadata["resumed_tiles"] = std::to_string(stats.tilesResumed);
+    if (const PhotonStats* photon = integrator->photonStats())
+        for (const auto& [key, value] : photon->metadata()) exr.metadata[key] = value;
+    return exr;
+}
+
+void printFrameSummary(const FrameJob& job, const RenderedFrame& rendered,
+                       const FrameCheckpoint& cp, double writeSeconds) {
+    const RenderSettings& s = job.scene.settings;
+    const RenderStats& stats = rendered.stats;
+    const DroppedWork dropped = droppedWork(rendered);
+    const int frame = job.frame;
+    double mlps = stats.seconds > 0 ? stats.mediumLookups / stats.seconds / 1e6 : 0;
+    std::fprintf(stderr,
+                 "frame %d: %dx%d, %d spp, %llu samples | load %.2fs, render %.2fs, "
+                 "write %.2fs | %.1f M medium lookups/s | non-finite dropped: %llu "
+                 "samples, %llu photons | capped paths %llu | peak memory %s\n",
+                 frame, s.width, s.height, s.spp, (unsigned long long)stats.samples,
+                 job.loadSeconds, stats.seconds, writeSeconds, mlps,
+                 (unsigned long long)stats.nonFiniteSamples,
+                 (unsigned long long)dropped.nonFinitePhotons,
+                 (unsigned long long)dropped.cappedPaths, formatBytes(peakMemoryBytes()).c_str());
+    if (cp.partial.writes() > 0)
+        std::fprintf(stderr, "frame %d: partial file: %d writes, %.3fs (%.2f %% of render)\n",
+                     frame, cp.partial.writes(), cp.partial.writeSeconds(),
+                     stats.seconds > 0 ? 100.0 * cp.partial.writeSeconds() / stats.seconds : 0.0);
+    std::string extra = rendered.integrator->summary();
+    if (!extra.empty()) std::fprintf(stderr, "frame %d: %s\n", frame, extra.c_str());
+}
+
+// Renders one frame and writes its preview and EXR; the exit code when the command must stop
+// (interrupted), nothing to go on.
+std::optional<int> renderFrameFiles(RenderSession& rs, int frame) {
+    std::optional<FrameJob> job = prepareFrame(rs, frame);
+    if (!job) return std::nullopt;
+    const Scene& scene = job->scene;
+    FrameCheckpoint cp(rs, *job);
+    RenderedFrame rendered = renderFrame(scene, job->integratorName, rs.color, &cp.tiles);
+    if (rendered.stats.interrupted) return stopInterrupted(cp, rendered, frame);
+
+    auto tWrite = std::chrono::steady_clock::now();
+    std::string preview = rs.o.preview.empty() ? scene.output.preview : rs.o.preview;
+    if (!preview.empty()) {
+        preview = framePath(preview, frame, rs.sequence);
+        writePreview(preview, rendered.image, rs.color, scene.output.display, scene.output.view);
+    }
+    writeExr(job->out, rendered.image, outputExr(rs, *job, rendered));
+    // The final frame is in place (atomically): its partial file has served.
+    std::error_code ec;
+    fs::remove(cp.path, ec);
+    const double writeSeconds = secondsSince(tWrite);
+
+    if (!rs.o.quiet) printFrameSummary(*job, rendered, cp, writeSeconds);
+    std::printf("%s\n", job->out.c_str());
+    if (!preview.empty()) std::printf("%s\n", preview.c_str());
+    return std::nullopt;
 }
 
 }  // namespace
 
 int runRender(const RenderOptions& o) {
     auto t0 = std::chrono::steady_clock::now();
-    std::unique_ptr<tbb::global_control> threads;
-    if (o.threads > 0)
-        threads = std::make_unique<tbb::global_control>(
-            tbb::global_control::max_allowed_parallelism, size_t(o.threads));
-    ColorPipeline color(o.ocioConfig);
-    const uint64_t memoryBudget = o.maxMemory.empty() ? 0 : parseMemorySize(o.maxMemory);
+    const auto threads = limitThreads(o.threads);
+    RenderSession rs(o);
     // From here a SIGINT/SIGTERM stops the render between tiles and saves what is finished.
     installInterruptHandlers();
 
-    std::vector<int> frames = frameList(o);
-    bool sequence = frames.size() > 1;
-    int framesSkipped = 0;
-    auto skipped = [&](int frame, const std::string& out) {
-        if (!o.quiet)
-            std::fprintf(stderr, "frame %d: %s is complete, skipped\n", frame, out.c_str());
-        ++framesSkipped;
-    };
+    const std::vector<int> frames = frameList(o);
+    rs.sequence = frames.size() > 1;
     for (int frame : frames) {
         if (interruptRequested()) break;
-        // With -o the output is known before loading: a complete frame costs no load at all.
-        if (o.skipExisting && !o.output.empty()) {
-            std::string out = framePath(o.output, frame, sequence);
-            if (isCompleteFrame(out)) {
-                skipped(frame, out);
-                continue;
-            }
-        }
-        auto tLoad = std::chrono::steady_clock::now();
-        LoadOptions load{frame, o.overrides};
-        if (memoryBudget > 0)
-            load.beforeGridLoad = [&](const Scene& partial, const std::string& file,
-                                      const std::string& grid, uint64_t bytes) {
-                int w = partial.settings.width, h = partial.settings.height;
-                if (!o.resolution.empty()) std::sscanf(o.resolution.c_str(), "%dx%d", &w, &h);
-                checkMemoryBudget(estimateBeforeGrid(file, grid, bytes, w, h), memoryBudget,
-                                  o.input, "loading grid '" + grid + "' would need");
-            };
-        Scene scene = loadScene(o.input, load, color);
-        RenderSettings& s = scene.settings;
-        std::string integratorName = o.integrator.empty() ? scene.integrator : o.integrator;
-        if (!o.quality.empty())
-            applyQualityPreset(scene, qualityPreset(o.quality), integratorName, o.overrides);
-        applyFrameSettings(scene, o.input, FrameSettings{o.resolution, o.spp, o.seed, o.quiet});
-        if (o.turntable > 0)
-            scene.render.camera =
-                orbitCamera(scene.render.camera, 360.f * float(frame - 1) / float(o.turntable));
-        checkOutputSettings(scene, color);
-        std::string out =
-            framePath(o.output.empty() ? scene.output.path : o.output, frame, sequence);
-        if (o.skipExisting && isCompleteFrame(out)) {
-            skipped(frame, out);
-            continue;
-        }
-        if (memoryBudget > 0) {
-            MemoryEstimate estimate = estimateFrameMemory(scene, integratorName);
-            checkMemoryBudget(estimate, memoryBudget, scene.source);
-            if (!o.quiet)
-                std::fprintf(stderr, "frame %d: memory estimate %s (budget %s)\n", frame,
-                             estimate.describe().c_str(), formatBytes(memoryBudget).c_str());
-        }
-        double loadSeconds = secondsSince(tLoad);
-
-        // Killed renders: finished tiles go to <out>.partial as they finish (rate-limited),
-        // and --resume starts from it when it matches this scene and these settings.
-        const std::string partialPath = partialPathFor(out);
-        FrameFingerprint fingerprint =
-            frameFingerprint(scene, o.input, integratorName, frame, o.overrides);
-        PartialFilm resumed;
-        TileCheckpoint checkpoint;
-        if (o.resume && fs::exists(partialPath)) {
-            resumed = loadPartialForResume(partialPath, fingerprint, s.width, s.height, s.tileSize);
-            checkpoint.initial = resumed.film.get();
-            checkpoint.done = resumed.done;
-        } else if (o.resume && !o.quiet) {
-            std::fprintf(stderr, "frame %d: no %s to resume from; rendering the whole frame\n",
-                         frame, partialPath.c_str());
-        } else if (!o.resume && !o.quiet && fs::exists(partialPath)) {
-            std::fprintf(stderr, "frame %d: %s exists; rendering afresh (--resume continues it)\n",
-                         frame, partialPath.c_str());
-        }
-        PartialFilmWriter partial(partialPath, s.tileSize, color.xyzToWorking(),
-                                  {{"fingerprint", fingerprint.hash},
-                                   {"settings", fingerprint.settings},
-                                   {"scene", scene.source},
-                                   {"frame", std::to_string(frame)}},
-                                  partialWriteInterval());
-        bool partialFailed = false;
-        checkpoint.tileFinished = [&](const Film& film, const std::vector<uint8_t>& done) {
-            if (partialFailed) return;
-            try {
-                partial.tileFinished(film, done);
-            } catch (const MirageError& e) {
-                // A checkpoint that cannot be written costs the ability to resume, not the frame.
-                partialFailed = true;
-                std::fprintf(stderr, "mirage: warning: %s (checkpointing off for this frame)\n",
-                             e.what());
-            }
-        };
-        checkpoint.stopAfterTiles = testStopAfterTiles();
-
-        RenderedFrame rendered = renderFrame(scene, integratorName, color, &checkpoint);
-        const RenderStats& stats = rendered.stats;
-        if (stats.interrupted) {
-            // Flush what is finished; the final EXR is not touched.
-            if (stats.tilesDone > stats.tilesResumed && !partialFailed) {
-                try {
-                    partial.write(*rendered.film, checkpoint.done);
-                } catch (const MirageError& e) {
-                    std::fprintf(stderr, "mirage: warning: %s\n", e.what());
-                }
-            }
-            int signal = interruptSignal();
-            std::fprintf(stderr,
-                         "mirage: interrupted (%s): frame %d has %d of %d tiles, saved in %s "
-                         "(%d partial writes, %.3fs); continue with --resume\n",
-                         signal == SIGTERM ? "SIGTERM" : "SIGINT", frame, stats.tilesDone,
-                         stats.tiles, partialPath.c_str(), partial.writes(),
-                         partial.writeSeconds());
-            return interruptExitCode();
-        }
-        const Integrator* integrator = rendered.integrator.get();
-        // Every sample or photon the guards dropped, and every path a cap cut, both passes.
-        const uint64_t nonFinitePhotons = integrator->nonFinitePhotons();
-        const uint64_t cappedPaths =
-            integrator->cappedPaths() + stats.cappedFlights + integrator->cappedPhotonPaths();
-        Image& image = rendered.image;
-
-        auto tWrite = std::chrono::steady_clock::now();
-        std::string preview = o.preview.empty() ? scene.output.preview : o.preview;
-        if (!preview.empty()) {
-            preview = framePath(preview, frame, sequence);
-            writePreview(preview, image, color, scene.output.display, scene.output.view);
-        }
-        ExrOptions exr;
-        exr.halfFloat = !o.floatExr && scene.output.halfFloat;
-        exr.colorSpace = color.workingSpace();
-        exr.chromaticities = color.workingChromaticities();
-        if (!scene.output.colorSpace.empty() && scene.output.colorSpace != color.workingSpace()) {
-            color.convert(image.rgba, 4, scene.output.colorSpace);
-            exr.colorSpace = scene.output.colorSpace;
-            exr.chromaticities = outputChromaticities(o.ocioConfig, scene.output.colorSpace);
-        }
-        exr.metadata = {{"scene", scene.source},
-                        {"seed", std::to_string(s.seed)},
-                        {"spp", std::to_string(s.spp)},
-                        {"frame", std::to_string(frame)},
-                        {"integrator", integrator->name()},
-                        {"render_seconds", std::to_string(stats.seconds)},
-                        {"nonfinite_render", std::to_string(stats.nonFiniteSamples)},
-                        {"nonfinite_photons", std::to_string(nonFinitePhotons)},
-                        {"capped_paths", std::to_string(cappedPaths)},
-                        {"version", MIRAGE_VERSION},
-                        {"ocio_config", color.configDescription()}};
-        exr.metadata["complete"] = "true";  // --skip-existing trusts only this
-        if (stats.tilesResumed > 0)
-            exr.metadata["resumed_tiles"] = std::to_string(stats.tilesResumed);
-        if (const PhotonStats* photon = integrator->photonStats())
-            for (const auto& [key, value] : photon->metadata()) exr.metadata[key] = value;
-        writeExr(out, image, exr);
-        // The final frame is in place (atomically): its partial file has served.
-        std::error_code ec;
-        fs::remove(partialPath, ec);
-        double writeSeconds = secondsSince(tWrite);
-
-        if (!o.quiet) {
-            double mlps = stats.seconds > 0 ? stats.mediumLookups / stats.seconds / 1e6 : 0;
-            std::fprintf(stderr,
-                         "frame %d: %dx%d, %d spp, %llu samples | load %.2fs, render %.2fs, "
-                         "write %.2fs | %.1f M medium lookups/s | non-finite dropped: %llu "
-                         "samples, %llu photons | capped paths %llu | peak memory %s\n",
-                         frame, s.width, s.height, s.spp, (unsigned long long)stats.samples,
-                         loadSeconds, stats.seconds, writeSeconds, mlps,
-                         (unsigned long long)stats.nonFiniteSamples,
-                         (unsigned long long)nonFinitePhotons, (unsigned long long)cappedPaths,
-                         formatBytes(peakMemoryBytes()).c_str());
-            if (partial.writes() > 0)
-                std::fprintf(
-                    stderr, "frame %d: partial file: %d writes, %.3fs (%.2f %% of render)\n",
-                    frame, partial.writes(), partial.writeSeconds(),
-                    stats.seconds > 0 ? 100.0 * partial.writeSeconds() / stats.seconds : 0.0);
-            std::string extra = integrator->summary();
-            if (!extra.empty()) std::fprintf(stderr, "frame %d: %s\n", frame, extra.c_str());
-        }
-        std::printf("%s\n", out.c_str());
-        if (!preview.empty()) std::printf("%s\n", preview.c_str());
+        if (std::optional<int> stop = renderFrameFiles(rs, frame)) return *stop;
     }
     if (interruptRequested()) {
         std::fprintf(stderr, "mirage: interrupted between frames; finished frames are complete\n");
         return interruptExitCode();
     }
     if (!o.quiet) {
-        std::string skips =
-            framesSkipped ? ", " + std::to_string(framesSkipped) + " skipped as complete" : "";
+        std::string skips = rs.framesSkipped
+                                ? ", " + std::to_string(rs.framesSkipped) + " skipped as complete"
+                                : "";
         std::fprintf(stderr, "done: %zu frame(s) in %s%s\n", frames.size(),
                      formatSeconds(secondsSince(t0)).c_str(), skips.c_str());
     }
     return 0;
+}
+
+Command addRenderCommand(CLI::App& app) {
+    auto o = std::make_shared<RenderOptions>();
+    auto* render = app.add_subcommand("render", "Render a scene file (.toml) or a bare VDB");
+    render->add_option("input", o->input, "Scene .toml, or a .vdb/.nvdb for a quick look")
+        ->required();
+    render->add_option("-o,--output", o->output,
+                       "Output EXR; $F4, $F or #### take the frame (a sequence without a pattern "
+                       "gets .#### before the extension); default: the scene's [output] path");
+    render->add_option("--preview", o->preview, "Also write a display preview (PNG/JPEG) through "
+                                                "the scene's [output] display/view (default "
+                                                "sRGB, Standard); default: the scene's preview");
+    render->add_option("--frame", o->frame, "Frame number for $F/#### patterns and turntables "
+                                            "(default 1)");
+    render->add_option("--frames", o->frames, "Render frames A to B (inclusive), e.g. 1-24")->excludes("--frame");
+    render->add_option("--set", o->overrides, "Override scene values before loading: "
+                                              "key.path=value …, e.g. film.spp=64 "
+                                              "volume.0.density_scale=2 (a bare VDB: film.*, "
+                                              "render.*, output.* only)")
+        ->take_all();
+    render->add_option("--resolution", o->resolution, "Image size WxH (overrides "
+                                                      "film.resolution; a bare VDB's camera "
+                                                      "reframes)");
+    render->add_option("--spp", o->spp, "Samples per pixel (overrides film.spp and --quality)")->check(CLI::Range(1, 1 << 20));
+    render->add_option("--threads", o->threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(1, 4096));
+    render->add_option("--seed", o->seed, "Random seed (default: film.seed)")->check(CLI::Range(int64_t(0), INT64_MAX));
+    render->add_option("--turntable", o->turntable, "Render frames 1 to N, the camera orbiting "
+                                                    "about its up axis through look_at (a bare "
+                                                    "VDB: about the volume); output gets .####")
+        ->check(CLI::Range(1, 100000));
+    render->add_option("--integrator", o->integrator,
+                       "single (single scattering + emission), volpath (reference path tracer) "
+                       "or photon (volume photon mapping); default: the scene's [render] "
+                       "integrator");
+    render->add_option("--quality", o->quality,
+                       "draft, preview or final: samples per pixel and, for photon, photons and "
+                       "k, measured on the speed-accuracy curves (docs/performance.md); --spp "
+                       "and --set film.spp/render.photons/render.k still win")
+        ->check(CLI::IsMember({"draft", "preview", "final"}));
+    render->add_flag("--float", o->floatExr, "Write 32-bit float EXR instead of half (overrides "
+                                             "[output] half)");
+    render->add_flag("-q,--quiet", o->quiet, "No progress output");
+    render->add_option("--ocio", o->ocioConfig, "OCIO config file (default: $OCIO, else built-in)");
+    render->add_flag("--resume", o->resume,
+                     "Continue a killed frame from <out>.partial, bit for bit; refused if the "
+                     "scene or settings changed; without a partial file, render it all");
+    render->add_flag("--skip-existing", o->skipExisting,
+                     "Skip frames whose output EXR is complete (mirage:complete = true)");
+    render->add_option("--max-memory", o->maxMemory,
+                       "Fail early when the frame's estimated memory exceeds SIZE (4G, 512M, "
+                       "1.5G, 64k or bytes; binary multiples)");
+    return {render, [o] { return runRender(*o); }};
 }
 
 }  // namespace mirage

@@ -18,6 +18,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/text.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 
@@ -32,9 +33,8 @@ constexpr const char* kXyzName = "CIE XYZ D65";
 constexpr const char* kAcesRole = "aces_interchange";
 
 std::string joinNames(const std::vector<std::string>& names) {
-    std::string s;
-    for (const std::string& n : names) s += (s.empty() ? "'" : ", '") + n + "'";
-    return s.empty() ? std::string("(none)") : s;
+    if (names.empty()) return "(none)";
+    return joinList(names, [](const std::string& n) { return "'" + n + "'"; });
 }
 
 std::vector<std::string> colorSpaceNames(const OCIO::ConstConfigRcPtr& config) {
@@ -265,6 +265,21 @@ std::vector<std::string> ColorPipeline::views(const std::string& display) const 
 
 std::vector<std::string> ColorPipeline::colorSpaces() const {
     return colorSpaceNames(mImpl->config);
+}
+
+std::optional<UnknownOutputName> findUnknownOutputName(const ColorPipeline& color,
+                                                       const std::string& colorSpace,
+                                                       const std::string& display,
+                                                       const std::string& view) {
+    auto miss = [](const char* key, const std::string& value,
+                   std::vector<std::string> known) -> std::optional<UnknownOutputName> {
+        if (std::find(known.begin(), known.end(), value) != known.end()) return std::nullopt;
+        return UnknownOutputName{key, value, std::move(known)};
+    };
+    if (!colorSpace.empty())
+        if (auto m = miss("color_space", colorSpace, color.colorSpaces())) return m;
+    if (auto m = miss("display", display, color.displays())) return m;
+    return miss("view", view, color.views(display));
 }
 
 }  // namespace mirage

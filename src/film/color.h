@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,19 @@ private:
     struct Impl;
     std::unique_ptr<Impl> mImpl;
 };
+
+// An output setting that names something the config lacks: `key` is "color_space", "display"
+// or "view", `known` what the config offers in its place (the views of the display, for a view).
+struct UnknownOutputName {
+    std::string key, value;
+    std::vector<std::string> known;
+};
+// The first of the output colour space (skipped when empty), preview display and view that
+// `color` does not know, or nothing: checked before a long render, not after it.
+std::optional<UnknownOutputName> findUnknownOutputName(const ColorPipeline& color,
+                                                       const std::string& colorSpace,
+                                                       const std::string& display,
+                                                       const std::string& view);
 
 // The text of the built-in config (assets/ocio/config.ocio, embedded at build time).
 const char* builtinOcioConfig();

@@ -1,20 +1,20 @@
 // Image files through OpenImageIO: scene-linear OpenEXR with colour tags and Mirage metadata,
 // 8-bit display previews, and the EXR reader the tests and the tradeoff instrument use.
 //
-// Every write goes to `<dir>/.<name>.tmp-<pid>` and is renamed over `<dir>/<name>` only once the
-// file is complete and closed: rename within one folder is atomic on POSIX file systems, so a
+// Every write goes to a temporary `<dir>/.<name>.tmp-…` (core/atomic_file.h) and is renamed
+// over `<dir>/<name>` only once the file is complete and closed: rename within one folder is atomic on POSIX file systems, so a
 // reader (a compositor watching the folder, a render farm's checker) sees the old file or the
 // new one, never half of one, and a render killed mid-write leaves the previous good file alone.
 
 #include "film/image_io.h"
 
 #include <OpenImageIO/imageio.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "film/color.h"
 
@@ -59,32 +59,19 @@ void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec, const
         fs::create_directories(dir, ec);
         if (ec) fail(path, "cannot create the folder '" + dir.string() + "': " + ec.message());
     }
-    fs::path tmp = (dir.empty() ? fs::path(".") : dir) /
-                   ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()));
-
-    auto removeTmp = [&tmp] {
-        std::error_code ignored;
-        fs::remove(tmp, ignored);
-    };
-    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(target.string());
-    if (!out) fail(path, "no image writer for this file type: " + OIIO::geterror());
-    if (!out->open(tmp.string(), spec)) {
-        std::string message = out->geterror();
-        removeTmp();
-        fail(path, "cannot open '" + tmp.string() + "' for writing: " + message);
-    }
-    bool ok = out->write_image(OIIO::TypeFloat, pixels, xstride);
-    ok = out->close() && ok;
-    if (!ok) {
-        std::string message = out->geterror();
-        removeTmp();
-        fail(path, "cannot write: " + message);
-    }
-    fs::rename(tmp, target, ec);
-    if (ec) {
-        removeTmp();
-        fail(path, "cannot move the finished file into place: " + ec.message());
-    }
+    // The temporary name has no image extension: the writer is chosen by the target's.
+    replaceFileAtomically(
+        path,
+        [&](const std::string& tmp) {
+            std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(target.string());
+            if (!out) fail(path, "no image writer for this file type: " + OIIO::geterror());
+            if (!out->open(tmp, spec))
+                fail(path, "cannot open '" + tmp + "' for writing: " + out->geterror());
+            bool ok = out->write_image(OIIO::TypeFloat, pixels, xstride);
+            ok = out->close() && ok;
+            if (!ok) fail(path, "cannot write: " + out->geterror());
+        },
+        "cannot move the finished file into place");
 }
 
 std::string lowerExtension(const std::string& path) {

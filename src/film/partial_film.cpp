@@ -3,19 +3,16 @@
 #include "film/partial_film.h"
 
 #include <OpenImageIO/imageio.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cstring>
-#include <filesystem>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace mirage {
 
 namespace {
-
-namespace fs = std::filesystem;
 
 // The accumulator channels, in the order of PixelRecord::acc.
 const char* const kAccChannels[] = {"acc.Xhi", "acc.Xlo", "acc.Yhi", "acc.Ylo", "acc.Zhi",
@@ -120,34 +117,19 @@ void writePartialFilm(const std::string& path, const Film& film, int tileSize,
     for (const auto& [key, value] : metadata) spec.attribute("mirage:" + key, value);
 
     // Temporary file next to the target, then rename (atomic within one folder).
-    fs::path target(path);
-    fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    fs::path tmp = dir / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()));
-    auto removeTmp = [&tmp] {
-        std::error_code ignored;
-        fs::remove(tmp, ignored);
-    };
-    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("openexr");
-    if (!out) fail(path, "no OpenEXR writer: " + OIIO::geterror());
-    if (!out->open(tmp.string(), spec)) {
-        std::string message = out->geterror();
-        removeTmp();
-        fail(path, "cannot open '" + tmp.string() + "' for writing: " + message);
-    }
-    bool ok = out->write_image(OIIO::TypeUnknown, pixels.data(), sizeof(PixelRecord));
-    ok = out->close() && ok;
-    if (!ok) {
-        std::string message = out->geterror();
-        removeTmp();
-        fail(path, "cannot write the partial file: " + message);
-    }
-    fs::rename(tmp, target, ec);
-    if (ec) {
-        removeTmp();
-        fail(path, "cannot move the partial file into place: " + ec.message());
-    }
+    createParentFolders(path);
+    replaceFileAtomically(
+        path,
+        [&](const std::string& tmp) {
+            std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("openexr");
+            if (!out) fail(path, "no OpenEXR writer: " + OIIO::geterror());
+            if (!out->open(tmp, spec))
+                fail(path, "cannot open '" + tmp + "' for writing: " + out->geterror());
+            bool ok = out->write_image(OIIO::TypeUnknown, pixels.data(), sizeof(PixelRecord));
+            ok = out->close() && ok;
+            if (!ok) fail(path, "cannot write the partial file: " + out->geterror());
+        },
+        "cannot move the partial file into place");
 }
 
 PartialFilm readPartialFilm(const std::string& path) {

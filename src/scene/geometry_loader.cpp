@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "core/text.h"
 #include "film/color.h"
 
 namespace mirage {
@@ -86,8 +87,7 @@ std::unique_ptr<GeometryScene> readGeometry(
         std::string matName = t.getString("material");
         auto it = std::find(names.begin(), names.end(), matName);
         if (it == names.end()) {
-            std::string list;
-            for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+            const std::string list = joinList(names);
             t.fail("material", "no [[material]] is named '" + matName + "'" +
                                    (list.empty() ? " (none is defined)" : "; defined: " + list));
         }

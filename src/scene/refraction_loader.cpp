@@ -3,6 +3,7 @@
 
 #include <cstdio>
 
+#include "core/text.h"
 #include "medium/air_index.h"
 #include "medium/grid_index_field.h"
 
@@ -31,10 +32,8 @@ std::shared_ptr<const IndexField> gridField(const TableReader& t,
     size_t at = 0;
     while (at < slots.size() && slots[at] != slot) ++at;
     if (at >= slots.size() || at >= m.grids().size()) {
-        std::string list;
-        for (const auto& s : slots) list += (list.empty() ? "" : ", ") + s;
         t.fail("grid", "volume " + std::to_string(index) + "'s shader '" + shader.name +
-                           "' has no grid slot '" + slot + "'; its slots are: " + list);
+                           "' has no grid slot '" + slot + "'; its slots are: " + joinList(slots));
     }
     const double ambient = t.getNumber("ambient", air::kStamTp, 1.0, 1e5);
     const double scale = t.getNumber("temperature_scale", emission.temperatureScale, -1e6, 1e6);

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include "core/grid_name.h"
+#include "core/text.h"
 #include "film/color.h"
 #include "medium/ocean_components.h"
 #include "scene/geometry_loader.h"
@@ -189,17 +191,16 @@ std::vector<std::pair<std::string, std::string>> bindGrids(
         bool found = (isIndex && (nano || indexInRange)) || nano ||
                      std::find(names.begin(), names.end(), target) != names.end();
         if (!found && !bound && slots.size() == 1 && names.size() == 1) {
-            target = names[0].empty() ? "#0" : names[0];  // the file's only grid
+            target = gridName(names[0], 0);  // the file's only grid
             found = true;
         }
-        if (nano && slots.size() == 1 && target == slot) target = "#0";
+        if (nano && slots.size() == 1 && target == slot) target = gridIndexName(0);
         if (!found) {
-            std::string list;
-            for (size_t i = 0; i < names.size(); ++i)
-                list += (i ? ", " : "") + (names[i].empty() ? "#" + std::to_string(i) : "'" + names[i] + "'");
+            std::vector<std::string> quoted;
+            for (size_t i = 0; i < names.size(); ++i) quoted.push_back(quotedGridName(names[i], i));
             throw MirageError(where, "shader '" + shader.name + "' reads grid slot '" + slot +
                                          "', but " + file + " has no grid '" + target +
-                                         "' (it has: " + list + "); bind one with bind = { " +
+                                         "' (it has: " + joinList(quoted) + "); bind one with bind = { " +
                                          slot + " = \"<grid>\" }");
         }
         out.emplace_back(slot, target);
@@ -207,8 +208,8 @@ std::vector<std::pair<std::string, std::string>> bindGrids(
     if (unused)
         for (size_t i = 0; i < names.size(); ++i) {
             bool used = false;
-            for (const auto& b : out) used |= b.second == names[i] || b.second == "#" + std::to_string(i);
-            if (!used) unused->push_back(names[i].empty() ? "#" + std::to_string(i) : names[i]);
+            for (const auto& b : out) used |= b.second == names[i] || b.second == gridIndexName(i);
+            if (!used) unused->push_back(gridName(names[i], i));
         }
     return out;
 }
@@ -256,7 +257,7 @@ static std::unique_ptr<Medium> buildMedium(const ShaderDesc& shader, VolumeRecor
         for (const std::string& gridName : toRead) {
             uint64_t bytes = 0;
             for (size_t i = 0; i < info.grids.size(); ++i)
-                if (info.grids[i].name == gridName || "#" + std::to_string(i) == gridName)
+                if (info.grids[i].name == gridName || gridIndexName(i) == gridName)
                     bytes = std::max(info.grids[i].memoryBytes, info.grids[i].activeVoxels * 4);
             options.beforeGridLoad(scene, rec.file, gridName, bytes);
         }
@@ -331,20 +332,215 @@ static void readSettings(const TableReader& top,
         scene.output.display = o->getString("display", "sRGB");
         scene.output.view = o->getString("view", "Standard");
         // Checked here, against the OCIO config in use, so that the message names the line.
-        auto oneOf = [&](const char* key, const std::string& value,
-                         const std::vector<std::string>& names) {
-            if (std::find(names.begin(), names.end(), value) != names.end()) return;
-            std::string list;
-            for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-            o->fail(key, "'" + value + "' is not in the OCIO config; it has: " + list);
-        };
-        if (!scene.output.colorSpace.empty())
-            oneOf("color_space", scene.output.colorSpace, color.colorSpaces());
-        oneOf("display", scene.output.display, color.displays());
-        oneOf("view", scene.output.view, color.views(scene.output.display));
+        if (auto miss = findUnknownOutputName(color, scene.output.colorSpace,
+                                              scene.output.display, scene.output.view))
+            o->fail(miss->key, "'" + miss->value + "' is not in the OCIO config; it has: " +
+                                   joinList(miss->known));
         o->finish();
     }
 }
+
+namespace {
+
+using Resolve = std::function<std::string(const std::string&)>;
+
+// The volume's file for this frame: resolved from the scene's folder and present.
+std::string readVolumeFile(const TableReader& v, const Resolve& resolve, int frame) {
+    std::string file;
+    try {
+        file = resolve(expandFramePattern(v.getString("file"), frame));
+    } catch (const MirageError& e) {
+        v.fail("file", e.what());
+    }
+    // The shipped scenes use procedural caches that Mirage writes itself (no downloads): say
+    // how, since a fresh checkout has none of them.
+    if (!fs::exists(file))
+        v.fail("file", "volume file not found: " + file +
+                           " (a procedural cache? `mirage make-asset smoke|fire|fog-sphere|"
+                           "ocean -o " + file + "` writes one; the scene's header "
+                           "comment says which)");
+    return file;
+}
+
+// The volume's shader (a name or a file next to the scene) with the volume's own component
+// concentrations: concentration = { name = value, … } (what `mirage slab --set name=value`
+// sets), e.g. --set volume.0.concentration.chlorophyll=5.
+ShaderDesc readVolumeShader(const TableReader& v, const std::string& name,
+                            const std::string& dir) {
+    ShaderDesc shader;
+    try {
+        shader = loadShader(name, dir);
+    } catch (const MirageError& e) {
+        if (e.location().line > 0) throw;  // an error inside the shader file itself
+        v.fail("shader", e.what());
+    }
+    if (auto c = v.optionalTable("concentration")) {
+        for (const auto& k : c->keys()) {
+            auto& comps = shader.components;
+            auto it = std::find_if(comps.begin(), comps.end(),
+                                   [&](const MediumComponent& mc) { return mc.name == k; });
+            if (it == comps.end())
+                c->fail(k, "shader '" + shader.name + "' has no component '" + k +
+                               "'; its components are: " +
+                               joinList(comps, [](const MediumComponent& mc) { return mc.name; }));
+            it->concentration = float(c->getNumber(k, 0.0, 0.0, 1e12));
+        }
+        c->finish();
+    }
+    return shader;
+}
+
+// Per-volume exposure of the blackbody emission: multiplies the shader's `intensity` (1 =
+// physical Planck radiance; 2 = one stop brighter, same colour).
+void readEmissionIntensity(const TableReader& v, ShaderDesc* shader) {
+    if (!v.has("emission_intensity")) return;
+    const double k = v.getNumber("emission_intensity", 1.0, 0.0, 1e12);
+    if (!shader->emission)
+        v.fail("emission_intensity", "shader '" + shader->name +
+                                         "' has no [emission] table, so there is no "
+                                         "emission to scale");
+    shader->emission->intensity *= float(k);
+}
+
+// bind = { slot = "grid", … }: which grid of the file each of the shader's slots reads.
+std::vector<std::pair<std::string, std::string>> readBindings(const TableReader& v,
+                                                              const ShaderDesc& shader) {
+    std::vector<std::pair<std::string, std::string>> bind;
+    if (auto b = v.optionalTable("bind")) {
+        for (const auto& k : b->keys()) {
+            auto slots = shader.gridSlots();
+            if (std::find(slots.begin(), slots.end(), k) == slots.end())
+                b->fail(k, "shader '" + shader.name + "' has no grid slot '" + k +
+                               "'; its slots are: " + joinList(slots));
+            bind.emplace_back(k, b->getString(k));
+        }
+    }
+    return bind;
+}
+
+// Grid expressions (OpenVDB AX): the shader's first, over its slots, then the volume's, over
+// the file's grid names (docs/scene-file.md, "Grid expressions").
+void readExpressions(const TableReader& v, const ShaderDesc& shader, bool boxed,
+                     VolumeRecord* rec) {
+    addShaderExpression(shader, rec);
+    if (v.has("expression")) {
+        const std::string code = v.getString("expression");
+        if (code.find_first_not_of(" \t\r\n") == std::string::npos)
+            v.fail("expression", "expected OpenVDB AX code, e.g. \"@density = "
+                                 "clamp((@density - 0.05) * 4, 0, 1);\"");
+        rec->expressions.push_back(
+            {{code, v.loc("expression"), "'expression' in [volume]", {}}, "volume", {}, 0.0});
+    }
+    if (boxed && !rec->expressions.empty())
+        v.fail(v.has("expression") ? "expression" : "box",
+               "a box volume has no grids for an expression to run on");
+}
+
+// box = { min = [...], max = [...] }: a homogeneous medium, so its shader reads no grid.
+Bounds3 readVolumeBox(const TableReader& v, const ShaderDesc& shader) {
+    TableReader b = v.table("box");
+    Vec3 lo = b.getVec3("min"), hi = b.getVec3("max");
+    if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
+        b.fail("max", "expected every coordinate of 'max' above that of 'min' (metres)");
+    b.finish();
+    Bounds3 box;
+    box.expand(lo);
+    box.expand(hi);
+    auto slots = shader.gridSlots();
+    if (!slots.empty())
+        v.fail("box", "a box volume is homogeneous, but shader '" + shader.name +
+                          "' reads grid slot(s) " +
+                          joinList(slots, [](const std::string& sl) { return "'" + sl + "'"; }) +
+                          "; use a 'file', or a shader whose components have no grid");
+    return box;
+}
+
+// One [[volume]]: a VDB file (or a box) seen through a shader; its medium joins the scene.
+void readVolume(const TableReader& v, const Resolve& resolve, const std::string& dir,
+                const LoadOptions& options, Scene* scene) {
+    VolumeRecord rec;
+    // `box` instead of `file`: a homogeneous medium (a shader without grids) filling a box.
+    const bool boxed = v.has("box");
+    if (boxed && v.has("file")) v.fail("box", "give either 'file' or 'box', not both");
+    const FileLoc where = v.loc(boxed ? "box" : "file");
+    if (!boxed) rec.file = readVolumeFile(v, resolve, options.frame);
+    rec.shader = v.getString("shader", "smoke");
+    ShaderDesc shader = readVolumeShader(v, rec.shader, dir);
+    rec.densityScale = float(v.getNumber("density_scale", 1.0, 0.0, 1e12));
+    readEmissionIntensity(v, &shader);
+    const auto bind = readBindings(v, shader);
+    readExpressions(v, shader, boxed, &rec);
+    Transform xf;
+    if (auto t = v.optionalTable("transform")) xf = readTransform(*t);
+    Bounds3 box;
+    if (boxed) box = readVolumeBox(v, shader);
+    v.finish();
+    if (boxed)
+        scene->render.media.push_back(std::make_unique<Medium>(shader, box, xf, rec.densityScale));
+    else
+        scene->render.media.push_back(buildMedium(shader, rec, bind, xf,
+                                                  scene->majorantResolution, where, *scene,
+                                                  options));
+    scene->volumes.push_back(std::move(rec));
+}
+
+// A medium inside a closed shape exists only there, and the other media not there (glass
+// sphere of ink in fog, water in a tank).
+void confineInteriorMedia(Scene* scene) {
+    const GeometryScene* geometry = scene->render.geometry.get();
+    if (!geometry) return;
+    for (size_t i = 0; i < geometry->shapeCount(); ++i) {
+        int m = geometry->shape(int(i)).interiorMedium;
+        if (m < 0) continue;
+        auto region = geometry->interiorRegion(int(i));
+        for (size_t j = 0; j < scene->render.media.size(); ++j) {
+            if (int(j) == m)
+                scene->render.media[j]->confineTo(region);
+            else
+                scene->render.media[j]->excludeFrom(region);
+        }
+    }
+}
+
+// [camera], or a camera framing the scene's bounds when there is none.
+CameraDesc readCamera(const TableReader& top, int frame, const Scene& scene) {
+    float aspect = float(scene.settings.width) / float(scene.settings.height);
+    auto c = top.optionalTable("camera");
+    if (!c) {
+        if (!scene.render.media.empty() || scene.render.hasSurfaces())
+            return frameBounds(scene.render.bounds(), 40.f, aspect);
+        return scene.render.camera;
+    }
+    CameraDesc cam;
+    cam.position = c->getVec3("position");
+    cam.lookAt = c->getVec3("look_at");
+    cam.up = c->getVec3("up", Vec3(0, 1, 0));
+    cam.fovDeg = float(c->getNumber("fov", 40, 0.01, 179));
+    if (!(length(cam.lookAt - cam.position) > 0))
+        c->fail("look_at", "the camera looks at its own position");
+    if (!(length(cross(cam.lookAt - cam.position, cam.up)) > 0))
+        c->fail("up", "'up' is parallel to the viewing direction");
+    // A turntable: N frames per orbit about `up` through look_at, frame 1 where the camera
+    // stands, so `--frames 1-N` renders one full turn (and frame N + 1 is frame 1 again).
+    if (c->has("turntable")) {
+        const int frames = int(c->getInt("turntable", 1, 1, 1000000));
+        const int k = ((frame - 1) % frames + frames) % frames;
+        cam = orbitCamera(cam, 360.f * float(k) / float(frames));
+    }
+    c->finish();
+    return cam;
+}
+
+// [refraction]; a field with ∇n = 0 everywhere bends nothing: the scene renders as without it.
+void readSceneRefraction(const TableReader& top, Scene* scene) {
+    auto t = top.optionalTable("refraction");
+    if (!t) return;
+    scene->refraction = readRefraction(*t, scene->render.media);
+    const Vec3d big(1e30);
+    if (scene->refraction->field->gradientBound(-big, big) == 0) scene->refraction.reset();
+}
+
+}  // namespace
 
 Scene loadScene(const std::string& path, const LoadOptions& options, const ColorPipeline& color) {
     if (isVolumeFile(path)) return sceneFromVdb(path, options, color);
@@ -354,176 +550,20 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
     // (shaders, volumes, meshes) resolve from "." like any other scene's from its folder.
     std::string dir = fs::path(path).parent_path().string();
     if (dir.empty()) dir = ".";
-    auto resolve = [&](const std::string& p) {
+    const Resolve resolve = [&](const std::string& p) {
         return fs::path(p).is_relative() ? (fs::path(dir) / p).string() : p;
     };
 
     Scene scene;
     scene.source = path;
     TableReader top(doc, path, "");
-
     readSettings(top, resolve, color, &scene);
-
-    for (const auto& v : top.tables("volume")) {
-        VolumeRecord rec;
-        // `box` instead of `file`: a homogeneous medium (a shader without grids) filling a box.
-        const bool boxed = v.has("box");
-        if (boxed && v.has("file")) v.fail("box", "give either 'file' or 'box', not both");
-        FileLoc where = v.loc(boxed ? "box" : "file");
-        if (!boxed) {
-            try {
-                rec.file = resolve(expandFramePattern(v.getString("file"), options.frame));
-            } catch (const MirageError& e) {
-                v.fail("file", e.what());
-            }
-            // The shipped scenes use procedural caches that Mirage writes itself (no downloads):
-            // say how, since a fresh checkout has none of them.
-            if (!fs::exists(rec.file))
-                v.fail("file", "volume file not found: " + rec.file +
-                                   " (a procedural cache? `mirage make-asset smoke|fire|fog-sphere|"
-                                   "ocean -o " + rec.file + "` writes one; the scene's header "
-                                   "comment says which)");
-        }
-        rec.shader = v.getString("shader", "smoke");
-        ShaderDesc shader;
-        try {
-            shader = loadShader(rec.shader, dir);
-        } catch (const MirageError& e) {
-            if (e.location().line > 0) throw;  // an error inside the shader file itself
-            v.fail("shader", e.what());
-        }
-        // concentration = { name = value, … }: the named components' concentrations (what
-        // `mirage slab --set name=value` sets), e.g. --set volume.0.concentration.chlorophyll=5.
-        if (auto c = v.optionalTable("concentration")) {
-            for (const auto& k : c->keys()) {
-                auto& comps = shader.components;
-                auto it = std::find_if(comps.begin(), comps.end(),
-                                       [&](const MediumComponent& mc) { return mc.name == k; });
-                if (it == comps.end()) {
-                    std::string list;
-                    for (const auto& mc : comps) list += (list.empty() ? "" : ", ") + mc.name;
-                    c->fail(k, "shader '" + shader.name + "' has no component '" + k +
-                                   "'; its components are: " + list);
-                }
-                it->concentration = float(c->getNumber(k, 0.0, 0.0, 1e12));
-            }
-            c->finish();
-        }
-        rec.densityScale = float(v.getNumber("density_scale", 1.0, 0.0, 1e12));
-        // Per-volume exposure of the blackbody emission: multiplies the shader's `intensity`
-        // (1 = physical Planck radiance; 2 = one stop brighter, same colour).
-        if (v.has("emission_intensity")) {
-            const double k = v.getNumber("emission_intensity", 1.0, 0.0, 1e12);
-            if (!shader.emission)
-                v.fail("emission_intensity", "shader '" + shader.name +
-                                                 "' has no [emission] table, so there is no "
-                                                 "emission to scale");
-            shader.emission->intensity *= float(k);
-        }
-        std::vector<std::pair<std::string, std::string>> bind;
-        if (auto b = v.optionalTable("bind")) {
-            for (const auto& k : b->keys()) {
-                auto slots = shader.gridSlots();
-                if (std::find(slots.begin(), slots.end(), k) == slots.end()) {
-                    std::string list;
-                    for (const auto& s : slots) list += (list.empty() ? "" : ", ") + s;
-                    b->fail(k, "shader '" + shader.name + "' has no grid slot '" + k +
-                                   "'; its slots are: " + list);
-                }
-                bind.emplace_back(k, b->getString(k));
-            }
-        }
-        // Grid expressions (OpenVDB AX): the shader's first, over its slots, then the volume's,
-        // over the file's grid names (docs/scene-file.md, "Grid expressions").
-        addShaderExpression(shader, &rec);
-        if (v.has("expression")) {
-            const std::string code = v.getString("expression");
-            if (code.find_first_not_of(" \t\r\n") == std::string::npos)
-                v.fail("expression", "expected OpenVDB AX code, e.g. \"@density = "
-                                     "clamp((@density - 0.05) * 4, 0, 1);\"");
-            rec.expressions.push_back(
-                {{code, v.loc("expression"), "'expression' in [volume]", {}}, "volume", {}, 0.0});
-        }
-        if (boxed && !rec.expressions.empty())
-            v.fail(v.has("expression") ? "expression" : "box",
-                   "a box volume has no grids for an expression to run on");
-        Transform xf;
-        if (auto t = v.optionalTable("transform")) xf = readTransform(*t);
-        Bounds3 box;
-        if (boxed) {
-            TableReader b = v.table("box");
-            Vec3 lo = b.getVec3("min"), hi = b.getVec3("max");
-            if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
-                b.fail("max", "expected every coordinate of 'max' above that of 'min' (metres)");
-            b.finish();
-            box.expand(lo);
-            box.expand(hi);
-            auto slots = shader.gridSlots();
-            if (!slots.empty()) {
-                std::string list;
-                for (const auto& sl : slots) list += (list.empty() ? "'" : ", '") + sl + "'";
-                v.fail("box", "a box volume is homogeneous, but shader '" + shader.name +
-                                  "' reads grid slot(s) " + list +
-                                  "; use a 'file', or a shader whose components have no grid");
-            }
-        }
-        v.finish();
-        if (boxed)
-            scene.render.media.push_back(
-                std::make_unique<Medium>(shader, box, xf, rec.densityScale));
-        else
-            scene.render.media.push_back(
-                buildMedium(shader, rec, bind, xf, scene.majorantResolution, where,
-                            scene, options));
-        scene.volumes.push_back(std::move(rec));
-    }
-
+    for (const auto& v : top.tables("volume")) readVolume(v, resolve, dir, options, &scene);
     for (const auto& l : top.tables("light")) scene.render.lights.push_back(readLight(l, color));
     scene.render.geometry = readGeometry(top, resolve, scene.render.media.size(), color);
-    // A medium inside a closed shape exists only there, and the other media not there (glass
-    // sphere of ink in fog, water in a tank).
-    if (scene.render.geometry)
-        for (size_t i = 0; i < scene.render.geometry->shapeCount(); ++i) {
-            int m = scene.render.geometry->shape(int(i)).interiorMedium;
-            if (m < 0) continue;
-            auto region = scene.render.geometry->interiorRegion(int(i));
-            for (size_t j = 0; j < scene.render.media.size(); ++j) {
-                if (int(j) == m)
-                    scene.render.media[j]->confineTo(region);
-                else
-                    scene.render.media[j]->excludeFrom(region);
-            }
-        }
-
-    float aspect = float(scene.settings.width) / float(scene.settings.height);
-    if (auto c = top.optionalTable("camera")) {
-        CameraDesc cam;
-        cam.position = c->getVec3("position");
-        cam.lookAt = c->getVec3("look_at");
-        cam.up = c->getVec3("up", Vec3(0, 1, 0));
-        cam.fovDeg = float(c->getNumber("fov", 40, 0.01, 179));
-        if (!(length(cam.lookAt - cam.position) > 0))
-            c->fail("look_at", "the camera looks at its own position");
-        if (!(length(cross(cam.lookAt - cam.position, cam.up)) > 0))
-            c->fail("up", "'up' is parallel to the viewing direction");
-        // A turntable: N frames per orbit about `up` through look_at, frame 1 where the camera
-        // stands, so `--frames 1-N` renders one full turn (and frame N + 1 is frame 1 again).
-        if (c->has("turntable")) {
-            const int frames = int(c->getInt("turntable", 1, 1, 1000000));
-            const int k = ((options.frame - 1) % frames + frames) % frames;
-            cam = orbitCamera(cam, 360.f * float(k) / float(frames));
-        }
-        c->finish();
-        scene.render.camera = cam;
-    } else if (!scene.render.media.empty() || scene.render.hasSurfaces()) {
-        scene.render.camera = frameBounds(scene.render.bounds(), 40.f, aspect);
-    }
-    if (auto t = top.optionalTable("refraction")) {
-        scene.refraction = readRefraction(*t, scene.render.media);
-        // A field with ∇n = 0 everywhere bends nothing: the scene renders as without it.
-        const Vec3d big(1e30);
-        if (scene.refraction->field->gradientBound(-big, big) == 0) scene.refraction.reset();
-    }
+    confineInteriorMedia(&scene);
+    scene.render.camera = readCamera(top, options.frame, scene);
+    readSceneRefraction(top, &scene);
     top.finish();
     return scene;
 }
@@ -564,116 +604,154 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
     return scene;
 }
 
-std::vector<PhysicsTerm> Scene::physics() const {
-    std::vector<PhysicsTerm> terms;
+namespace {
+
+// What the scene's media switch on, each with the reason `mirage info` gives (the first
+// shader that switches it on).
+struct MediaPhysics {
     bool scatter = false, spectral = false, emission = false;
     std::string emitWhy, spectralWhy, fluorescenceWhy;
-    for (size_t i = 0; i < render.media.size(); ++i) {
-        const ShaderDesc& s = render.media[i]->shader();
-        for (const auto& c : s.components) scatter |= c.sigmaS.maxValue() > 0;
-        if (s.spectralCoefficients() && spectralWhy.empty()) {
-            spectralWhy = "shader '" + s.name + "' has wavelength-dependent σ";
-            for (const auto& c : s.components)
-                if (c.kind != ComponentKind::Linear) {
-                    spectralWhy += " (component '" + c.name + "' is of kind " +
-                                   componentKindName(c.kind) + ")";
-                    break;
-                }
-        }
-        spectral |= s.spectralCoefficients();
-        for (const auto& c : s.components) {
-            if (!c.fluorescent() || !fluorescenceWhy.empty()) continue;
-            char buf[160];
-            std::snprintf(buf, sizeof buf, "' re-emits with Γ = %g at %g nm (FWHM %g nm%s)",
-                          c.quantumEfficiency, c.emissionPeakNm, c.emissionFwhmNm,
-                          c.antiStokes ? ", anti-Stokes allowed" : "");
-            fluorescenceWhy = "shader '" + s.name + "' component '" + c.name + buf +
-                              ": Γ roulette after absorption, re-emissions stored as "
-                              "isotropic photons, spectral transport";
-        }
-        if (!fluorescenceWhy.empty() && spectralWhy.empty())
-            spectralWhy = "fluorescence changes wavelengths (" + s.name + ")";
-        spectral |= s.fluorescent();
+};
+
+std::string spectralReason(const ShaderDesc& s) {
+    std::string why = "shader '" + s.name + "' has wavelength-dependent σ";
+    for (const auto& c : s.components)
+        if (c.kind != ComponentKind::Linear)
+            return why + " (component '" + c.name + "' is of kind " + componentKindName(c.kind) +
+                   ")";
+    return why;
+}
+
+std::string fluorescenceReason(const ShaderDesc& s, const MediumComponent& c) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "' re-emits with Γ = %g at %g nm (FWHM %g nm%s)",
+                  c.quantumEfficiency, c.emissionPeakNm, c.emissionFwhmNm,
+                  c.antiStokes ? ", anti-Stokes allowed" : "");
+    return "shader '" + s.name + "' component '" + c.name + buf +
+           ": Γ roulette after absorption, re-emissions stored as isotropic photons, spectral "
+           "transport";
+}
+
+MediaPhysics mediaPhysics(const RenderScene& render) {
+    MediaPhysics m;
+    for (const auto& medium : render.media) {
+        const ShaderDesc& s = medium->shader();
+        for (const auto& c : s.components) m.scatter |= c.sigmaS.maxValue() > 0;
+        if (s.spectralCoefficients() && m.spectralWhy.empty()) m.spectralWhy = spectralReason(s);
+        m.spectral |= s.spectralCoefficients();
+        for (const auto& c : s.components)
+            if (c.fluorescent() && m.fluorescenceWhy.empty())
+                m.fluorescenceWhy = fluorescenceReason(s, c);
+        if (!m.fluorescenceWhy.empty() && m.spectralWhy.empty())
+            m.spectralWhy = "fluorescence changes wavelengths (" + s.name + ")";
+        m.spectral |= s.fluorescent();
         if (s.emission) {
-            emission = true;
-            emitWhy = "shader '" + s.name + "' emits as a blackbody at grid slot '" +
-                      s.emission->temperatureGrid + "'";
+            m.emission = true;
+            m.emitWhy = "shader '" + s.name + "' emits as a blackbody at grid slot '" +
+                        s.emission->temperatureGrid + "'";
         }
     }
-    terms.push_back({"absorption", !render.media.empty(),
-                     render.media.empty() ? "no volumes" : std::to_string(render.media.size()) + " volume(s)"});
-    terms.push_back({"single scattering", scatter && !render.lights.empty(),
-                     !scatter ? "no component scatters (σs = 0)"
-                              : render.lights.empty() ? "no lights" : "σs > 0 and " + std::to_string(render.lights.size()) + " light(s): shadow rays by ratio tracking"});
-    // Emissive media light the scene too: their light scatters like a light's (photons from
-    // the medium in the photon pass, emission at every collision in volpath).
-    bool multiple = integrator != "single" && scatter && (!render.lights.empty() || emission);
-    terms.push_back({"multiple scattering", multiple,
-                     integrator == "single"
-                         ? "integrator 'single' computes single scattering only"
-                         : multiple ? "integrator '" + integrator + "' follows paths of up to " +
-                                          std::to_string(maxDepth) + " scattering events" +
-                                          (emission ? ", emitted light included" : "")
-                                    : "nothing scatters or nothing lights the scene"});
-    terms.push_back({"emission", emission,
-                     emission ? emitWhy + (integrator == "photon"
-                                               ? "; the photon pass emits from it ∝ 4π σa·Le"
-                                               : "")
-                              : "no shader has an [emission] table"});
-    terms.push_back({"spectral coefficients", spectral,
-                     spectral ? spectralWhy
-                              : "every σ is wavelength-independent: grey path (σ set once "
-                                "per medium, one grid lookup and one coefficient per component "
-                                "serve all 4 wavelengths; only light and emission spectra are "
-                                "sampled)"});
-    if (render.hasSurfaces()) {
-        const GeometryScene& g = *render.geometry;
-        size_t triangles = 0;
-        for (size_t i = 0; i < g.shapeCount(); ++i) triangles += g.shape(int(i)).triangles;
-        terms.push_back({"surfaces", true,
-                         std::to_string(g.shapeCount()) + " shape(s), " +
-                             std::to_string(triangles) + " triangle(s), " +
-                             std::to_string(g.materialCount()) + " material(s): Embree BVH"});
-    } else {
-        terms.push_back({"surfaces", false, "no [[shape]]"});
-    }
-    terms.push_back({"fluorescence", !fluorescenceWhy.empty(),
-                     fluorescenceWhy.empty() ? "no shader declares a quantum efficiency"
-                                             : fluorescenceWhy});
-    std::string expressionWhy;
+    return m;
+}
+
+PhysicsTerm singleScatteringTerm(const RenderScene& render, const MediaPhysics& m) {
+    return {"single scattering", m.scatter && !render.lights.empty(),
+            !m.scatter              ? "no component scatters (σs = 0)"
+            : render.lights.empty() ? "no lights"
+                                    : "σs > 0 and " + std::to_string(render.lights.size()) +
+                                          " light(s): shadow rays by ratio tracking"};
+}
+
+// Emissive media light the scene too: their light scatters like a light's (photons from the
+// medium in the photon pass, emission at every collision in volpath).
+PhysicsTerm multipleScatteringTerm(const Scene& scene, const MediaPhysics& m) {
+    const std::string& integrator = scene.integrator;
+    bool multiple =
+        integrator != "single" && m.scatter && (!scene.render.lights.empty() || m.emission);
+    return {"multiple scattering", multiple,
+            integrator == "single"
+                ? "integrator 'single' computes single scattering only"
+                : multiple ? "integrator '" + integrator + "' follows paths of up to " +
+                                 std::to_string(scene.maxDepth) + " scattering events" +
+                                 (m.emission ? ", emitted light included" : "")
+                           : "nothing scatters or nothing lights the scene"};
+}
+
+PhysicsTerm surfacesTerm(const RenderScene& render) {
+    if (!render.hasSurfaces()) return {"surfaces", false, "no [[shape]]"};
+    const GeometryScene& g = *render.geometry;
+    size_t triangles = 0;
+    for (size_t i = 0; i < g.shapeCount(); ++i) triangles += g.shape(int(i)).triangles;
+    return {"surfaces", true,
+            std::to_string(g.shapeCount()) + " shape(s), " + std::to_string(triangles) +
+                " triangle(s), " + std::to_string(g.materialCount()) + " material(s): Embree BVH"};
+}
+
+PhysicsTerm expressionsTerm(const std::vector<VolumeRecord>& volumes) {
+    std::vector<std::string> runs;
     for (size_t i = 0; i < volumes.size(); ++i)
         for (const ExpressionRecord& e : volumes[i].expressions)
-            expressionWhy += (expressionWhy.empty() ? "" : "; ") + std::string("volume ") +
-                             std::to_string(i) + " (" + e.origin + ", " +
-                             e.expression.where.str() + ") " + describeAccess(e.access);
-    terms.push_back({"grid expressions", !expressionWhy.empty(),
-                     expressionWhy.empty()
-                         ? "no expression: grids are used as stored"
-                         : "OpenVDB AX on the grids before NanoVDB conversion, active voxels "
-                           "only: " + expressionWhy});
-    if (refraction) {
-        // Which paths bend: camera rays always; photons when the photon integrator runs and the
-        // field curves within the scene's bounds (photonsCurve), which then drops shadow rays.
-        const Bounds3 b = render.bounds();
-        char bound[96] = "";
-        if (!b.empty())
-            std::snprintf(bound, sizeof bound, "; |grad n| <= %.3g /m over the scene's bounds",
-                          refraction->field->gradientBound(Vec3d(b.lo), Vec3d(b.hi)));
-        const bool photons = integrator == "photon" && photonsCurve(refraction->field.get(), b);
-        terms.push_back(
-            {"curved paths", true,
-             "[refraction]: " + refraction->description + bound +
-                 ". Camera rays bend (Dormand-Prince RK5(4)), straight beyond " +
-                 std::to_string(int(refraction->maxArc)) + " m of path; " +
-                 (photons ? "photons follow curved paths too, and direct light comes from the "
-                            "photon maps (no shadow rays)"
-                          : integrator == "photon"
-                                ? "photons straight (the field is flat within the scene)"
-                                : "scattered paths and shadow rays stay straight (integrator '" +
-                                      integrator + "'; 'photon' bends photons too)")});
-    }
-    else
-        terms.push_back({"curved paths", false, "no refractive-index field: straight-line tracking"});
+            runs.push_back("volume " + std::to_string(i) + " (" + e.origin + ", " +
+                           e.expression.where.str() + ") " + describeAccess(e.access));
+    if (runs.empty())
+        return {"grid expressions", false, "no expression: grids are used as stored"};
+    return {"grid expressions", true,
+            "OpenVDB AX on the grids before NanoVDB conversion, active voxels only: " +
+                joinList(runs, "; ")};
+}
+
+// Which paths bend: camera rays always; photons when the photon integrator runs and the field
+// curves within the scene's bounds (photonsCurve), which then drops shadow rays.
+PhysicsTerm curvedPathsTerm(const Scene& scene) {
+    if (!scene.refraction)
+        return {"curved paths", false, "no refractive-index field: straight-line tracking"};
+    const Refraction& refraction = *scene.refraction;
+    const std::string& integrator = scene.integrator;
+    const Bounds3 b = scene.render.bounds();
+    char bound[96] = "";
+    if (!b.empty())
+        std::snprintf(bound, sizeof bound, "; |grad n| <= %.3g /m over the scene's bounds",
+                      refraction.field->gradientBound(Vec3d(b.lo), Vec3d(b.hi)));
+    const bool photons = integrator == "photon" && photonsCurve(refraction.field.get(), b);
+    return {"curved paths", true,
+            "[refraction]: " + refraction.description + bound +
+                ". Camera rays bend (Dormand-Prince RK5(4)), straight beyond " +
+                std::to_string(int(refraction.maxArc)) + " m of path; " +
+                (photons ? "photons follow curved paths too, and direct light comes from the "
+                           "photon maps (no shadow rays)"
+                 : integrator == "photon"
+                     ? "photons straight (the field is flat within the scene)"
+                     : "scattered paths and shadow rays stay straight (integrator '" +
+                           integrator + "'; 'photon' bends photons too)")};
+}
+
+}  // namespace
+
+std::vector<PhysicsTerm> Scene::physics() const {
+    const MediaPhysics m = mediaPhysics(render);
+    std::vector<PhysicsTerm> terms;
+    terms.push_back({"absorption", !render.media.empty(),
+                     render.media.empty() ? "no volumes"
+                                          : std::to_string(render.media.size()) + " volume(s)"});
+    terms.push_back(singleScatteringTerm(render, m));
+    terms.push_back(multipleScatteringTerm(*this, m));
+    terms.push_back({"emission", m.emission,
+                     m.emission ? m.emitWhy + (integrator == "photon"
+                                                   ? "; the photon pass emits from it ∝ 4π σa·Le"
+                                                   : "")
+                                : "no shader has an [emission] table"});
+    terms.push_back({"spectral coefficients", m.spectral,
+                     m.spectral ? m.spectralWhy
+                                : "every σ is wavelength-independent: grey path (σ set once "
+                                  "per medium, one grid lookup and one coefficient per "
+                                  "component serve all 4 wavelengths; only light and emission "
+                                  "spectra are sampled)"});
+    terms.push_back(surfacesTerm(render));
+    terms.push_back({"fluorescence", !m.fluorescenceWhy.empty(),
+                     m.fluorescenceWhy.empty() ? "no shader declares a quantum efficiency"
+                                               : m.fluorescenceWhy});
+    terms.push_back(expressionsTerm(volumes));
+    terms.push_back(curvedPathsTerm(*this));
     return terms;
 }
 

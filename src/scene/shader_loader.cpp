@@ -4,6 +4,7 @@
 #include <utility>
 #include <filesystem>
 
+#include "core/text.h"
 #include "medium/ocean_components.h"
 #include "spectrum/ocean_spectra.h"
 
@@ -169,10 +170,8 @@ ShaderDesc loadShader(const std::string& nameOrPath, const std::string& sceneDir
         if (name == nameOrPath)
             return parseShader(parseTomlText(text, "<built-in shader " + name + ">"),
                                "<built-in shader " + name + ">");
-    std::string names;
-    for (const auto& n : builtinShaderNames()) names += (names.empty() ? "" : ", ") + n;
     throw MirageError("unknown shader '" + nameOrPath + "': not a file next to the scene, and "
-                      "not a built-in shader (" + names + ")");
+                      "not a built-in shader (" + joinList(builtinShaderNames()) + ")");
 }
 
 }  // namespace mirage

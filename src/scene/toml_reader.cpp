@@ -1,3 +1,4 @@
+#include "core/text.h"
 #include "scene/toml_reader.h"
 
 #include <algorithm>
@@ -193,8 +194,7 @@ void TableReader::finish() const {
     for (const auto& [key, value] : *mTable) {
         std::string k(key.str());
         if (std::find(mRead.begin(), mRead.end(), k) != mRead.end()) continue;
-        std::string expected;
-        for (const auto& r : mRead) expected += (expected.empty() ? "" : ", ") + r;
+        const std::string expected = joinList(mRead);
         const auto& src = key.source();
         FileLoc at = src.begin.line ? FileLoc{mFile, int(src.begin.line), int(src.begin.column)}
                                     : nodeLoc(value, mFile);

@@ -15,7 +15,6 @@
 #include <openvdb/io/Compression.h>
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
-#include <openvdb/tools/Interpolation.h>
 
 #include <cmath>
 #include <cstdio>
@@ -26,6 +25,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/grid_name.h"
 #include "volume/openvdb_expression.h"
 #include "volume/stored_values.h"
 #include "volume/vdb_format.h"
@@ -452,8 +452,7 @@ FloatGrid finishGrid(const std::string& path, const FileLayout& layout, int inde
                      nanovdb::GridHandle<nanovdb::HostBuffer> handle, const std::string& label) {
     const SanitizeCounts sanitized = sanitize(*handle.grid<float>());
     if (sanitized.total() > 0) warnSanitizedOnce(path, label, sanitized);
-    const std::string& own = layout.grids[size_t(index)].name;
-    std::string name = own.empty() ? "#" + std::to_string(index) : own;
+    std::string name = gridName(layout.grids[size_t(index)].name, size_t(index));
     return FloatGrid(std::move(handle), std::move(name), sanitized.total());
 }
 
@@ -523,8 +522,7 @@ std::vector<FloatGrid> loadFloatGrids(const std::string& path,
     // Each grid is read once, by index, and carries the name AX will look it up by: its name
     // in the file, or "#N" when it has none.
     auto canonicalName = [&](int index) {
-        const std::string& name = layout.grids[size_t(index)].name;
-        return name.empty() ? "#" + std::to_string(index) : name;
+        return gridName(layout.grids[size_t(index)].name, size_t(index));
     };
     std::map<int, openvdb::FloatGrid::Ptr> grids;
     auto read = [&](int index) {
@@ -621,26 +619,8 @@ VectorGrid loadVectorGrid(const std::string& path, const std::string& gridName) 
         counts.clamped = changed - zeroed;
         warnSanitizedOnce(path, label, counts, /*vectors=*/true);
     }
-    const std::string& own = record.name;
-    return VectorGrid(std::move(handle), own.empty() ? "#" + std::to_string(index) : own,
-                      staggered, changed);
-}
-
-std::vector<double> openvdbSampleForTest(const std::string& path, const std::string& gridName,
-                                         const std::vector<Vec3d>& points, bool indexSpace) {
-    const FileLayout layout = vdbformat::scanFile(path);
-    if (layout.format != Format::OpenVdb) fail(path, "not an OpenVDB file");
-    const int index = requireGrid(path, layout, gridName);
-    openvdb::FloatGrid::Ptr grid =
-        readFogVolume(path, layout, index);
-    std::vector<double> values;
-    values.reserve(points.size());
-    openvdb::tools::GridSampler<openvdb::FloatGrid, openvdb::tools::BoxSampler> sampler(*grid);
-    for (const Vec3d& p : points) {
-        openvdb::Vec3d q(p.x, p.y, p.z);
-        values.push_back(indexSpace ? sampler.isSample(q) : sampler.wsSample(q));
-    }
-    return values;
+    return VectorGrid(std::move(handle), mirage::gridName(record.name, size_t(index)), staggered,
+                      changed);
 }
 
 }  // namespace mirage

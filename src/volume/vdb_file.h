@@ -82,10 +82,4 @@ std::vector<FloatGrid> loadFloatGrids(const std::string& path,
                                       const std::vector<GridExpression>& expressions,
                                       std::vector<double>* expressionSeconds = nullptr);
 
-// Test support: OpenVDB's own trilinear lookup (tools::BoxSampler) of grid `gridName` of an
-// OpenVDB file at each point, in index space (indexSpace = true) or object space, so that tests
-// can compare NanoVDB against OpenVDB without compiling OpenVDB headers themselves.
-std::vector<double> openvdbSampleForTest(const std::string& path, const std::string& gridName,
-                                         const std::vector<Vec3d>& points, bool indexSpace);
-
 }  // namespace mirage

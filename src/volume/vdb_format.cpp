@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/grid_name.h"
 #include "volume/vdb_reader.h"
 
 namespace mirage::vdbformat {
@@ -38,7 +39,7 @@ std::string displayName(const GridRecord& g) {
 }
 
 std::string labelOf(const GridRecord& g, size_t index) {
-    return g.name.empty() ? "#" + num(index) : "'" + displayName(g) + "'";
+    return g.name.empty() ? gridIndexName(index) : "'" + displayName(g) + "'";
 }
 
 // Bytes OpenVDB's registered metadata types read for their value (openvdb::initialize(); sizes
@@ -405,7 +406,7 @@ std::string gridList(const FileLayout& layout) {
     if (layout.grids.empty()) return "the file has no grids";
     std::string s;
     for (size_t i = 0; i < layout.grids.size(); ++i) {
-        std::string item = layout.grids[i].name.empty() ? "#" + num(i) + " (unnamed)"
+        std::string item = layout.grids[i].name.empty() ? gridIndexName(i) + " (unnamed)"
                                                         : displayName(layout.grids[i]);
         if (s.size() + item.size() > 160) return s + ", … (" + num(layout.grids.size()) + " grids)";
         s += (s.empty() ? "" : ", ") + boundedMessage(item, 40);

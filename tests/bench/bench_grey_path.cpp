@@ -18,7 +18,7 @@
 #include "film/color.h"
 #include "photon/photon_pass.h"
 #include "render/renderer.h"
-#include "volume/asset_writer.h"
+#include "tools/asset_writer.h"
 #include "volume/vdb_file.h"
 
 using namespace mirage;

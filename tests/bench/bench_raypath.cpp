@@ -17,11 +17,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
-#include "film/plot.h"
+#include "core/atomic_file.h"
+#include "tools/plot.h"
 #include "medium/index_field.h"
 #include "medium/linear_profile_path.h"
 #include "transport/curved_path.h"
@@ -137,24 +137,22 @@ int main(int argc, char** argv) {
     }
 
     // CSV, written through a temporary name and a rename.
-    const fs::path csv = dir / "raypath.csv", tmp = dir / ".raypath.csv.tmp";
-    {
-        std::ofstream f(tmp);
-        f << "method,tolerance_or_step_m,k,direction,end_point_error_m,opl_error_m,steps,"
-             "evaluations,seconds_per_path\n";
+    std::string csv =
+        "method,tolerance_or_step_m,k,direction,end_point_error_m,opl_error_m,steps,"
+        "evaluations,seconds_per_path\n";
+    for (const Row& r : rows) {
         char line[256];
-        for (const Row& r : rows) {
-            std::snprintf(line, sizeof line, "%s,%.3g,%g,%d,%.6e,%.6e,%lld,%lld,%.6e\n",
-                          r.method.c_str(), r.setting, r.k, r.direction, r.error, r.oplError,
-                          (long long)r.steps, (long long)r.evaluations, r.seconds);
-            f << line;
-        }
-        if (!f) {
-            std::fprintf(stderr, "bench_raypath: cannot write %s\n", tmp.c_str());
-            return 1;
-        }
+        std::snprintf(line, sizeof line, "%s,%.3g,%g,%d,%.6e,%.6e,%lld,%lld,%.6e\n",
+                      r.method.c_str(), r.setting, r.k, r.direction, r.error, r.oplError,
+                      (long long)r.steps, (long long)r.evaluations, r.seconds);
+        csv += line;
     }
-    fs::rename(tmp, csv);
+    try {
+        writeTextFileAtomically((dir / "raypath.csv").string(), csv);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "bench_raypath: %s\n", e.what());
+        return 1;
+    }
 
     const std::vector<Summary> rk = summarise(rows, "rk45"), eu = summarise(rows, "euler");
     std::printf("Fermat paths in n = 1 + k·y, k in ±{0.01, 0.05, 0.1}, 3 directions, %g m\n",

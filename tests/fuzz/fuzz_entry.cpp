@@ -10,7 +10,7 @@
 #include "core/error.h"
 #include "film/color.h"
 #include "scene/scene.h"
-#include "volume/asset_writer.h"
+#include "tools/asset_writer.h"
 #include "volume/vdb_file.h"
 
 namespace mirage::fuzz {

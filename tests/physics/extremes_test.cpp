@@ -24,8 +24,8 @@
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "spectrum/spectrum.h"
+#include "test_grids.h"
 #include "test_support.h"
-#include "volume/asset_writer.h"
 #include "volume/vdb_file.h"
 
 using namespace mirage;

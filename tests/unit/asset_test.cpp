@@ -8,7 +8,7 @@
 
 #include "core/error.h"
 #include "test_support.h"
-#include "volume/asset_writer.h"
+#include "tools/asset_writer.h"
 #include "volume/vdb_file.h"
 
 namespace mirage {

@@ -14,8 +14,8 @@
 #include "film/color.h"
 #include "medium/medium.h"
 #include "scene/scene.h"
+#include "test_grids.h"
 #include "test_support.h"
-#include "volume/asset_writer.h"
 #include "volume/vdb_file.h"
 
 using namespace mirage;

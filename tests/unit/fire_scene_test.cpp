@@ -9,7 +9,7 @@
 #include "photon/medium_emitter.h"
 #include "scene/scene.h"
 #include "test_support.h"
-#include "volume/asset_writer.h"
+#include "tools/asset_writer.h"
 
 using namespace mirage;
 

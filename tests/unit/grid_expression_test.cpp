@@ -12,8 +12,9 @@
 #include "film/color.h"
 #include "film/image_io.h"
 #include "scene/scene.h"
+#include "test_grids.h"
 #include "test_support.h"
-#include "volume/asset_writer.h"
+#include "tools/asset_writer.h"
 #include "volume/vdb_file.h"
 
 namespace mirage {

@@ -8,8 +8,9 @@
 #include <vector>
 
 #include "core/rng.h"
+#include "test_grids.h"
 #include "test_support.h"
-#include "volume/asset_writer.h"
+#include "tools/asset_writer.h"
 #include "volume/vdb_file.h"
 
 namespace mirage {

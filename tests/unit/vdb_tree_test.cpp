@@ -10,8 +10,8 @@
 #include <iterator>
 
 #include "core/error.h"
+#include "test_grids.h"
 #include "test_support.h"
-#include "volume/asset_writer.h"
 #include "volume/vdb_file.h"
 #include "volume/vdb_format.h"
 #include "volume/vdb_tree.h"

@@ -410,7 +410,7 @@ TEST(RayOpticalDepth, MarchBiasOnSharpSmokeIsBelowThePhotonNoise) {
     // The photon estimates take T from a midpoint-rule march (ray_optical_depth.h), a bias that
     // does not fall with more photons. It must stay far below the estimate's noise at every
     // quality preset; the smallest is the final preset's, relMSE 0.011 on the preset scene
-    // (README, "Quality presets"): ~10 % RMS per pixel. The march step does not depend on the
+    // (docs/performance.md, "Quality presets"): ~10 % RMS per pixel. The march step does not depend on the
     // preset, so one measurement serves all three.
     //
     // The sharpest field a grid holds: binary smoke, each voxel of a 32³ grid 0 or 1 at random

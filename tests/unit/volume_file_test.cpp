@@ -13,8 +13,8 @@
 
 #include "core/error.h"
 #include "core/rng.h"
+#include "test_grids.h"
 #include "test_support.h"
-#include "volume/asset_writer.h"
 #include "volume/vdb_file.h"
 
 namespace mirage {

@@ -83,7 +83,7 @@ TEST(White, WhiteDiffuserUnderAWhiteLightIsNeutral) {
 }
 
 TEST(White, EqualEnergyEmissionIsWarmInAcescg) {
-    // The number form: the equal-energy spectrum, as documented (README, "Which white").
+    // The number form: the equal-energy spectrum, as documented (docs/scene-file.md, "Which white is which").
     const auto rgb = renderMean(test::tempDir(), "e", emitter("1.0"));
     std::printf("emission = 1.0 (E): R %.4f G %.4f B %.4f\n", rgb[0], rgb[1], rgb[2]);
     EXPECT_NEAR(rgb[0], 1.104, 0.005);

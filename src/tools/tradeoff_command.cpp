@@ -8,7 +8,7 @@
 // Each --vary names a scene key and its values; several --vary form the Cartesian product.
 // Short names: photons, estimate, k, max_radius ([render]), spp (film.spp), integrator
 // (render.integrator); any dotted key is taken as a --set override. Every setting is rendered
-// in-process by the same code as `mirage render` (app/render_frame.h) and compared with the
+// in-process by the same code as `mirage render` (scene/render_frame.h) and compared with the
 // reference in scene-linear RGB (alpha ignored), over all N pixels × 3 channels:
 //
 //   RMSE      = sqrt( Σ (x − r)² / 3N )
@@ -27,7 +27,7 @@
 // Output: <prefix>tradeoff.csv (setting, seconds, rmse, relmse, mean_bias, one column per
 // varied key), a table on stdout, and <prefix>tradeoff.png, relMSE against seconds on log-log
 // axes with one polyline per value of the last varied key (in sweep order).
-#include <tbb/global_control.h>
+#include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -36,15 +36,17 @@
 #include <fstream>
 #include <map>
 #include <memory>
-#include <unistd.h>
 
-#include "app/commands.h"
-#include "app/render_frame.h"
+#include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
+#include "core/thread_limit.h"
 #include "film/color.h"
 #include "film/image_io.h"
-#include "film/plot.h"
+#include "scene/render_frame.h"
 #include "scene/scene.h"
+#include "tools/plot.h"
+#include "tools/tools.h"
 
 namespace mirage {
 
@@ -143,8 +145,7 @@ VariedKey parseVary(const std::string& option) {
             known = true;
         }
     if (!known && vk.name.find('.') == std::string::npos) {
-        std::string names;
-        for (const auto& k : kKeys) names += std::string(names.empty() ? "" : ", ") + k.name;
+        const std::string names = joinList(kKeys, [](const KeyInfo& k) { return std::string(k.name); });
         throw MirageError("--vary '" + option + "': unknown key '" + vk.name + "'; expected one of " +
                           names + ", or a dotted scene key such as volume.0.density_scale");
     }
@@ -220,37 +221,13 @@ void compare(const Image& x, const Image& r, Setting* s) {
     s->meanBias = (meanX - meanR) / meanR;
 }
 
-// Writes `text` to `path` through a temporary file and a rename (as the image writers do).
-void writeTextFile(const std::string& path, const std::string& text) {
-    fs::path target(path), dir = target.parent_path();
-    std::error_code ec;
-    if (!dir.empty()) fs::create_directories(dir, ec);
-    fs::path tmp = (dir.empty() ? fs::path(".") : dir) /
-                   ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()));
-    {
-        std::ofstream out(tmp);
-        out << text;
-        if (!out.flush()) throw MirageError(FileLoc{path, 0, 0}, "cannot write the file");
-    }
-    fs::rename(tmp, target, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw MirageError(FileLoc{path, 0, 0}, "cannot write the file: " + ec.message());
-    }
-}
-
 std::string format(const char* fmt, double v) {
     char buf[64];
     std::snprintf(buf, sizeof buf, fmt, v);
     return buf;
 }
 
-}  // namespace
-
-int runTradeoff(const TradeoffOptions& o) {
-    if (isVolumeFile(o.input))
-        throw MirageError(o.input + ": tradeoff needs a scene .toml (--vary sets scene keys); "
-                                    "write a scene that names the .vdb");
+std::vector<VariedKey> parseVariedKeys(const TradeoffOptions& o) {
     std::vector<VariedKey> keys;
     for (const auto& v : o.vary) {
         keys.push_back(parseVary(v));
@@ -259,100 +236,116 @@ int runTradeoff(const TradeoffOptions& o) {
                 throw MirageError("--vary '" + v + "': " + keys.back().key + " is varied twice");
     }
     if (keys.empty()) throw MirageError("tradeoff: give at least one --vary NAME=v1,v2,…");
+    return keys;
+}
 
-    std::unique_ptr<tbb::global_control> threads;
-    if (o.threads > 0)
-        threads = std::make_unique<tbb::global_control>(
-            tbb::global_control::max_allowed_parallelism, size_t(o.threads));
-    ColorPipeline color(o.ocioConfig);
+// The scenes of the sweep: the scene file with the command line's settings, then the varied
+// keys, as overrides.
+struct Sweep {
+    Sweep(const TradeoffOptions& options, const ColorPipeline& colorPipeline,
+          std::vector<VariedKey> variedKeys)
+        : o(options), color(colorPipeline), keys(std::move(variedKeys)) {
+        // Command-line settings become overrides ahead of the varied keys, so a varied key wins.
+        base = o.overrides;
+        if (!o.integrator.empty()) base.push_back("render.integrator=\"" + o.integrator + "\"");
+        if (o.spp > 0) base.push_back("film.spp=" + std::to_string(o.spp));
+    }
 
-    // Command-line settings become overrides ahead of the varied keys, so a varied key wins.
-    std::vector<std::string> base = o.overrides;
-    if (!o.integrator.empty()) base.push_back("render.integrator=\"" + o.integrator + "\"");
-    if (o.spp > 0) base.push_back("film.spp=" + std::to_string(o.spp));
-    const FrameSettings cli{o.resolution, 0, o.seed, true};
-    auto load = [&](const std::vector<std::string>& overrides) {
+    Scene load(const std::vector<std::string>& overrides) const {
         Scene scene = loadScene(o.input, LoadOptions{1, overrides}, color);
-        applyFrameSettings(scene, o.input, cli);
+        applyFrameSettings(scene, o.input, FrameSettings{o.resolution, 0, o.seed, true});
         return scene;
-    };
-    auto overridesOf = [&](const Setting& s) {
+    }
+
+    std::vector<std::string> overridesOf(const Setting& s) const {
         std::vector<std::string> ov = base;
         for (size_t i = 0; i < keys.size(); ++i) ov.push_back(keys[i].key + "=" + s.values[i]);
         return ov;
-    };
+    }
 
-    std::vector<Setting> settings = cartesian(keys);
-    Image reference;
-    std::string referencePath = o.reference;
-    if (!o.reference.empty()) reference = readExr(o.reference);
+    const TradeoffOptions& o;
+    const ColorPipeline& color;
+    std::vector<VariedKey> keys;
+    std::vector<std::string> base;
+};
 
-    // The sweep.
-    for (size_t i = 0; i < settings.size(); ++i) {
-        Setting& s = settings[i];
+void checkReferenceSize(const TradeoffOptions& o, const Image& reference, const Scene& scene) {
+    if (reference.width != scene.settings.width || reference.height != scene.settings.height)
+        throw MirageError(o.reference + ": the reference is " + std::to_string(reference.width) +
+                          "x" + std::to_string(reference.height) + " but the renders are " +
+                          std::to_string(scene.settings.width) + "x" +
+                          std::to_string(scene.settings.height) +
+                          "; render it at the same resolution or pass --resolution");
+}
+
+// Renders every setting --repeats times; keeps the first image and the median time.
+void renderSweep(const Sweep& sweep, const Image* reference, std::vector<Setting>* settings) {
+    for (size_t i = 0; i < settings->size(); ++i) {
+        Setting& s = (*settings)[i];
         std::vector<double> seconds;
-        for (int r = 0; r < o.repeats; ++r) {
-            Scene scene = load(overridesOf(s));
-            if (!o.reference.empty() &&
-                (reference.width != scene.settings.width || reference.height != scene.settings.height))
-                throw MirageError(o.reference + ": the reference is " + std::to_string(reference.width) +
-                                  "x" + std::to_string(reference.height) + " but the renders are " +
-                                  std::to_string(scene.settings.width) + "x" +
-                                  std::to_string(scene.settings.height) +
-                                  "; render it at the same resolution or pass --resolution");
+        for (int r = 0; r < sweep.o.repeats; ++r) {
+            Scene scene = sweep.load(sweep.overridesOf(s));
+            if (reference) checkReferenceSize(sweep.o, *reference, scene);
             s.spp = scene.settings.spp;
-            RenderedFrame frame = renderFrame(scene, "", color);
+            RenderedFrame frame = renderFrame(scene, "", sweep.color);
             seconds.push_back(frame.seconds);
             if (r == 0) s.image = std::move(frame.image);
         }
         s.seconds = median(seconds);
-        if (!o.quiet)
-            std::fprintf(stderr, "tradeoff: [%zu/%zu] %s: %.3f s\n", i + 1, settings.size(),
+        if (!sweep.o.quiet)
+            std::fprintf(stderr, "tradeoff: [%zu/%zu] %s: %.3f s\n", i + 1, settings->size(),
                          s.label.c_str(), s.seconds);
     }
+}
 
-    // The reference: read, or rendered by the path tracer at high samples.
-    if (o.reference.empty()) {
-        int maxSpp = 0;
-        for (const auto& s : settings) maxSpp = std::max(maxSpp, s.spp);
-        int spp = o.referenceSpp > 0 ? o.referenceSpp : std::max(256, 4 * maxSpp);
-        std::vector<std::string> ov = base;
-        ov.push_back("render.integrator=\"volpath\"");
-        ov.push_back("film.spp=" + std::to_string(spp));
-        Scene scene = load(ov);
-        // A seed of its own: the reference's noise must not correlate with the sweep's.
-        scene.settings.seed += 0x9E3779B9u;
-        if (!o.quiet)
-            std::fprintf(stderr, "tradeoff: reference: volpath, %d spp, %dx%d …\n", spp,
-                         scene.settings.width, scene.settings.height);
-        RenderedFrame frame = renderFrame(scene, "", color);
-        reference = std::move(frame.image);
-        referencePath = o.prefix + "reference.exr";
-        ExrOptions exr;
-        exr.halfFloat = false;
-        exr.colorSpace = color.workingSpace();
-        exr.chromaticities = color.workingChromaticities();
-        exr.metadata = {{"scene", scene.source},
-                        {"integrator", "volpath"},
-                        {"spp", std::to_string(spp)},
-                        {"seed", std::to_string(scene.settings.seed)},
-                        {"render_seconds", std::to_string(frame.seconds)},
-                        {"version", MIRAGE_VERSION}};
-        writeExr(referencePath, reference, exr);
-        if (!o.quiet)
-            std::fprintf(stderr, "tradeoff: reference: %.2f s, written to %s\n", frame.seconds,
-                         referencePath.c_str());
-    }
+// The reference rendered by the path tracer at high samples and written to
+// <prefix>reference.exr (its path goes to *path).
+Image renderReference(const Sweep& sweep, const std::vector<Setting>& settings,
+                      std::string* path) {
+    const TradeoffOptions& o = sweep.o;
+    int maxSpp = 0;
+    for (const auto& s : settings) maxSpp = std::max(maxSpp, s.spp);
+    int spp = o.referenceSpp > 0 ? o.referenceSpp : std::max(256, 4 * maxSpp);
+    std::vector<std::string> ov = sweep.base;
+    ov.push_back("render.integrator=\"volpath\"");
+    ov.push_back("film.spp=" + std::to_string(spp));
+    Scene scene = sweep.load(ov);
+    // A seed of its own: the reference's noise must not correlate with the sweep's.
+    scene.settings.seed += 0x9E3779B9u;
+    if (!o.quiet)
+        std::fprintf(stderr, "tradeoff: reference: volpath, %d spp, %dx%d …\n", spp,
+                     scene.settings.width, scene.settings.height);
+    RenderedFrame frame = renderFrame(scene, "", sweep.color);
+    *path = o.prefix + "reference.exr";
+    ExrOptions exr;
+    exr.halfFloat = false;
+    exr.colorSpace = sweep.color.workingSpace();
+    exr.chromaticities = sweep.color.workingChromaticities();
+    exr.metadata = {{"scene", scene.source},
+                    {"integrator", "volpath"},
+                    {"spp", std::to_string(spp)},
+                    {"seed", std::to_string(scene.settings.seed)},
+                    {"render_seconds", std::to_string(frame.seconds)},
+                    {"version", MIRAGE_VERSION}};
+    writeExr(*path, frame.image, exr);
+    if (!o.quiet)
+        std::fprintf(stderr, "tradeoff: reference: %.2f s, written to %s\n", frame.seconds,
+                     path->c_str());
+    return std::move(frame.image);
+}
 
+void checkReferenceLit(const Image& reference, const std::string& path) {
     double sumR = 0;
     for (size_t i = 0; i < reference.rgba.size(); ++i)
         if (i % 4 != 3) sumR += reference.rgba[i];
     if (!(sumR > 0))
-        throw MirageError(referencePath + ": the reference is black (or not finite): relative "
-                                          "errors are undefined");
-    for (auto& s : settings) compare(s.image, reference, &s);
+        throw MirageError(path + ": the reference is black (or not finite): relative "
+                                 "errors are undefined");
+}
 
-    // CSV and table.
+// The table on stdout and <prefix>tradeoff.csv; returns the CSV's path.
+std::string writeTable(const TradeoffOptions& o, const std::vector<VariedKey>& keys,
+                       const std::vector<Setting>& settings, const std::string& referencePath) {
     std::string csv = "setting,seconds,rmse,relmse,mean_bias";
     for (const auto& k : keys) csv += "," + k.name;
     csv += "\n";
@@ -369,24 +362,28 @@ int runTradeoff(const TradeoffOptions& o) {
         std::printf("%-*s %10.3f %12.5g %12.5g %+11.4f\n", int(labelWidth), s.label.c_str(),
                     s.seconds, s.rmse, s.relMse, s.meanBias);
     }
-    const std::string csvPath = o.prefix + "tradeoff.csv", pngPath = o.prefix + "tradeoff.png";
-    writeTextFile(csvPath, csv);
+    const std::string csvPath = o.prefix + "tradeoff.csv";
+    createParentFolders(csvPath);
+    writeTextFileAtomically(csvPath, csv);
+    return csvPath;
+}
 
-    // The plot: one polyline per value of the last varied key, points in the sweep's order.
+// <prefix>tradeoff.png: one polyline per value of the last varied key, points in the sweep's
+// order; returns its path.
+std::string writePlot(const TradeoffOptions& o, const std::vector<VariedKey>& keys,
+                      const std::vector<Setting>& settings) {
     LogLogPlot plot;
     plot.title = fs::path(o.input).filename().string();
     plot.xLabel = "render time (s)";
     plot.yLabel = "relMSE";
     auto series = [&](const std::string& label, const std::string* lastValue) {
-        std::vector<const Setting*> points;
-        for (const auto& st : settings)
-            if (!lastValue || st.values.back() == *lastValue) points.push_back(&st);
         PlotSeries ps;
         ps.label = label;
-        for (const Setting* st : points) {
-            ps.x.push_back(st->seconds);
-            ps.y.push_back(st->relMse);
-        }
+        for (const auto& st : settings)
+            if (!lastValue || st.values.back() == *lastValue) {
+                ps.x.push_back(st.seconds);
+                ps.y.push_back(st.relMse);
+            }
         return ps;
     };
     if (keys.size() == 1) {
@@ -395,9 +392,74 @@ int runTradeoff(const TradeoffOptions& o) {
         for (const auto& v : keys.back().values)
             plot.series.push_back(series(keys.back().name + "=" + plain(v), &v));
     }
+    const std::string pngPath = o.prefix + "tradeoff.png";
     writePlotPng(pngPath, drawLogLogPlot(plot));
+    return pngPath;
+}
+
+}  // namespace
+
+int runTradeoff(const TradeoffOptions& o) {
+    if (isVolumeFile(o.input))
+        throw MirageError(o.input + ": tradeoff needs a scene .toml (--vary sets scene keys); "
+                                    "write a scene that names the .vdb");
+    std::vector<VariedKey> keys = parseVariedKeys(o);
+    const auto threads = limitThreads(o.threads);
+    const ColorPipeline color(o.ocioConfig);
+    const Sweep sweep(o, color, std::move(keys));
+
+    std::vector<Setting> settings = cartesian(sweep.keys);
+    std::string referencePath = o.reference;
+    Image reference;
+    if (!o.reference.empty()) reference = readExr(o.reference);
+    renderSweep(sweep, o.reference.empty() ? nullptr : &reference, &settings);
+    if (o.reference.empty()) reference = renderReference(sweep, settings, &referencePath);
+    checkReferenceLit(reference, referencePath);
+    for (auto& s : settings) compare(s.image, reference, &s);
+
+    const std::string csvPath = writeTable(o, sweep.keys, settings, referencePath);
+    const std::string pngPath = writePlot(o, sweep.keys, settings);
     std::printf("%s\n%s\n", csvPath.c_str(), pngPath.c_str());
     return 0;
+}
+
+Command addTradeoffCommand(CLI::App& app) {
+    auto o = std::make_shared<TradeoffOptions>();
+    auto* tradeoff = app.add_subcommand(
+        "tradeoff", "Error against a reference versus render time over a sweep of settings");
+    tradeoff->add_option("input", o->input, "Scene .toml")->required();
+    tradeoff->add_option("--vary", o->vary,
+                         "NAME=v1,v2,…: photons, estimate, k, max_radius, spp, integrator or "
+                         "any dotted scene key; several form the Cartesian product")
+        ->required();
+    tradeoff->add_option("--reference", o->reference,
+                         "Reference EXR (default: render one with volpath, write "
+                         "<prefix>reference.exr)");
+    tradeoff->add_option("--reference-spp", o->referenceSpp,
+                         "Samples per pixel of a rendered reference (default: 4x the sweep's "
+                         "highest, at least 256)")
+        ->check(CLI::Range(1, 1 << 20));
+    tradeoff->add_option("--set", o->overrides, "Override scene values before the varied keys: "
+                                                "key.path=value …")
+        ->take_all();
+    tradeoff->add_option("--resolution", o->resolution, "Image size WxH (overrides "
+                                                        "film.resolution)");
+    tradeoff->add_option("--spp", o->spp, "Samples per pixel unless varied")
+        ->check(CLI::Range(1, 1 << 20));
+    tradeoff->add_option("--integrator", o->integrator, "single, volpath or photon unless varied "
+                                                        "(default: the scene's)");
+    tradeoff->add_option("--threads", o->threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(1, 4096));
+    tradeoff->add_option("--seed", o->seed, "Random seed (default: film.seed)")->check(CLI::Range(int64_t(0), INT64_MAX));
+    tradeoff->add_option("--repeats", o->repeats, "Renders per setting; the median time is kept "
+                                                  "(default 1)")
+        ->check(CLI::Range(1, 1000));
+    tradeoff->add_option("-o,--output", o->prefix,
+                         "Prefix of the output files <prefix>tradeoff.csv, .png, reference.exr");
+    tradeoff->add_option("--ocio", o->ocioConfig, "OCIO config file (default: $OCIO, else "
+                                                  "built-in)");
+    tradeoff->add_flag("-q,--quiet", o->quiet, "No progress output");
+    return {tradeoff, [o] { return runTradeoff(*o); }};
 }
 
 }  // namespace mirage

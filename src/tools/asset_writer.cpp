@@ -1,22 +1,23 @@
-// Procedural assets and test grids → OpenVDB files. One of the two translation units allowed
-// to include OpenVDB (with vdb_file.cpp).
-#include "volume/asset_writer.h"
+// Procedural assets → OpenVDB files, and the one OpenVDB file writer (tools/vdb_writer.h) that
+// the test grids share. The tools' only translation unit that includes OpenVDB.
+#include "tools/asset_writer.h"
 
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Prune.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <functional>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/rng.h"
+#include "core/text.h"
+#include "tools/vdb_writer.h"
 #include "volume/vdb_format.h"
 
 namespace mirage {
@@ -25,11 +26,6 @@ namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& msg) {
     throw MirageError(FileLoc{path}, msg);
-}
-
-void initOpenVdb() {
-    static std::once_flag once;
-    std::call_once(once, [] { openvdb::initialize(); });
 }
 
 // ---- Noise -------------------------------------------------------------------------------
@@ -292,9 +288,16 @@ AssetField oceanField(uint64_t seed) {
     return a;
 }
 
+}  // namespace
+
 // ---- Writing -----------------------------------------------------------------------------
 
-uint32_t compressionFlags(const std::string& name, const std::string& path) {
+void initOpenVdb() {
+    static std::once_flag once;
+    std::call_once(once, [] { openvdb::initialize(); });
+}
+
+uint32_t vdbCompressionFlags(const std::string& name, const std::string& path) {
     if (name == "blosc")
         // Without Blosc, zip: but OpenVDB never zips fog volumes (Archive::setGridCompression),
         // so those are then stored with the active-mask encoding only.
@@ -306,80 +309,35 @@ uint32_t compressionFlags(const std::string& name, const std::string& path) {
     fail(path, "unknown compression '" + name + "' (valid: blosc, zip, none)");
 }
 
-// Writes to a temporary file next to `path`, checks what landed on disk (a full disk can
-// truncate a write without OpenVDB noticing), then renames it over `path`.
-void writeAtomically(const std::string& path, const openvdb::GridPtrVec& grids,
-                     const openvdb::MetaMap& meta, uint32_t compression) {
+void writeVdbFile(const std::string& path, const openvdb::GridPtrVec& grids,
+                  const openvdb::MetaMap& meta, const std::string& compressionName) {
+    const uint32_t compression = vdbCompressionFlags(compressionName, path);
     namespace fs = std::filesystem;
     const fs::path target(path);
     std::error_code ec;
     if (target.has_parent_path() && !fs::is_directory(target.parent_path(), ec))
         fail(path, "cannot write: folder " + target.parent_path().string() + " does not exist");
-    static std::atomic<uint64_t> counter{0};
-    const std::string tmp =
-        path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1));
-    try {
-        openvdb::io::File file(tmp);
-        file.setCompression(compression);
-        file.write(grids, meta);
-        file.close();
-        vdbformat::scanFile(tmp);
-    } catch (const std::exception& e) {
-        fs::remove(tmp, ec);
-        fail(path, "cannot write: " + boundedMessage(e.what()));
-    }
-    fs::rename(tmp, target, ec);
-    if (ec) {
-        std::error_code ignored;
-        fs::remove(tmp, ignored);
-        fail(path, "cannot write: " + ec.message());
-    }
+    replaceFileAtomically(
+        path,
+        [&](const std::string& tmp) {
+            try {
+                openvdb::io::File file(tmp);
+                file.setCompression(compression);
+                file.write(grids, meta);
+                file.close();
+                vdbformat::scanFile(tmp);
+            } catch (const std::exception& e) {
+                fail(path, "cannot write: " + boundedMessage(e.what()));
+            }
+        },
+        "cannot write");
 }
 
-openvdb::math::Transform::Ptr makeTransform(double voxelSize, const Vec3d& origin) {
+openvdb::math::Transform::Ptr linearVdbTransform(double voxelSize, const Vec3d& origin) {
     auto xform = openvdb::math::Transform::createLinearTransform(voxelSize);
     xform->postTranslate(openvdb::Vec3d(origin.x, origin.y, origin.z));
     return xform;
 }
-
-// The index → object maps a test grid can carry, each stored as a different OpenVDB map type.
-openvdb::math::Transform::Ptr makeTestTransform(const TestGridSpec& s, const std::string& path) {
-    using namespace openvdb::math;
-    const double h = s.voxelSize;
-    const openvdb::Vec3d origin(s.origin.x, s.origin.y, s.origin.z);
-    if (s.map == "uniform") return makeTransform(h, s.origin);
-    if (s.map == "scale")  // ScaleTranslateMap: voxels stretched ×2 along y
-        return std::make_shared<Transform>(
-            std::make_shared<ScaleTranslateMap>(openvdb::Vec3d(h, 2 * h, h), origin));
-    if (s.map == "affine") {  // AffineMap: rotated 30° about z
-        Mat4d m = Mat4d::identity();
-        m.preScale(openvdb::Vec3d(h));
-        m.postRotate(Z_AXIS, 0.5235987755982988);
-        m.postTranslate(origin);
-        return std::make_shared<Transform>(std::make_shared<AffineMap>(m));
-    }
-    if (s.map == "frustum")  // NonlinearFrustumMap over a 16³ index box
-        return Transform::createFrustumTransform(
-            openvdb::BBoxd(openvdb::Vec3d(0.0), openvdb::Vec3d(16.0)), 0.5, 2.0, h);
-    fail(path, "test grid map '" + s.map + "' is not one of uniform, scale, affine, frustum");
-}
-
-template <typename GridT, typename MakeValue>
-openvdb::GridBase::Ptr buildTestGrid(const TestGridSpec& s, typename GridT::ValueType background,
-                                     MakeValue value) {
-    typename GridT::Ptr grid = GridT::create(background);
-    auto acc = grid->getAccessor();
-    for (const auto& v : s.voxels)
-        acc.setValue(openvdb::Coord(v.i, v.j, v.k), value(v.value, v.vector));
-    for (const auto& v : s.inactiveVoxels)
-        acc.setValueOff(openvdb::Coord(v.i, v.j, v.k), value(v.value, v.vector));
-    for (const auto& t : s.tiles)
-        grid->tree().addTile(openvdb::Index(t.level), openvdb::Coord(t.i, t.j, t.k),
-                             value(t.value, Vec3d(t.value)), true);
-    return grid;
-}
-
-}  // namespace
 
 const std::vector<std::string>& proceduralAssetKinds() {
     static const std::vector<std::string> kinds = {"smoke", "fire", "fog-sphere", "ocean"};
@@ -398,10 +356,8 @@ void writeProceduralAsset(const std::string& kind, const std::string& path, int 
     } else if (kind == "ocean") {
         field = oceanField(seed);
     } else {
-        std::string valid;
-        for (const auto& k : proceduralAssetKinds()) valid += (valid.empty() ? "" : ", ") + k;
         throw MirageError("unknown asset kind '" + boundedMessage(kind, 60) +
-                          "' (valid kinds: " + valid + ")");
+                          "' (valid kinds: " + joinList(proceduralAssetKinds()) + ")");
     }
     if (resolution < 8 || resolution > 1024)
         throw MirageError("asset resolution " + std::to_string(resolution) +
@@ -414,7 +370,7 @@ void writeProceduralAsset(const std::string& kind, const std::string& path, int 
     for (int a = 0; a < 3; ++a)
         n[a] = std::max(1, int(std::lround((field.hi[a] - field.lo[a]) / h)));
     const Vec3 first = field.lo + Vec3(0.5f * h);
-    auto xform = makeTransform(h, Vec3d(first));
+    auto xform = linearVdbTransform(h, Vec3d(first));
     const size_t numGrids = field.grids.size();
     std::vector<openvdb::FloatGrid::Ptr> grids;
     for (size_t g = 0; g < numGrids; ++g) {
@@ -462,70 +418,7 @@ void writeProceduralAsset(const std::string& kind, const std::string& path, int 
     meta.insertMeta("mirage_asset_seed", openvdb::StringMetadata(std::to_string(seed)));
     meta.insertMeta("mirage_asset_resolution", openvdb::Int32Metadata(resolution));
     openvdb::GridPtrVec out(grids.begin(), grids.end());
-    writeAtomically(path, out, meta, compressionFlags("blosc", path));
-}
-
-void writeTestGrids(const std::string& path, const std::vector<TestGridSpec>& specs,
-                    const std::string& compression) {
-    initOpenVdb();
-    openvdb::GridPtrVec grids;
-    for (const TestGridSpec& s : specs) {
-        openvdb::GridBase::Ptr grid;
-        if (s.valueType == "float") {
-            grid = buildTestGrid<openvdb::FloatGrid>(
-                s, float(s.background), [](double v, const Vec3d&) { return float(v); });
-        } else if (s.valueType == "double") {
-            grid = buildTestGrid<openvdb::DoubleGrid>(s, s.background,
-                                                      [](double v, const Vec3d&) { return v; });
-        } else if (s.valueType == "vec3s") {
-            grid = buildTestGrid<openvdb::Vec3SGrid>(
-                s, openvdb::Vec3s(float(s.background)), [](double, const Vec3d& v) {
-                    return openvdb::Vec3s(float(v.x), float(v.y), float(v.z));
-                });
-        } else if (s.valueType == "bool") {
-            grid = buildTestGrid<openvdb::BoolGrid>(
-                s, s.background != 0.0, [](double v, const Vec3d&) { return v != 0.0; });
-        } else if (s.valueType == "int32") {
-            grid = buildTestGrid<openvdb::Int32Grid>(
-                s, int32_t(s.background), [](double v, const Vec3d&) { return int32_t(v); });
-        } else if (s.valueType == "int64") {
-            grid = buildTestGrid<openvdb::Int64Grid>(
-                s, int64_t(s.background), [](double v, const Vec3d&) { return int64_t(v); });
-        } else if (s.valueType == "vec3d") {
-            grid = buildTestGrid<openvdb::Vec3DGrid>(
-                s, openvdb::Vec3d(s.background),
-                [](double, const Vec3d& v) { return openvdb::Vec3d(v.x, v.y, v.z); });
-        } else if (s.valueType == "vec3i") {
-            grid = buildTestGrid<openvdb::Vec3IGrid>(
-                s, openvdb::Vec3i(int(s.background)), [](double, const Vec3d& v) {
-                    return openvdb::Vec3i(int(v.x), int(v.y), int(v.z));
-                });
-        } else if (s.valueType == "mask") {
-            grid = buildTestGrid<openvdb::MaskGrid>(s, false,
-                                                    [](double v, const Vec3d&) { return v != 0.0; });
-        } else {
-            fail(path, "test grid type '" + s.valueType +
-                           "' is not one of float, double, vec3s, bool, int32, int64, vec3d, "
-                           "vec3i, mask");
-        }
-        if (s.shareTreeWithPrevious) {
-            if (grids.empty() || grids.back()->type() != grid->type())
-                fail(path, "test grid '" + s.name + "' shares the tree of a previous grid of "
-                                                    "another type, or of none");
-            grid->setTree(grids.back()->baseTreePtr());
-        }
-        openvdb::GridClass cls = openvdb::GridBase::stringToGridClass(s.gridClass);
-        if (cls == openvdb::GRID_UNKNOWN && s.gridClass != "unknown")
-            fail(path, "test grid class '" + s.gridClass +
-                           "' is not one of fog volume, level "
-                           "set, staggered, unknown");
-        grid->setGridClass(cls);
-        grid->setName(s.name);
-        grid->setTransform(makeTestTransform(s, path));
-        grid->setSaveFloatAsHalf(s.saveAsHalf);
-        grids.push_back(grid);
-    }
-    writeAtomically(path, grids, openvdb::MetaMap(), compressionFlags(compression, path));
+    writeVdbFile(path, out, meta, "blosc");
 }
 
 }  // namespace mirage

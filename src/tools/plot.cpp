@@ -1,22 +1,19 @@
-#include "film/plot.h"
+#include "tools/plot.h"
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace mirage {
 
 namespace {
-
-namespace fs = std::filesystem;
 
 struct Rgb {
     float r, g, b;
@@ -242,27 +239,22 @@ Image drawLogLogPlot(const LogLogPlot& plot, int width, int height) {
 }
 
 void writePlotPng(const std::string& path, const Image& image) {
-    fs::path target(path), dir = target.parent_path();
-    std::error_code ec;
-    if (!dir.empty()) fs::create_directories(dir, ec);
-    fs::path tmp = (dir.empty() ? fs::path(".") : dir) /
-                   ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()));
-    // The temporary name has no image extension: name the format explicitly.
-    auto out = OIIO::ImageOutput::create("png");
-    OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
-    bool ok = out && out->open(tmp.string(), spec) &&
-              out->write_image(OIIO::TypeDesc::FLOAT, image.rgba.data(), 4 * sizeof(float)) &&
-              out->close();
-    if (!ok) {
-        std::string message = out ? out->geterror() : OIIO::geterror();
-        fs::remove(tmp, ec);
-        throw MirageError(FileLoc{path, 0, 0}, "cannot write the plot: " + message);
-    }
-    fs::rename(tmp, target, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw MirageError(FileLoc{path, 0, 0}, "cannot rename the plot into place");
-    }
+    createParentFolders(path);
+    replaceFileAtomically(
+        path,
+        [&](const std::string& tmp) {
+            // The temporary name has no image extension: name the format explicitly.
+            auto out = OIIO::ImageOutput::create("png");
+            OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
+            bool ok = out && out->open(tmp, spec) &&
+                      out->write_image(OIIO::TypeDesc::FLOAT, image.rgba.data(),
+                                       4 * sizeof(float)) &&
+                      out->close();
+            if (!ok)
+                throw MirageError(FileLoc{path, 0, 0}, "cannot write the plot: " +
+                                                           (out ? out->geterror() : OIIO::geterror()));
+        },
+        "cannot rename the plot into place");
 }
 
 }  // namespace mirage

@@ -51,8 +51,8 @@
 // reflection and Snell refraction, with total internal reflection past the critical angle.
 // Parallel over blocks of photons, each photon's random numbers keyed by (seed, index), the
 // tallies summed in block order: the output depends on the seed only, not on the threads.
+#include <CLI/CLI.hpp>
 #include <tbb/blocked_range.h>
-#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
 #include <chrono>
@@ -63,14 +63,17 @@
 #include <string>
 #include <vector>
 
-#include "app/commands.h"
 #include "core/error.h"
 #include "core/progress.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "core/text.h"
+#include "core/thread_limit.h"
 #include "geometry/material.h"
 #include "photon/photon_walk.h"
 #include "scene/shader_loader.h"
+#include "tools/json_report.h"
+#include "tools/tools.h"
 
 namespace mirage {
 
@@ -257,14 +260,14 @@ ShaderDesc slabShader(const SlabOptions& o) {
         if (end == kv.c_str() + eq + 1 || *end != '\0' || !std::isfinite(v) || v < 0.0)
             throw MirageError("slab: --set " + kv + ": expected a number ≥ 0");
         MediumComponent* c = nullptr;
-        std::string names;
-        for (auto& comp : shader.components) {
+        for (auto& comp : shader.components)
             if (comp.name == key) c = &comp;
-            names += (names.empty() ? "" : ", ") + comp.name;
-        }
         if (!c)
             throw MirageError("slab: --set " + kv + ": shader '" + shader.name +
-                              "' has no component '" + key + "' (it has " + names + ")");
+                              "' has no component '" + key + "' (it has " +
+                              joinList(shader.components,
+                                       [](const MediumComponent& mc) { return mc.name; }) +
+                              ")");
         if (field == "concentration") {
             c->concentration = float(v);
         } else if (field == "quantum_efficiency" && v <= 1.0) {
@@ -302,50 +305,51 @@ void validate(const SlabOptions& o) {
     if (o.photons == 0) throw MirageError("slab: --photons must be at least 1");
 }
 
-}  // namespace
-
-int runSlab(const SlabOptions& o) {
-    validate(o);
-    std::unique_ptr<tbb::global_control> threads;
-    if (o.threads > 0)
-        threads = std::make_unique<tbb::global_control>(
-            tbb::global_control::max_allowed_parallelism, size_t(o.threads));
-
-    const bool fromShader = !o.shader.empty();
-    const bool infinite = fromShader ? !(o.thickness > 0.0) : o.tau >= kInfiniteTau;
-    const float sigmaT = float(infinite ? kInfiniteTau : o.tau) / kThickness;
+// The slab of the options: its medium (a shader made homogeneous, or one grey HG component
+// of albedo A and optical thickness T over kThickness) and geometry.
+struct SlabSetup {
+    bool fromShader = false, infinite = false;
+    float sigmaT = 0;     // 1/m, the grey slab's
+    float thickness = 0;  // m
     ShaderDesc shader;
-    if (fromShader) {
-        shader = slabShader(o);
+};
+
+SlabSetup slabSetup(const SlabOptions& o) {
+    SlabSetup s;
+    s.fromShader = !o.shader.empty();
+    s.infinite = s.fromShader ? !(o.thickness > 0.0) : o.tau >= kInfiniteTau;
+    s.sigmaT = float(s.infinite ? kInfiniteTau : o.tau) / kThickness;
+    if (s.fromShader) {
+        s.shader = slabShader(o);
     } else {
-        shader.name = "slab";
-        shader.source = "mirage slab";
+        s.shader.name = "slab";
+        s.shader.source = "mirage slab";
         MediumComponent c;
         c.name = "slab";
-        c.sigmaA = Spectrum(sigmaT * float(1.0 - o.albedo));
-        c.sigmaS = Spectrum(sigmaT * float(o.albedo));
+        c.sigmaA = Spectrum(s.sigmaT * float(1.0 - o.albedo));
+        c.sigmaS = Spectrum(s.sigmaT * float(o.albedo));
         c.g = float(o.g);
-        shader.components.push_back(c);
+        s.shader.components.push_back(c);
     }
-    const float thickness =
-        fromShader ? float(infinite ? kDeepColumn : o.thickness) : kThickness;
-    Bounds3 box;
-    box.lo = Vec3(-kHalfWidth, -kHalfWidth, 0.f);
-    box.hi = Vec3(kHalfWidth, kHalfWidth, thickness);
-    Medium medium(shader, box, Transform(), 1.f);
-    const std::vector<const Medium*> media{&medium};
-    const Slab slab{o.n, o.nOutside, o.incidence == "diffuse", o.maxEvents, thickness,
-                    o.spectral};
+    s.thickness = s.fromShader ? float(s.infinite ? kDeepColumn : o.thickness) : kThickness;
+    return s;
+}
 
-    auto start = std::chrono::steady_clock::now();
-    const uint64_t blocks = (o.photons + kBlockPhotons - 1) / kBlockPhotons;
-    std::vector<Tally> blockTally(blocks);
-    if (o.spectral) {
-        for (Tally& t : blockTally) {
-            t.reflected.assign(kSpectralBins, 0.0);
-            t.transmitted.assign(kSpectralBins, 0.0);
-        }
+Tally emptyTally(bool spectral) {
+    Tally t;
+    if (spectral) {
+        t.reflected.assign(kSpectralBins, 0.0);
+        t.transmitted.assign(kSpectralBins, 0.0);
     }
+    return t;
+}
+
+// All photons in blocks of kBlockPhotons, in parallel; the blocks' tallies are added in block
+// order, so the sums do not depend on the thread count.
+Tally traceSlab(const Slab& slab, const Medium& medium, const SlabOptions& o) {
+    const std::vector<const Medium*> media{&medium};
+    const uint64_t blocks = (o.photons + kBlockPhotons - 1) / kBlockPhotons;
+    std::vector<Tally> blockTally(blocks, emptyTally(o.spectral));
     {
         Progress progress("slab", o.photons, "photons",
                           o.quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
@@ -362,18 +366,21 @@ int runSlab(const SlabOptions& o) {
                               }
                           });
     }
-    Tally total;
-    if (o.spectral) {
-        total.reflected.assign(kSpectralBins, 0.0);
-        total.transmitted.assign(kSpectralBins, 0.0);
-    }
-    for (const Tally& t : blockTally) total.add(t);  // block order: thread-independent
-    double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    Tally total = emptyTally(o.spectral);
+    for (const Tally& t : blockTally) total.add(t);
+    return total;
+}
 
-    // Mean and standard error of the per-photon score X (w for the photons with the outcome, 0
-    // for the others); exclusive outcomes add in both Σw and Σw².
-    const double n = double(o.photons);
+// A result with its standard error.
+struct SlabRow {
+    std::string name;
+    std::pair<double, double> v;
+};
+
+// Mean and standard error of the per-photon score X (w for the photons with the outcome, 0
+// for the others); exclusive outcomes add in both Σw and Σw².
+std::vector<SlabRow> slabRows(const Tally& total, uint64_t photons) {
+    const double n = double(photons);
     auto stat = [&](std::initializer_list<Outcome> outcomes) {
         double s = 0, s2 = 0;
         for (Outcome oc : outcomes) {
@@ -383,91 +390,165 @@ int runSlab(const SlabOptions& o) {
         double mean = s / n;
         return std::make_pair(mean, std::sqrt(std::max(0.0, s2 / n - mean * mean) / n));
     };
-    struct Row {
-        std::string name;
-        std::pair<double, double> v;
-    };
-    std::vector<Row> rows = {{"reflectance", stat({kReflSpecular, kReflDiffuse})},
-                             {"transmittance", stat({kTransUnscattered, kTransDiffuse})}};
+    std::vector<SlabRow> rows = {{"reflectance", stat({kReflSpecular, kReflDiffuse})},
+                                 {"transmittance", stat({kTransUnscattered, kTransDiffuse})}};
     for (int i = 0; i < kOutcomes; ++i) rows.push_back({kOutcomeNames[i], stat({Outcome(i)})});
+    return rows;
+}
 
-    // Per bin: the power leaving in it over the power arriving in it (n/80 photons of power 1).
-    auto binned = [&](const std::vector<double>& v) {
-        std::string a;
-        for (size_t b = 0; b < v.size(); ++b) {
-            char buf[32];
-            std::snprintf(buf, sizeof buf, "%s%.6g", b ? ", " : "", v[b] / (n / kSpectralBins));
-            a += buf;
-        }
-        return "[" + a + "]";
-    };
-    const double meanShift =
-        total.reemissions ? total.shiftSum / double(total.reemissions) : 0.0;
+float binCentreNm(int b) { return kSpectralMinNm + kBinNm * (float(b) + 0.5f); }
 
-    if (o.json) {
-        std::printf("{\n");
-        if (fromShader)
-            std::printf("  \"shader\": \"%s\",\n  \"thickness_m\": %.9g,\n"
-                        "  \"thickness_infinite\": %s,\n",
-                        shader.name.c_str(), double(thickness), infinite ? "true" : "false");
-        else
-            std::printf("  \"albedo\": %.9g,\n  \"tau\": %.9g,\n  \"tau_infinite\": %s,\n"
-                        "  \"g\": %.9g,\n",
-                        o.albedo, double(sigmaT * kThickness), infinite ? "true" : "false", o.g);
-        std::printf("  \"n\": %.9g,\n  \"n_outside\": %.9g,\n  \"incidence\": \"%s\",\n",
-                    o.n, o.nOutside, o.incidence.c_str());
-        if (o.spectral) {
-            std::string centres;
-            for (int b = 0; b < kSpectralBins; ++b)
-                centres += (b ? ", " : "") + std::to_string(kSpectralMinNm + kBinNm * (b + 0.5f))
-                                                 .substr(0, 5);
-            std::printf("  \"wavelength_nm\": [%s],\n  \"reflectance\": %s,\n"
-                        "  \"transmittance\": %s,\n",
-                        centres.c_str(), binned(total.reflected).c_str(),
-                        binned(total.transmitted).c_str());
-        }
-        std::printf("  \"fluorescence\": {\"absorbed\": %.9g, \"reemitted\": %.9g, "
-                    "\"mean_shift_nm\": %.6g},\n",
-                    double(total.absorptions) / n, double(total.reemissions) / n, meanShift);
-        // With --spectral the keys `reflectance` and `transmittance` hold the per-bin arrays
-        // (what ocean-colour users read); the totals then go by `_total`, so that every key
-        // is unique and a JSON parser keeps both.
-        for (const Row& r : rows) {
-            const bool isTotal =
-                o.spectral && (r.name == "reflectance" || r.name == "transmittance");
-            const std::string key = isTotal ? r.name + "_total" : r.name;
-            std::printf("  \"%s\": %.9g,\n  \"%s_stderr\": %.9g,\n", key.c_str(), r.v.first,
-                        key.c_str(), r.v.second);
-        }
-        std::printf("  \"photons\": %llu,\n  \"seed\": %llu,\n  \"seconds\": %.6g\n}\n",
-                    (unsigned long long)o.photons, (unsigned long long)o.seed, seconds);
+// Per bin: the power leaving in it over the power arriving in it (n/80 photons of power 1).
+double binFraction(const std::vector<double>& v, int b, uint64_t photons) {
+    return v[size_t(b)] / (double(photons) / kSpectralBins);
+}
+
+double meanShiftNm(const Tally& total) {
+    return total.reemissions ? total.shiftSum / double(total.reemissions) : 0.0;
+}
+
+void printSlabJson(const SlabOptions& o, const SlabSetup& s, const Tally& total,
+                   double seconds) {
+    const double n = double(o.photons);
+    JsonReport j;
+    if (s.fromShader) {
+        j["shader"] = s.shader.name;
+        j["thickness_m"] = jsonNumber(double(s.thickness), 9);
+        j["thickness_infinite"] = s.infinite;
     } else {
-        if (fromShader)
-            std::printf("slab: shader '%s', thickness %s m, n %g (outside %g), %s incidence%s\n",
-                        shader.name.c_str(),
-                        infinite ? "inf" : std::to_string(thickness).c_str(), o.n, o.nOutside,
-                        o.incidence.c_str(), o.spectral ? ", flat 380-780 nm source" : ", 550 nm");
-        else
-            std::printf("slab: albedo %g, tau %s, g %g, n %g (outside %g), %s incidence\n",
-                        o.albedo, infinite ? "inf" : std::to_string(o.tau).c_str(), o.g, o.n,
-                        o.nOutside, o.incidence.c_str());
-        for (const Row& r : rows)
-            std::printf("  %-26s %.6f ± %.6f\n", r.name.c_str(), r.v.first, r.v.second);
-        if (total.absorptions > 0 && medium.fluorescent())
-            std::printf("  fluorescence: %.6f absorbed, %.6f re-emitted per photon, mean shift "
-                        "%.2f nm\n",
-                        double(total.absorptions) / n, double(total.reemissions) / n, meanShift);
-        if (o.spectral) {
-            std::printf("  %-8s %-12s %-12s\n", "nm", "reflectance", "transmittance");
-            for (int b = 0; b < kSpectralBins; ++b)
-                std::printf("  %-8.1f %-12.6f %-12.6f\n", kSpectralMinNm + kBinNm * (b + 0.5f),
-                            total.reflected[size_t(b)] / (n / kSpectralBins),
-                            total.transmitted[size_t(b)] / (n / kSpectralBins));
-        }
-        std::printf("  %llu photons in %s (%.3g M photons/s)\n", (unsigned long long)o.photons,
-                    formatSeconds(seconds).c_str(), n / seconds * 1e-6);
+        j["albedo"] = jsonNumber(o.albedo, 9);
+        j["tau"] = jsonNumber(double(s.sigmaT * kThickness), 9);
+        j["tau_infinite"] = s.infinite;
+        j["g"] = jsonNumber(o.g, 9);
     }
+    j["n"] = jsonNumber(o.n, 9);
+    j["n_outside"] = jsonNumber(o.nOutside, 9);
+    j["incidence"] = o.incidence;
+    if (o.spectral) {
+        JsonReport centres = JsonReport::array(), refl = JsonReport::array(),
+                   trans = JsonReport::array();
+        for (int b = 0; b < kSpectralBins; ++b) {
+            centres.push_back(double(binCentreNm(b)));
+            refl.push_back(jsonNumber(binFraction(total.reflected, b, o.photons), 6));
+            trans.push_back(jsonNumber(binFraction(total.transmitted, b, o.photons), 6));
+        }
+        j["wavelength_nm"] = centres;
+        j["reflectance"] = refl;
+        j["transmittance"] = trans;
+    }
+    j["fluorescence"] = {{"absorbed", jsonNumber(double(total.absorptions) / n, 9)},
+                         {"reemitted", jsonNumber(double(total.reemissions) / n, 9)},
+                         {"mean_shift_nm", jsonNumber(meanShiftNm(total), 6)}};
+    // With --spectral the keys `reflectance` and `transmittance` hold the per-bin arrays
+    // (what ocean-colour users read); the totals then go by `_total`, so that every key
+    // is unique and a JSON parser keeps both.
+    for (const SlabRow& r : slabRows(total, o.photons)) {
+        const bool isTotal = o.spectral && (r.name == "reflectance" || r.name == "transmittance");
+        const std::string key = isTotal ? r.name + "_total" : r.name;
+        j[key] = jsonNumber(r.v.first, 9);
+        j[key + "_stderr"] = jsonNumber(r.v.second, 9);
+    }
+    j["photons"] = o.photons;
+    j["seed"] = o.seed;
+    j["seconds"] = jsonNumber(seconds, 6);
+    std::fputs(formatJsonReport(j).c_str(), stdout);
+}
+
+void printSlabTable(const SlabOptions& o, const SlabSetup& s, const Medium& medium,
+                    const Tally& total, double seconds) {
+    const double n = double(o.photons);
+    if (s.fromShader)
+        std::printf("slab: shader '%s', thickness %s m, n %g (outside %g), %s incidence%s\n",
+                    s.shader.name.c_str(),
+                    s.infinite ? "inf" : std::to_string(s.thickness).c_str(), o.n, o.nOutside,
+                    o.incidence.c_str(), o.spectral ? ", flat 380-780 nm source" : ", 550 nm");
+    else
+        std::printf("slab: albedo %g, tau %s, g %g, n %g (outside %g), %s incidence\n",
+                    o.albedo, s.infinite ? "inf" : std::to_string(o.tau).c_str(), o.g, o.n,
+                    o.nOutside, o.incidence.c_str());
+    for (const SlabRow& r : slabRows(total, o.photons))
+        std::printf("  %-26s %.6f ± %.6f\n", r.name.c_str(), r.v.first, r.v.second);
+    if (total.absorptions > 0 && medium.fluorescent())
+        std::printf("  fluorescence: %.6f absorbed, %.6f re-emitted per photon, mean shift "
+                    "%.2f nm\n",
+                    double(total.absorptions) / n, double(total.reemissions) / n,
+                    meanShiftNm(total));
+    if (o.spectral) {
+        std::printf("  %-8s %-12s %-12s\n", "nm", "reflectance", "transmittance");
+        for (int b = 0; b < kSpectralBins; ++b)
+            std::printf("  %-8.1f %-12.6f %-12.6f\n", binCentreNm(b),
+                        binFraction(total.reflected, b, o.photons),
+                        binFraction(total.transmitted, b, o.photons));
+    }
+    std::printf("  %llu photons in %s (%.3g M photons/s)\n", (unsigned long long)o.photons,
+                formatSeconds(seconds).c_str(), n / seconds * 1e-6);
+}
+
+}  // namespace
+
+int runSlab(const SlabOptions& o) {
+    validate(o);
+    const auto threads = limitThreads(o.threads);
+
+    const SlabSetup setup = slabSetup(o);
+    Bounds3 box;
+    box.lo = Vec3(-kHalfWidth, -kHalfWidth, 0.f);
+    box.hi = Vec3(kHalfWidth, kHalfWidth, setup.thickness);
+    const Medium medium(setup.shader, box, Transform(), 1.f);
+    const Slab slab{o.n,         o.nOutside,      o.incidence == "diffuse",
+                    o.maxEvents, setup.thickness, o.spectral};
+
+    const auto start = std::chrono::steady_clock::now();
+    const Tally total = traceSlab(slab, medium, o);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (o.json)
+        printSlabJson(o, setup, total, seconds);
+    else
+        printSlabTable(o, setup, medium, total, seconds);
     return 0;
+}
+
+Command addSlabCommand(CLI::App& app) {
+    auto o = std::make_shared<SlabOptions>();
+    auto* slab = app.add_subcommand(
+        "slab", "Reflectance and transmittance of a plane-parallel slab, by photon tracing");
+    slab->add_option("--albedo", o->albedo, "Single-scattering albedo σs/σt (without --shader)")
+        ->check(CLI::Range(0.0, 1.0));
+    slab->add_option("--tau", o->tau,
+                     "Optical thickness σt·d; inf for a semi-infinite slab (without --shader)");
+    slab->add_option("--shader", o->shader,
+                     "Shader (name or .toml) made homogeneous, instead of --albedo/--tau/--g");
+    slab->add_option("--set", o->sets,
+                     "With --shader: NAME=C sets a component's concentration (e.g. "
+                     "chlorophyll=5), NAME.quantum_efficiency=Γ its fluorescence")
+        ->take_all();
+    slab->add_option("--thickness", o->thickness,
+                     "With --shader: slab thickness in metres (default: a deep column)")
+        ->check(CLI::Range(1e-9, 1e9));
+    slab->add_flag("--spectral", o->spectral,
+                   "Flat 380–780 nm source: reflectance, transmittance and fluorescence per 5 nm "
+                   "bin (without it: 550 nm)");
+    slab->add_option("--g", o->g, "Henyey–Greenstein asymmetry (default 0; without --shader)")
+        ->check(CLI::Range(-0.9999, 0.9999));
+    slab->add_option("--n", o->n, "Refractive index of the slab (default 1)")->check(CLI::Range(0.01, 100.0));
+    slab->add_option("--n-outside", o->nOutside, "Refractive index around the slab (default 1)")
+        ->check(CLI::Range(0.01, 100.0));
+    slab->add_option("--incidence", o->incidence, "normal (collimated, the default) or diffuse "
+                                                  "(Lambertian)")
+        ->check(CLI::IsMember({"normal", "diffuse"}));
+    slab->add_option("--photons", o->photons, "Photons to trace (default 1000000)")
+        ->check(CLI::Range(uint64_t(1), uint64_t(1) << 40));
+    slab->add_option("--seed", o->seed, "Random seed (default 0)");
+    slab->add_option("--max-events", o->maxEvents,
+                     "Cap on scatterings + internal reflections per photon (default 1000000; "
+                     "capped photons are reported)")
+        ->check(CLI::Range(int64_t(1), int64_t(1) << 40));
+    slab->add_option("--threads", o->threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(1, 4096));
+    slab->add_flag("--json", o->json, "Print the result as JSON");
+    slab->add_flag("-q,--quiet", o->quiet, "No progress output");
+    return {slab, [o] { return runSlab(*o); }};
 }
 
 }  // namespace mirage

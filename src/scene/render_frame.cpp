@@ -1,9 +1,10 @@
-#include "app/render_frame.h"
+#include "scene/render_frame.h"
 
 #include <algorithm>
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "film/color.h"
 
 namespace mirage {
@@ -45,12 +46,10 @@ const std::vector<QualityPreset>& qualityPresets() {
 }
 
 const QualityPreset& qualityPreset(const std::string& name) {
-    std::string names;
-    for (const auto& p : qualityPresets()) {
+    for (const auto& p : qualityPresets())
         if (p.name == name) return p;
-        names += (names.empty() ? "" : ", ") + p.name;
-    }
-    throw MirageError("--quality '" + name + "': expected one of " + names);
+    throw MirageError("--quality '" + name + "': expected one of " +
+                      joinList(qualityPresets(), [](const QualityPreset& p) { return p.name; }));
 }
 
 void applyQualityPreset(Scene& scene, const QualityPreset& preset, const std::string& integrator,

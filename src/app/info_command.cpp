@@ -94,10 +94,11 @@ int runInfo(const InfoOptions& o) {
     const CameraDesc& c = scene.render.camera;
     std::printf("camera: position (%g, %g, %g), look_at (%g, %g, %g), fov %g°\n", c.position.x,
                 c.position.y, c.position.z, c.lookAt.x, c.lookAt.y, c.lookAt.z, c.fovDeg);
-    std::printf("film: %dx%d, %d spp, tile %d, seed %llu; integrator '%s'; colour: %s (%s)\n",
+    std::printf("film: %dx%d, %d spp, tile %d, seed %llu; integrator '%s' (%s); colour: %s (%s)\n",
                 scene.settings.width, scene.settings.height, scene.settings.spp,
                 scene.settings.tileSize, (unsigned long long)scene.settings.seed,
-                scene.integrator.c_str(), color.workingSpace().c_str(),
+                scene.integrator.c_str(), integratorInfo(scene.integrator).description.c_str(),
+                color.workingSpace().c_str(),
                 color.configDescription().c_str());
     std::printf("physics:\n");
     for (const auto& t : scene.physics())

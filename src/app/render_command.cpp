@@ -243,10 +243,8 @@ struct DroppedWork {
 };
 
 DroppedWork droppedWork(const RenderedFrame& rendered) {
-    const Integrator* integrator = rendered.integrator.get();
-    return {integrator->nonFinitePhotons(), integrator->cappedPaths() +
-                                                rendered.stats.cappedFlights +
-                                                integrator->cappedPhotonPaths()};
+    const IntegratorStats s = rendered.integrator->stats();
+    return {s.nonFinitePhotons, s.cappedPaths + rendered.stats.cappedFlights + s.cappedPhotonPaths};
 }
 
 // Converts the image into the scene's output colour space (if it names one) and fills the EXR
@@ -279,8 +277,7 @@ ExrOptions outputExr(RenderSession& rs, const FrameJob& job, RenderedFrame& rend
                     {"ocio_config", rs.color.configDescription()}};
     exr.metadata["complete"] = "true";  // --skip-existing trusts only this
     if (stats.tilesResumed > 0) exr.metadata["resumed_tiles"] = std::to_string(stats.tilesResumed);
-    if (const PhotonStats* photon = integrator->photonStats())
-        for (const auto& [key, value] : photon->metadata()) exr.metadata[key] = value;
+    for (const auto& [key, value] : integrator->stats().metadata) exr.metadata[key] = value;
     return exr;
 }
 
@@ -304,7 +301,7 @@ void printFrameSummary(const FrameJob& job, const RenderedFrame& rendered,
         std::fprintf(stderr, "frame %d: partial file: %d writes, %.3fs (%.2f %% of render)\n",
                      frame, cp.partial.writes(), cp.partial.writeSeconds(),
                      stats.seconds > 0 ? 100.0 * cp.partial.writeSeconds() / stats.seconds : 0.0);
-    std::string extra = rendered.integrator->summary();
+    const std::string extra = rendered.integrator->stats().summary;
     if (!extra.empty()) std::fprintf(stderr, "frame %d: %s\n", frame, extra.c_str());
 }
 
@@ -396,9 +393,12 @@ Command addRenderCommand(CLI::App& app) {
                                                     "VDB: about the volume); output gets .####")
         ->check(CLI::Range(1, 100000));
     render->add_option("--integrator", o->integrator,
-                       "single (single scattering + emission), volpath (reference path tracer) "
-                       "or photon (volume photon mapping); default: the scene's [render] "
-                       "integrator");
+                       joinList(integratorInfos(),
+                                [](const IntegratorInfo& i) {
+                                    return i.name + " (" + i.description + ")";
+                                },
+                                "; ") +
+                           "; default: the scene's [render] integrator");
     render->add_option("--quality", o->quality,
                        "draft, preview or final: samples per pixel and, for photon, photons and "
                        "k, measured on the speed-accuracy curves (docs/performance.md); --spp "

@@ -21,10 +21,11 @@ public:
                            std::shared_ptr<const Refraction> refraction)
         : mInner(std::move(inner)), mRefraction(std::move(refraction)) {}
 
+    const IntegratorInfo& info() const override { return mInner->info(); }
     std::string name() const override { return mInner->name() + " (curved camera rays)"; }
     void preprocess(const RenderScene& scene) override {
         mInner->preprocess(scene);
-        mPhotonPart = mInner->photonStats() != nullptr;
+        mPhotonPart = mInner->info().photonPass;
         const std::vector<const Medium*> media = scene.mediaPointers();
         mDepth = std::make_unique<tbb::enumerable_thread_specific<RayOpticalDepth>>(
             [media] { return RayOpticalDepth(media); });
@@ -39,14 +40,14 @@ public:
                                            });
         }
     }
-    // Camera rays whose curved path reached the ODE step cap (CurvedPathSettings::maxSteps)
-    // went on straight from there: a bias, counted beside the wrapped integrator's caps.
-    uint64_t cappedPaths() const override { return mInner->cappedPaths() + mCapped.load(); }
-    // The wrapped photon integrator's pass figures reach the summary and the EXR through here.
-    uint64_t nonFinitePhotons() const override { return mInner->nonFinitePhotons(); }
-    uint64_t cappedPhotonPaths() const override { return mInner->cappedPhotonPaths(); }
-    const PhotonStats* photonStats() const override { return mInner->photonStats(); }
-    std::string summary() const override { return mInner->summary(); }
+    // The wrapped integrator's figures (its photon pass among them), and the camera rays whose
+    // curved path reached the ODE step cap (CurvedPathSettings::maxSteps) and went on straight
+    // from there: a bias, counted beside the wrapped integrator's caps.
+    IntegratorStats stats() const override {
+        IntegratorStats s = mInner->stats();
+        s.cappedPaths += mCapped.load();
+        return s;
+    }
 
     RadianceSample Li(const RenderScene& scene, const Ray& ray, const SampledWavelengths& w,
                       Sampler& sampler, ThreadState& ts) const override {

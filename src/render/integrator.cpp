@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/text.h"
 
 namespace mirage {
 
@@ -28,20 +29,37 @@ bool photonsCurve(const IndexField* field, const Bounds3& b) {
     return field->gradientBound(Vec3d(b.lo - pad), Vec3d(b.hi + pad)) > 0.0;
 }
 
-std::vector<std::string> integratorNames() { return {"single", "volpath", "photon"}; }
+const std::vector<IntegratorInfo>& integratorInfos() {
+    static const std::vector<IntegratorInfo> infos = {
+        {"single", "single scattering + emission", false, false},
+        {"volpath", "the reference spectral volumetric path tracer", true, false},
+        {"photon", "volume photon mapping: single scattering + photon-map multiple scattering",
+         true, true},
+    };
+    return infos;
+}
+
+std::string integratorNameList() {
+    return joinList(integratorInfos(), [](const IntegratorInfo& i) { return i.name; });
+}
+
+const IntegratorInfo& integratorInfo(const std::string& name) {
+    for (const IntegratorInfo& i : integratorInfos())
+        if (i.name == name) return i;
+    throw MirageError("unknown integrator '" + name + "'; expected one of: " +
+                      integratorNameList());
+}
 
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, int maxDepth,
                                            const PhotonIntegratorSettings& photon) {
-    if (name == "single") return makeSingleScatterIntegrator();
-    if (name == "volpath") return makeVolPathIntegrator(maxDepth);
-    if (name == "photon") {
+    const IntegratorInfo& info = integratorInfo(name);
+    if (info.photonPass) {
         PhotonIntegratorSettings s = photon;
         s.maxBounces = maxDepth;
         return makePhotonIntegrator(s);
     }
-    std::string list;
-    for (const auto& n : integratorNames()) list += (list.empty() ? "" : ", ") + n;
-    throw MirageError("unknown integrator '" + name + "'; expected one of: " + list);
+    return info.multipleScattering ? makeVolPathIntegrator(maxDepth)
+                                   : makeSingleScatterIntegrator();
 }
 
 }  // namespace mirage

@@ -51,25 +51,40 @@ struct RadianceSample {
     Vec3 xyz;
 };
 
+// What an integrator is. The scene loader (its check of [render] integrator, `mirage info`),
+// the memory estimate and the quality presets ask this instead of comparing names.
+struct IntegratorInfo {
+    std::string name;
+    std::string description;  // one line, for the command-line help and `mirage info`
+    bool multipleScattering;  // follows light scattered more than once
+    bool photonPass;          // traces photons first: the [render] photon keys apply, the memory
+                              // estimate counts the maps, the presets set photons and k
+};
+const std::vector<IntegratorInfo>& integratorInfos();
+// The descriptor of `name`; throws MirageError naming the integrators for any other.
+const IntegratorInfo& integratorInfo(const std::string& name);
+std::string integratorNameList();  // "single, volpath, photon"
+
+// What an integrator reports once it has rendered, for the summary and the EXR header.
+struct IntegratorStats {
+    uint64_t cappedPaths = 0;        // camera paths cut at a cap: a bias, however rare
+    uint64_t cappedPhotonPaths = 0;  // photon paths cut at the bounce or collision cap
+    uint64_t nonFinitePhotons = 0;   // photons dropped for a non-finite power or position
+    std::string summary;             // one line of integrator-specific figures ("" for none)
+    std::vector<std::pair<std::string, std::string>> metadata;  // EXR keys (mirage:<key>)
+};
+
 class Integrator {
 public:
     virtual ~Integrator() = default;
-    virtual std::string name() const = 0;
+    virtual const IntegratorInfo& info() const = 0;
+    virtual std::string name() const { return info().name; }
     // Called once before rendering (a photon mapper traces its photons here).
     virtual void preprocess(const RenderScene&) {}
     virtual RadianceSample Li(const RenderScene& scene, const Ray& ray,
                               const SampledWavelengths& w, Sampler& sampler,
                               ThreadState& ts) const = 0;
-    // Paths cut at the depth cap so far (a bias, reported in the summary).
-    virtual uint64_t cappedPaths() const { return 0; }
-    // Photon pass (photon integrator only): photons dropped for a non-finite power or position,
-    // and photon paths cut at the bounce or collision cap.
-    virtual uint64_t nonFinitePhotons() const { return 0; }
-    virtual uint64_t cappedPhotonPaths() const { return 0; }
-    // One line of integrator-specific figures for the render summary ("" for none).
-    virtual std::string summary() const { return ""; }
-    // The photon integrator's figures; null for the others.
-    virtual const PhotonStats* photonStats() const { return nullptr; }
+    virtual IntegratorStats stats() const { return {}; }
 };
 
 // Single scattering plus emission: delta tracking along the camera ray, next-event estimation
@@ -113,10 +128,9 @@ std::unique_ptr<Integrator> makePhotonIntegrator(const PhotonIntegratorSettings&
 // and the photon integrator takes direct light from the photon maps (Gutierrez et al. 2005).
 bool photonsCurve(const IndexField* field, const Bounds3& sceneBounds);
 
-// By name ("single", "volpath", "photon"); throws MirageError listing the names for anything
-// else. `photon` configures the photon integrator and is ignored by the others.
+// By name (integratorInfos()); throws MirageError listing the names for anything else.
+// `photon` configures the photon integrator and is ignored by the others.
 std::unique_ptr<Integrator> makeIntegrator(const std::string& name, int maxDepth = 10000,
                                            const PhotonIntegratorSettings& photon = {});
-std::vector<std::string> integratorNames();
 
 }  // namespace mirage

@@ -81,7 +81,7 @@ class PhotonMapIntegrator : public Integrator {
 public:
     explicit PhotonMapIntegrator(const PhotonIntegratorSettings& s)
         : mSettings(s), mSingle(makeSingleScatterIntegrator()) {}
-    std::string name() const override { return "photon"; }
+    const IntegratorInfo& info() const override { return integratorInfo("photon"); }
 
     void preprocess(const RenderScene& scene) override {
         std::vector<const Light*> lights;
@@ -179,20 +179,27 @@ public:
         return out;
     }
 
-    // Sums the render threads' estimate time into the stats (call after rendering).
-    const PhotonStats* photonStats() const override {
-        double estimateSeconds = 0;
+    // The photon pass's counts, the summary line and the EXR keys; the render threads'
+    // estimate time is summed now (call after rendering).
+    IntegratorStats stats() const override {
+        IntegratorStats s;
+        s.cappedPaths = mSingle->stats().cappedPaths;
+        s.cappedPhotonPaths = mPassStats.cappedPaths;
+        s.nonFinitePhotons = mPassStats.nonFinite;
+        uint64_t estimates = 0;
+        PhotonStats p = mStats;
         if (mThreads)
-            for (const PhotonThreadState& pt : *mThreads) estimateSeconds += pt.estimateSeconds;
-        mStats.estimateSeconds = estimateSeconds;
-        return &mStats;
+            for (const PhotonThreadState& pt : *mThreads) {
+                p.estimateSeconds += pt.estimateSeconds;
+                estimates += pt.estimates;
+            }
+        s.metadata = p.metadata();
+        s.summary = summaryLine(p, estimates);
+        return s;
     }
 
-    std::string summary() const override {
-        uint64_t estimates = 0;
-        if (mThreads)
-            for (const PhotonThreadState& pt : *mThreads) estimates += pt.estimates;
-        const PhotonStats& p = *photonStats();
+private:
+    std::string summaryLine(const PhotonStats& p, uint64_t estimates) const {
         char buf[640];
         std::snprintf(buf, sizeof buf,
                       "photons: %llu traced, %llu stored | photon pass %.2fs (%.2f M photons/s) "
@@ -215,11 +222,6 @@ public:
         return line;
     }
 
-    uint64_t cappedPaths() const override { return mSingle->cappedPaths(); }
-    uint64_t nonFinitePhotons() const override { return mPassStats.nonFinite; }
-    uint64_t cappedPhotonPaths() const override { return mPassStats.cappedPaths; }
-
-private:
     // The volume photons' in-scattered radiance along `ray` over (0, tEnd), XYZ: beam or point
     // estimate; pt.depth has been marched along the ray.
     Vec3 volumeEstimate(const Ray& ray, float tEnd, float u, PhotonThreadState& pt,
@@ -308,7 +310,7 @@ private:
     std::unique_ptr<BeamEstimator> mBeam;
     std::unique_ptr<SurfacePhotons> mGlobal, mCaustic;  // surface photon maps
     float mMaxRadius = 0.f, mStep = 0.f;
-    mutable PhotonStats mStats;  // estimateSeconds refreshed by photonStats()
+    PhotonStats mStats;  // of the pass and the maps; the estimate time is summed by stats()
     std::unique_ptr<tbb::enumerable_thread_specific<PhotonThreadState>> mThreads;
 };
 

@@ -30,7 +30,7 @@ namespace {
 class SingleScatterIntegrator : public Integrator {
 public:
     explicit SingleScatterIntegrator(bool directLight) : mDirect(directLight) {}
-    std::string name() const override { return "single"; }
+    const IntegratorInfo& info() const override { return integratorInfo("single"); }
 
     RadianceSample Li(const RenderScene& scene, const Ray& cameraRay, const SampledWavelengths& w,
                       Sampler& sampler, ThreadState& ts) const override {

@@ -45,7 +45,7 @@ namespace {
 class VolPathIntegrator : public Integrator {
 public:
     explicit VolPathIntegrator(int maxDepth) : mMaxDepth(maxDepth) {}
-    std::string name() const override { return "volpath"; }
+    const IntegratorInfo& info() const override { return integratorInfo("volpath"); }
 
     RadianceSample Li(const RenderScene& scene, const Ray& cameraRay, const SampledWavelengths& w,
                       Sampler& sampler, ThreadState& ts) const override {
@@ -103,7 +103,11 @@ public:
         return out;
     }
 
-    uint64_t cappedPaths() const override { return mCapped.load(); }
+    IntegratorStats stats() const override {
+        IntegratorStats s;
+        s.cappedPaths = mCapped.load();
+        return s;
+    }
 
 private:
     // The next direction from the medium's phase function; β times its weight p/pdf.

@@ -86,7 +86,7 @@ MemoryEstimate estimateFrameMemory(const Scene& scene, const std::string& integr
     e.items.push_back({"film (" + std::to_string(s.width) + "x" + std::to_string(s.height) + ")",
                        pixels * kBytesPerPixel});
 
-    if (integrator == "photon" && scene.photon.photons > 0) {
+    if (integratorInfo(integrator).photonPass && scene.photon.photons > 0) {
         // Pilot: how many photons a photon emitted leaves stored in this scene (absorbed or
         // escaped photons store none; a photon in a thick, bright medium stores many).
         std::vector<const Light*> lights;

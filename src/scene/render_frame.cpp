@@ -59,7 +59,7 @@ void applyQualityPreset(Scene& scene, const QualityPreset& preset, const std::st
             return o.compare(0, key.size() + 1, key + "=") == 0;
         });
     };
-    bool photon = integrator == "photon";
+    const bool photon = integratorInfo(integrator).photonPass;
     if (!overridden("film.spp")) scene.settings.spp = photon ? preset.spp : preset.pathSpp;
     if (photon && !overridden("render.photons")) scene.photon.photons = preset.photons;
     if (photon && !overridden("render.k")) scene.photon.k = preset.k;

@@ -302,11 +302,10 @@ static void readSettings(const TableReader& top,
     }
     if (auto r = top.optionalTable("render")) {
         scene.integrator = r->getString("integrator", "single");
-        auto names = integratorNames();
-        if (std::find(names.begin(), names.end(), scene.integrator) == names.end()) {
-            std::string list;
-            for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-            r->fail("integrator", "unknown integrator '" + scene.integrator + "'; expected one of: " + list);
+        try {
+            integratorInfo(scene.integrator);
+        } catch (const MirageError& e) {
+            r->fail("integrator", e.what());
         }
         scene.maxDepth = int(r->getInt("max_depth", 10000, 1, 1 << 30));
         scene.majorantResolution = int(r->getInt("majorant_resolution", 64, 1, 1024));
@@ -666,11 +665,11 @@ PhysicsTerm singleScatteringTerm(const RenderScene& render, const MediaPhysics& 
 // medium in the photon pass, emission at every collision in volpath).
 PhysicsTerm multipleScatteringTerm(const Scene& scene, const MediaPhysics& m) {
     const std::string& integrator = scene.integrator;
-    bool multiple =
-        integrator != "single" && m.scatter && (!scene.render.lights.empty() || m.emission);
+    const bool follows = integratorInfo(integrator).multipleScattering;
+    bool multiple = follows && m.scatter && (!scene.render.lights.empty() || m.emission);
     return {"multiple scattering", multiple,
-            integrator == "single"
-                ? "integrator 'single' computes single scattering only"
+            !follows
+                ? "integrator '" + integrator + "' computes single scattering only"
                 : multiple ? "integrator '" + integrator + "' follows paths of up to " +
                                  std::to_string(scene.maxDepth) + " scattering events" +
                                  (m.emission ? ", emitted light included" : "")
@@ -712,14 +711,15 @@ PhysicsTerm curvedPathsTerm(const Scene& scene) {
     if (!b.empty())
         std::snprintf(bound, sizeof bound, "; |grad n| <= %.3g /m over the scene's bounds",
                       refraction.field->gradientBound(Vec3d(b.lo), Vec3d(b.hi)));
-    const bool photons = integrator == "photon" && photonsCurve(refraction.field.get(), b);
+    const bool photonPass = integratorInfo(integrator).photonPass;
+    const bool photons = photonPass && photonsCurve(refraction.field.get(), b);
     return {"curved paths", true,
             "[refraction]: " + refraction.description + bound +
                 ". Camera rays bend (Dormand-Prince RK5(4)), straight beyond " +
                 std::to_string(int(refraction.maxArc)) + " m of path; " +
                 (photons ? "photons follow curved paths too, and direct light comes from the "
                            "photon maps (no shadow rays)"
-                 : integrator == "photon"
+                 : photonPass
                      ? "photons straight (the field is flat within the scene)"
                      : "scattered paths and shadow rays stay straight (integrator '" +
                            integrator + "'; 'photon' bends photons too)")};
@@ -736,7 +736,7 @@ std::vector<PhysicsTerm> Scene::physics() const {
     terms.push_back(singleScatteringTerm(render, m));
     terms.push_back(multipleScatteringTerm(*this, m));
     terms.push_back({"emission", m.emission,
-                     m.emission ? m.emitWhy + (integrator == "photon"
+                     m.emission ? m.emitWhy + (integratorInfo(integrator).photonPass
                                                    ? "; the photon pass emits from it ∝ 4π σa·Le"
                                                    : "")
                                 : "no shader has an [emission] table"});

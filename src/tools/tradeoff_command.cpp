@@ -116,12 +116,9 @@ std::string checkedValue(const std::string& option, const KeyInfo& info, const s
             if (v != "beam" && v != "point") throw bad("is not an estimate; expected beam or point");
             return "\"" + v + "\"";
         case ValueKind::Integrator: {
-            auto names = integratorNames();
-            if (std::find(names.begin(), names.end(), v) == names.end()) {
-                std::string list;
-                for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-                throw bad("is not an integrator; expected one of " + list);
-            }
+            if (std::none_of(integratorInfos().begin(), integratorInfos().end(),
+                             [&](const IntegratorInfo& i) { return i.name == v; }))
+                throw bad("is not an integrator; expected one of " + integratorNameList());
             return "\"" + v + "\"";
         }
         case ValueKind::Raw: break;
@@ -446,8 +443,8 @@ Command addTradeoffCommand(CLI::App& app) {
                                                         "film.resolution)");
     tradeoff->add_option("--spp", o->spp, "Samples per pixel unless varied")
         ->check(CLI::Range(1, 1 << 20));
-    tradeoff->add_option("--integrator", o->integrator, "single, volpath or photon unless varied "
-                                                        "(default: the scene's)");
+    tradeoff->add_option("--integrator", o->integrator,
+                         integratorNameList() + " unless varied (default: the scene's)");
     tradeoff->add_option("--threads", o->threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 4096));
     tradeoff->add_option("--seed", o->seed, "Random seed (default: film.seed)")->check(CLI::Range(int64_t(0), INT64_MAX));

@@ -72,8 +72,9 @@ Rendered renderWith(RenderScene& scene, const std::string& name, int w = 8, int 
     Rendered r;
     Film film = render(scene, *integrator, s, &r.stats);
     r.image = film.develop(colour());
-    r.capped = integrator->cappedPaths() + r.stats.cappedFlights + integrator->cappedPhotonPaths();
-    r.nonFinitePhotons = integrator->nonFinitePhotons();
+    const IntegratorStats is = integrator->stats();
+    r.capped = is.cappedPaths + r.stats.cappedFlights + is.cappedPhotonPaths;
+    r.nonFinitePhotons = is.nonFinitePhotons;
     return r;
 }
 
@@ -249,7 +250,7 @@ TEST(Extremes, FurnaceMatrixTemperatureAlbedoAndAnisotropy) {
                 const std::string cell = "T " + std::to_string(T) + " albedo " +
                                          std::to_string(albedo) + " g " + std::to_string(g);
                 EXPECT_TRUE(finite) << cell;
-                EXPECT_EQ(integrator->cappedPaths(), 0u) << cell;
+                EXPECT_EQ(integrator->stats().cappedPaths, 0u) << cell;
                 if (T <= EmissionSpec().minTemperature || albedo == 1.f) {
                     EXPECT_TRUE(zero) << cell;
                     continue;

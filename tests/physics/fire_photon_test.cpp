@@ -91,7 +91,7 @@ TEST(FirePhotons, PhotonMapOfGlowingSmokeAgreesWithVolPath) {
     std::printf("photon, 1e5 photons: bias %+.4f (R %+.4f G %+.4f B %+.4f, chromaticity %.4f), "
                 "4×4 block rel. RMSE %.4f in %.1fs\n  %s\n",
                 bias, colour.channelBias[0], colour.channelBias[1], colour.channelBias[2],
-                colour.chromaticity, block, secondsSince(t1), pm->summary().c_str());
+                colour.chromaticity, block, secondsSince(t1), pm->stats().summary.c_str());
     EXPECT_LT(colour.chromaticity, 0.01);
 
     // "Within noise": the block error against the reference is mostly the photon map's own
@@ -195,5 +195,5 @@ TEST(FirePhotons, DensityAndHeatEmittedPowerMatchesGridIntegral) {
         sum += v;
     }
     EXPECT_GT(sum, 0.0);
-    EXPECT_NE(pm->summary().find("from emissive media 50000"), std::string::npos) << pm->summary();
+    EXPECT_NE(pm->stats().summary.find("from emissive media 50000"), std::string::npos) << pm->stats().summary;
 }

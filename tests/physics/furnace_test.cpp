@@ -63,7 +63,7 @@ TEST(Furnace, VolPathFindsTheBlackbodyRadianceAtAnyAlbedo) {
         auto integrator = makeVolPathIntegrator();
         auto [mean, se] = ratioToLe(*integrator, scene, 20000);
         EXPECT_NEAR(mean, 1.0, 4 * se + 2e-3) << "albedo " << albedo << " ± " << se;
-        EXPECT_EQ(integrator->cappedPaths(), 0u);
+        EXPECT_EQ(integrator->stats().cappedPaths, 0u);
     }
 }
 

@@ -79,7 +79,7 @@ TEST(PhotonConvergence, PhotonMapConvergesToVolPath) {
                     "(R %+.4f G %+.4f B %+.4f, chromaticity %.4f) in %.1fs\n  %s\n",
                     (unsigned long long)photons, e.relRmse, e.blockRmse, e.bias,
                     e.channelBias[0], e.channelBias[1], e.channelBias[2], e.chromaticity,
-                    secondsSince(t1), pm->summary().c_str());
+                    secondsSince(t1), pm->stats().summary.c_str());
         // Measured over seeds 7–10: pixel error 0.60–0.75 → 0.35–0.41 → 0.21–0.22, block error
         // 0.54–0.71 → 0.21–0.28 → 0.088–0.10, |bias| ≤ 1.1 % at 1e5.
         EXPECT_LT(e.relRmse, 0.85 * previous.relRmse) << photons << " photons";
@@ -107,7 +107,7 @@ TEST(PhotonConvergence, PhotonMapConvergesToVolPath) {
     ImageError e = compare(image, ref);
     std::printf("point, 100000 photons: rel. RMSE %.4f (4×4 blocks %.4f) bias %+.4f in %.1fs\n"
                 "  %s\n",
-                e.relRmse, e.blockRmse, e.bias, secondsSince(t2), pm->summary().c_str());
+                e.relRmse, e.blockRmse, e.bias, secondsSince(t2), pm->stats().summary.c_str());
     EXPECT_LT(std::abs(e.bias), 0.03);
     EXPECT_LT(e.blockRmse, 0.15);
     EXPECT_LT(e.chromaticity, 0.01);

@@ -111,7 +111,7 @@ TEST(CurvedPhotons, WeakFieldGivesThePhotonMapImageOfStraightLight) {
     auto scene = [&](const std::string& name, const std::string& extra) {
         std::ofstream f(dir + "/" + name);
         f << "[film]\nresolution = [16, 16]\nspp = 8\nseed = 4\n"
-             "[render]\nintegrator = \"photon\"\nphotons = 200000\n"
+             "[render]\nintegrator = \"photon\"\nphotons = 800000\n"
              "[camera]\nposition = [0, 1.2, 4]\nlook_at = [0, 0.6, 0]\nfov = 40\n"
              "[[volume]]\nfile = \"fog.vdb\"\nshader = \"smoke\"\ndensity_scale = 3\n"
              "[[light]]\ntype = \"sun\"\ndirection = [0.6, -0.7, -0.4]\nirradiance = 1476\n"

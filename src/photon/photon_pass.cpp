@@ -14,9 +14,6 @@
 // scattering is stored too, since no shadow ray of the render pass reaches an emissive medium.
 #include "photon/photon_pass.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -25,6 +22,7 @@
 #include "core/interrupt.h"
 #include "core/sampling.h"
 #include "photon/medium_emitter.h"
+#include "photon/photon_blocks.h"
 #include "photon/photon_walk.h"
 #include "transport/path_vertex.h"
 #include "transport/surface_step_cap.h"
@@ -32,10 +30,6 @@
 namespace mirage {
 
 namespace {
-
-// Photons per block: the unit of parallel work and of ordering. Large enough that a block
-// (hundreds of microseconds at least) hides the scheduling and the PhotonWalk set-up.
-constexpr uint64_t kBlockPhotons = 4096;
 
 // Source choice ∝ emitted power: a discrete distribution by its cumulative sum over the
 // lights, then the emissive media (index lights.size() + e is emitter e).
@@ -302,33 +296,25 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
     // stores nothing.
     if (n > 0 && (!media.empty() || geometry) && chooser.totalPower() > 0.0) {
         const float photonPower = float(chooser.totalPower() / double(n));
-        const uint64_t blocks = (n + kBlockPhotons - 1) / kBlockPhotons;
+        const uint64_t blocks = photonBlockCount(n);
         std::vector<PhotonMapLists> blockPhotons(blocks);
         std::vector<uint64_t> blockCapped(blocks, 0), blockFromMedia(blocks, 0),
             blockNonFinite(blocks, 0);
         std::vector<double> blockPower(blocks, 0.0);
         Progress progress("photons", n, "photons", settings.progress);
 
-        tbb::parallel_for(
-            tbb::blocked_range<uint64_t>(0, blocks, 1), [&](const tbb::blocked_range<uint64_t>& r) {
-                PhotonWalk walk(media);
-                for (uint64_t b = r.begin(); b != r.end(); ++b) {
-                    // Ctrl-C or SIGTERM during a long pass: the remaining blocks are skipped
-                    // (one block is a few ms of work), so the process exits promptly.
-                    if (interruptRequested()) continue;
-                    uint64_t first = b * kBlockPhotons, last = std::min(n, first + kBlockPhotons);
-                    for (uint64_t i = first; i < last; ++i) {
-                        uint64_t flightsCut = walk.tracking().cappedFlights;
-                        PhotonPath path = tracePhoton(i, sources, chooser, photonPower, curved,
-                                                      geometry, walk, &blockPhotons[b]);
-                        // A flight cut at the collision cap (tracking.h) caps the path too.
-                        blockCapped[b] +=
-                            path.capped || walk.tracking().cappedFlights != flightsCut;
-                        blockNonFinite[b] += path.nonFinite;
-                        blockFromMedia[b] += path.fromMedium;
-                        blockPower[b] += path.power;
-                    }
-                    progress.advance(last - first);
+        forEachPhotonBlock(
+            n, media, progress, /*stopOnInterrupt=*/true,
+            [&](PhotonWalk& walk, uint64_t b, uint64_t first, uint64_t last) {
+                for (uint64_t i = first; i < last; ++i) {
+                    const uint64_t flightsCut = walk.tracking().cappedFlights;
+                    const PhotonPath path = tracePhoton(i, sources, chooser, photonPower, curved,
+                                                        geometry, walk, &blockPhotons[b]);
+                    // A flight cut at the collision cap (tracking.h) caps the path too.
+                    blockCapped[b] += path.capped || walk.tracking().cappedFlights != flightsCut;
+                    blockNonFinite[b] += path.nonFinite;
+                    blockFromMedia[b] += path.fromMedium;
+                    blockPower[b] += path.power;
                 }
             });
         progress.finish();

@@ -52,9 +52,6 @@
 // Parallel over blocks of photons, each photon's random numbers keyed by (seed, index), the
 // tallies summed in block order: the output depends on the seed only, not on the threads.
 #include <CLI/CLI.hpp>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -70,6 +67,7 @@
 #include "core/text.h"
 #include "core/thread_limit.h"
 #include "geometry/material.h"
+#include "photon/photon_blocks.h"
 #include "photon/photon_walk.h"
 #include "scene/shader_loader.h"
 #include "tools/json_report.h"
@@ -82,7 +80,7 @@ namespace {
 constexpr double kInfiniteTau = 1e6;  // T ≥ this is "semi-infinite" (see the header)
 constexpr float kThickness = 1.f;     // m
 constexpr float kHalfWidth = 1e6f;    // m, lateral half-size of the medium box
-constexpr uint64_t kBlockPhotons = 4096;
+
 constexpr float kLambdaNm = 550.f;  // any for a grey slab; a shader slab's single wavelength
 constexpr double kDeepColumn = 1e5;  // m: the default thickness of a shader slab
 // --spectral: 80 bins of 5 nm over 380–780 nm.
@@ -348,23 +346,16 @@ Tally emptyTally(bool spectral) {
 // order, so the sums do not depend on the thread count.
 Tally traceSlab(const Slab& slab, const Medium& medium, const SlabOptions& o) {
     const std::vector<const Medium*> media{&medium};
-    const uint64_t blocks = (o.photons + kBlockPhotons - 1) / kBlockPhotons;
-    std::vector<Tally> blockTally(blocks, emptyTally(o.spectral));
+    std::vector<Tally> blockTally(photonBlockCount(o.photons), emptyTally(o.spectral));
     {
         Progress progress("slab", o.photons, "photons",
                           o.quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
-        tbb::parallel_for(tbb::blocked_range<uint64_t>(0, blocks, 1),
-                          [&](const tbb::blocked_range<uint64_t>& r) {
-                              PhotonWalk walk(media);
-                              walk.setWavelength(kLambdaNm);
-                              for (uint64_t b = r.begin(); b != r.end(); ++b) {
-                                  uint64_t first = b * kBlockPhotons,
-                                           last = std::min(o.photons, first + kBlockPhotons);
-                                  for (uint64_t i = first; i < last; ++i)
-                                      tracePhoton(slab, i, o.seed, walk, &blockTally[b]);
-                                  progress.advance(last - first);
-                              }
-                          });
+        forEachPhotonBlock(o.photons, media, progress, /*stopOnInterrupt=*/false,
+                           [&](PhotonWalk& walk, uint64_t b, uint64_t first, uint64_t last) {
+                               walk.setWavelength(kLambdaNm);
+                               for (uint64_t i = first; i < last; ++i)
+                                   tracePhoton(slab, i, o.seed, walk, &blockTally[b]);
+                           });
     }
     Tally total = emptyTally(o.spectral);
     for (const Tally& t : blockTally) total.add(t);

@@ -1,0 +1,164 @@
+// Scene::physics: the physics terms a scene switches on, each with the reason `mirage info`
+// gives. A scene pays only for what it uses (docs/design.md), and this is where it says which.
+#include <cstdio>
+
+#include "core/text.h"
+#include "medium/ocean_components.h"
+#include "scene/scene.h"
+#include "volume/grid_expression.h"
+
+namespace mirage {
+
+namespace {
+
+// What the scene's media switch on, each with the reason `mirage info` gives (the first
+// shader that switches it on).
+struct MediaPhysics {
+    bool scatter = false, spectral = false, emission = false;
+    std::string emitWhy, spectralWhy, fluorescenceWhy;
+};
+
+std::string spectralReason(const ShaderDesc& s) {
+    std::string why = "shader '" + s.name + "' has wavelength-dependent σ";
+    for (const auto& c : s.components)
+        if (c.kind != ComponentKind::Linear)
+            return why + " (component '" + c.name + "' is of kind " + componentKindName(c.kind) +
+                   ")";
+    return why;
+}
+
+std::string fluorescenceReason(const ShaderDesc& s, const MediumComponent& c) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "' re-emits with Γ = %g at %g nm (FWHM %g nm%s)",
+                  c.quantumEfficiency, c.emissionPeakNm, c.emissionFwhmNm,
+                  c.antiStokes ? ", anti-Stokes allowed" : "");
+    return "shader '" + s.name + "' component '" + c.name + buf +
+           ": Γ roulette after absorption, re-emissions stored as isotropic photons, spectral "
+           "transport";
+}
+
+MediaPhysics mediaPhysics(const RenderScene& render) {
+    MediaPhysics m;
+    for (const auto& medium : render.media) {
+        const ShaderDesc& s = medium->shader();
+        for (const auto& c : s.components) m.scatter |= c.sigmaS.maxValue() > 0;
+        if (s.spectralCoefficients() && m.spectralWhy.empty()) m.spectralWhy = spectralReason(s);
+        m.spectral |= s.spectralCoefficients();
+        for (const auto& c : s.components)
+            if (c.fluorescent() && m.fluorescenceWhy.empty())
+                m.fluorescenceWhy = fluorescenceReason(s, c);
+        if (!m.fluorescenceWhy.empty() && m.spectralWhy.empty())
+            m.spectralWhy = "fluorescence changes wavelengths (" + s.name + ")";
+        m.spectral |= s.fluorescent();
+        if (s.emission) {
+            m.emission = true;
+            m.emitWhy = "shader '" + s.name + "' emits as a blackbody at grid slot '" +
+                        s.emission->temperatureGrid + "'";
+        }
+    }
+    return m;
+}
+
+PhysicsTerm singleScatteringTerm(const RenderScene& render, const MediaPhysics& m) {
+    return {"single scattering", m.scatter && !render.lights.empty(),
+            !m.scatter              ? "no component scatters (σs = 0)"
+            : render.lights.empty() ? "no lights"
+                                    : "σs > 0 and " + std::to_string(render.lights.size()) +
+                                          " light(s): shadow rays by ratio tracking"};
+}
+
+// Emissive media light the scene too: their light scatters like a light's (photons from the
+// medium in the photon pass, emission at every collision in volpath).
+PhysicsTerm multipleScatteringTerm(const Scene& scene, const MediaPhysics& m) {
+    const std::string& integrator = scene.integrator;
+    const bool follows = integratorInfo(integrator).multipleScattering;
+    bool multiple = follows && m.scatter && (!scene.render.lights.empty() || m.emission);
+    return {"multiple scattering", multiple,
+            !follows
+                ? "integrator '" + integrator + "' computes single scattering only"
+                : multiple ? "integrator '" + integrator + "' follows paths of up to " +
+                                 std::to_string(scene.maxDepth) + " scattering events" +
+                                 (m.emission ? ", emitted light included" : "")
+                           : "nothing scatters or nothing lights the scene"};
+}
+
+PhysicsTerm surfacesTerm(const RenderScene& render) {
+    if (!render.hasSurfaces()) return {"surfaces", false, "no [[shape]]"};
+    const GeometryScene& g = *render.geometry;
+    size_t triangles = 0;
+    for (size_t i = 0; i < g.shapeCount(); ++i) triangles += g.shape(int(i)).triangles;
+    return {"surfaces", true,
+            std::to_string(g.shapeCount()) + " shape(s), " + std::to_string(triangles) +
+                " triangle(s), " + std::to_string(g.materialCount()) + " material(s): Embree BVH"};
+}
+
+PhysicsTerm expressionsTerm(const std::vector<VolumeRecord>& volumes) {
+    std::vector<std::string> runs;
+    for (size_t i = 0; i < volumes.size(); ++i)
+        for (const ExpressionRecord& e : volumes[i].expressions)
+            runs.push_back("volume " + std::to_string(i) + " (" + e.origin + ", " +
+                           e.expression.where.str() + ") " + describeAccess(e.access));
+    if (runs.empty())
+        return {"grid expressions", false, "no expression: grids are used as stored"};
+    return {"grid expressions", true,
+            "OpenVDB AX on the grids before NanoVDB conversion, active voxels only: " +
+                joinList(runs, "; ")};
+}
+
+// Which paths bend: camera rays always; photons when the photon integrator runs and the field
+// curves within the scene's bounds (photonsCurve), which then drops shadow rays.
+PhysicsTerm curvedPathsTerm(const Scene& scene) {
+    if (!scene.refraction)
+        return {"curved paths", false, "no refractive-index field: straight-line tracking"};
+    const Refraction& refraction = *scene.refraction;
+    const std::string& integrator = scene.integrator;
+    const Bounds3 b = scene.render.bounds();
+    char bound[96] = "";
+    if (!b.empty())
+        std::snprintf(bound, sizeof bound, "; |grad n| <= %.3g /m over the scene's bounds",
+                      refraction.field->gradientBound(Vec3d(b.lo), Vec3d(b.hi)));
+    const bool photonPass = integratorInfo(integrator).photonPass;
+    const bool photons = photonPass && photonsCurve(refraction.field.get(), b);
+    return {"curved paths", true,
+            "[refraction]: " + refraction.description + bound +
+                ". Camera rays bend (Dormand-Prince RK5(4)), straight beyond " +
+                std::to_string(int(refraction.maxArc)) + " m of path; " +
+                (photons ? "photons follow curved paths too, and direct light comes from the "
+                           "photon maps (no shadow rays)"
+                 : photonPass
+                     ? "photons straight (the field is flat within the scene)"
+                     : "scattered paths and shadow rays stay straight (integrator '" +
+                           integrator + "'; 'photon' bends photons too)")};
+}
+
+}  // namespace
+
+std::vector<PhysicsTerm> Scene::physics() const {
+    const MediaPhysics m = mediaPhysics(render);
+    std::vector<PhysicsTerm> terms;
+    terms.push_back({"absorption", !render.media.empty(),
+                     render.media.empty() ? "no volumes"
+                                          : std::to_string(render.media.size()) + " volume(s)"});
+    terms.push_back(singleScatteringTerm(render, m));
+    terms.push_back(multipleScatteringTerm(*this, m));
+    terms.push_back({"emission", m.emission,
+                     m.emission ? m.emitWhy + (integratorInfo(integrator).photonPass
+                                                   ? "; the photon pass emits from it ∝ 4π σa·Le"
+                                                   : "")
+                                : "no shader has an [emission] table"});
+    terms.push_back({"spectral coefficients", m.spectral,
+                     m.spectral ? m.spectralWhy
+                                : "every σ is wavelength-independent: grey path (σ set once "
+                                  "per medium, one grid lookup and one coefficient per "
+                                  "component serve all 4 wavelengths; only light and emission "
+                                  "spectra are sampled)"});
+    terms.push_back(surfacesTerm(render));
+    terms.push_back({"fluorescence", !m.fluorescenceWhy.empty(),
+                     m.fluorescenceWhy.empty() ? "no shader declares a quantum efficiency"
+                                               : m.fluorescenceWhy});
+    terms.push_back(expressionsTerm(volumes));
+    terms.push_back(curvedPathsTerm(*this));
+    return terms;
+}
+
+}  // namespace mirage

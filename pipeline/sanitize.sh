@@ -30,12 +30,15 @@ configure() {  # build-dir, extra cmake args…
     "${LAUNCHER[@]}" -DMIRAGE_BUILD_TESTS=ON -DMIRAGE_BUILD_BENCH=OFF "$@" >/dev/null
 }
 
-timed() {  # label, command…
-  local label=$1 start
+timed() {  # label, command… — returns the command's status (called as `timed … || status=1`,
+  # where `set -e` is off inside the function: without the explicit return a failing command
+  # was reported by its echo's status, 0)
+  local label=$1 start rc=0
   shift
   start=$(date +%s)
-  "$@"
+  "$@" || rc=$?
   echo "sanitize: $label took $(($(date +%s) - start)) s"
+  return $rc
 }
 
 status=0

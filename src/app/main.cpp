@@ -66,6 +66,15 @@ int main(int argc, char** argv) {
                      "scene or settings changed; without a partial file, render it all");
     render->add_flag("--skip-existing", ro.skipExisting,
                      "Skip frames whose output EXR is complete (mirage:complete = true)");
+    render
+        ->add_option("--shutter", ro.shutter,
+                     "Velocity motion blur: shutter open for WIDTH frames centred on the frame "
+                     "(0.5 is a 180° shutter, 0 none); overrides [camera] shutter, and works "
+                     "for a bare VDB with a vel/v/velocity grid")
+        ->check(CLI::Range(0.0, 2.0));
+    render->add_flag("--motion-blur", ro.motionBlur,
+                     "Velocity motion blur with a 180° shutter (--shutter 0.5)")
+        ->excludes("--shutter");
     render->add_option("--max-memory", ro.maxMemory,
                        "Fail early when the frame's estimated memory exceeds SIZE (4G, 512M, 1.5G, "
                        "64k or bytes; binary multiples)");

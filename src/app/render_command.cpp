@@ -116,6 +116,8 @@ int runRender(const RenderOptions& o) {
         }
         auto tLoad = std::chrono::steady_clock::now();
         LoadOptions load{frame, o.overrides};
+        const double shutterWidth = o.motionBlur ? 0.5 : o.shutter;
+        if (shutterWidth >= 0) load.shutter = ShutterFrames{-0.5 * shutterWidth, 0.5 * shutterWidth};
         if (memoryBudget > 0)
             load.beforeGridLoad = [&](const Scene& partial, const std::string& file,
                                       const std::string& grid, uint64_t bytes) {
@@ -241,6 +243,14 @@ int runRender(const RenderOptions& o) {
                         {"version", MIRAGE_VERSION},
                         {"ocio_config", color.configDescription()}};
         exr.metadata["complete"] = "true";  // --skip-existing trusts only this
+        if (scene.render.camera.motionBlur()) {
+            char shutter[64];
+            std::snprintf(shutter, sizeof shutter, "%g %g", scene.shutter.open,
+                          scene.shutter.close);
+            exr.metadata["shutter_frames"] = shutter;
+            exr.metadata["fps"] = std::to_string(scene.output.fps);
+            exr.metadata["above_majorant"] = std::to_string(stats.aboveMajorant);
+        }
         if (stats.tilesResumed > 0)
             exr.metadata["resumed_tiles"] = std::to_string(stats.tilesResumed);
         if (const PhotonStats* photon = integrator->photonStats())
@@ -267,6 +277,12 @@ int runRender(const RenderOptions& o) {
                     stderr, "frame %d: partial file: %d writes, %.3fs (%.2f %% of render)\n",
                     frame, partial.writes(), partial.writeSeconds(),
                     stats.seconds > 0 ? 100.0 * partial.writeSeconds() / stats.seconds : 0.0);
+            if (scene.render.camera.motionBlur())
+                std::fprintf(stderr,
+                             "frame %d: motion blur: shutter [%g, %g] frames at %g fps | lookups "
+                             "above their majorant %llu\n",
+                             frame, scene.shutter.open, scene.shutter.close, scene.output.fps,
+                             (unsigned long long)stats.aboveMajorant);
             std::string extra = integrator->summary();
             if (!extra.empty()) std::fprintf(stderr, "frame %d: %s\n", frame, extra.c_str());
         }

@@ -342,8 +342,36 @@ static void readSettings(const TableReader& top,
             oneOf("color_space", scene.output.colorSpace, color.colorSpaces());
         oneOf("display", scene.output.display, color.displays());
         oneOf("view", scene.output.view, color.views(scene.output.display));
+        scene.output.fps = o->getNumber("fps", 24.0, 1e-3, 1e6);
         o->finish();
     }
+}
+
+// The file's grid names in order (unnamed ones as "#N"), for the velocity lookup.
+static std::vector<std::string> gridNames(const std::string& file) {
+    std::vector<std::string> names;
+    const VdbFileInfo info = inspectVdbFile(file);
+    for (size_t i = 0; i < info.grids.size(); ++i)
+        names.push_back(info.grids[i].name.empty() ? "#" + std::to_string(i) : info.grids[i].name);
+    return names;
+}
+
+// Moves a medium with its velocity grid over the shutter (Medium::setMotion) and takes the
+// grids it reads off the list of unused ones.
+static void applyVelocity(const Scene& scene, Medium* medium, VolumeRecord* rec) {
+    const VelocityRecord& v = rec->velocity;
+    if (v.velocity.valid())
+        medium->setMotion(v.velocity, v.scale,
+                          float(scene.shutter.maxTimeOffset(scene.output.fps)));
+    auto& unused = rec->unusedGrids;
+    for (const std::string& n : {v.grid, v.grid + ".x", v.grid + ".y", v.grid + ".z"})
+        unused.erase(std::remove(unused.begin(), unused.end(), n), unused.end());
+}
+
+// The camera's shutter in seconds from the frames the scene (or the command line) gives.
+static void setShutterSeconds(Scene* scene) {
+    scene->render.camera.shutterOpen = float(scene->shutter.open / scene->output.fps);
+    scene->render.camera.shutterClose = float(scene->shutter.close / scene->output.fps);
 }
 
 Scene loadScene(const std::string& path, const LoadOptions& options, const ColorPipeline& color) {
@@ -363,6 +391,11 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
     TableReader top(doc, path, "");
 
     readSettings(top, resolve, color, &scene);
+    // The shutter before the volumes: a velocity grid is read only when it opens.
+    if (options.shutter)
+        scene.shutter = *options.shutter;
+    else if (auto c = top.optionalTable("camera"))
+        scene.shutter = readShutter(*c);
 
     for (const auto& v : top.tables("volume")) {
         VolumeRecord rec;
@@ -467,14 +500,22 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
                                   "; use a 'file', or a shader whose components have no grid");
             }
         }
+        if (!boxed)
+            rec.velocity = readVelocity(v, rec.file, gridNames(rec.file), scene.shutter.blurs());
         v.finish();
-        if (boxed)
+        if (boxed) {
             scene.render.media.push_back(
                 std::make_unique<Medium>(shader, box, xf, rec.densityScale));
-        else
-            scene.render.media.push_back(
-                buildMedium(shader, rec, bind, xf, scene.majorantResolution, where,
-                            scene, options));
+        } else {
+            auto medium = buildMedium(shader, rec, bind, xf, scene.majorantResolution, where,
+                                      scene, options);
+            try {
+                applyVelocity(scene, medium.get(), &rec);
+            } catch (const MirageError& e) {
+                v.fail(v.has("velocity") ? "velocity" : "file", e.what());
+            }
+            scene.render.media.push_back(std::move(medium));
+        }
         scene.volumes.push_back(std::move(rec));
     }
 
@@ -513,11 +554,13 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
             const int k = ((options.frame - 1) % frames + frames) % frames;
             cam = orbitCamera(cam, 360.f * float(k) / float(frames));
         }
+        readShutter(*c);  // read above, before the volumes
         c->finish();
         scene.render.camera = cam;
     } else if (!scene.render.media.empty() || scene.render.hasSurfaces()) {
         scene.render.camera = frameBounds(scene.render.bounds(), 40.f, aspect);
     }
+    setShutterSeconds(&scene);
     if (auto t = top.optionalTable("refraction")) {
         scene.refraction = readRefraction(*t, scene.render.media);
         // A field with ∇n = 0 everywhere bends nothing: the scene renders as without it.
@@ -547,12 +590,21 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
     ShaderDesc shader = loadShader("smoke", "");
     // A smoke.toml in $MIRAGE_SHADER_PATH may carry an expression of its own.
     addShaderExpression(shader, &rec);
-    scene.render.media.push_back(
-        buildMedium(shader, rec, {}, Transform(), scene.majorantResolution,
-                    FileLoc{rec.file, 0, 0}, scene, options));
-    scene.volumes.push_back(rec);
+    if (options.shutter) scene.shutter = *options.shutter;
+    auto medium = buildMedium(shader, rec, {}, Transform(), scene.majorantResolution,
+                              FileLoc{rec.file, 0, 0}, scene, options);
+    // Its still bounds frame the camera: the blur may reach beyond them.
     float aspect = float(scene.settings.width) / float(scene.settings.height);
-    scene.render.camera = frameBounds(scene.render.bounds(), 40.f, aspect);
+    scene.render.camera = frameBounds(medium->worldBounds(), 40.f, aspect);
+    rec.velocity = findVelocity(rec.file, gridNames(rec.file), scene.shutter.blurs());
+    try {
+        applyVelocity(scene, medium.get(), &rec);
+    } catch (const MirageError& e) {
+        throw MirageError(rec.file + ": " + e.what());
+    }
+    scene.render.media.push_back(std::move(medium));
+    scene.volumes.push_back(rec);
+    setShutterSeconds(&scene);
     // Key light from the camera's upper left, white in the working space (a D65 spectrum's
     // colour); a white diffuser facing it would read Y = 1.
     scene.render.lights.push_back(makeDistantLight(

@@ -29,6 +29,31 @@ void MajorantGrid::addConstant(float value) {
     for (float& v : mValues) v += value;
 }
 
+void MajorantGrid::dilate(float radius) {
+    if (!(radius > 0.f) || mValues.empty()) return;
+    // A point of cell i moved by |d_a| ≤ radius lands within ceil(radius / h_a) cells of i on
+    // axis a (a thousandth more for the rounding of x − d in float). The box max filter is
+    // separable: one pass per axis.
+    for (int a = 0; a < 3; ++a) {
+        const double reach = mCellSize[a] > 0.f ? double(radius) / mCellSize[a] * 1.001 : 0.0;
+        const int n = int(std::min<double>(std::ceil(reach), mRes[a]));
+        if (n <= 0) continue;
+        const size_t stride = a == 0 ? 1 : a == 1 ? size_t(mRes[0]) : size_t(mRes[0]) * mRes[1];
+        std::vector<float> line(size_t(mRes[a]));
+        for (size_t base = 0; base < mValues.size(); ++base) {
+            // Each line along axis a starts at a cell whose coordinate a is 0.
+            if ((base / stride) % size_t(mRes[a]) != 0) continue;
+            for (int i = 0; i < mRes[a]; ++i) line[size_t(i)] = mValues[base + size_t(i) * stride];
+            for (int i = 0; i < mRes[a]; ++i) {
+                float m = 0.f;
+                for (int j = std::max(0, i - n); j <= std::min(mRes[a] - 1, i + n); ++j)
+                    m = std::max(m, line[size_t(j)]);
+                mValues[base + size_t(i) * stride] = m;
+            }
+        }
+    }
+}
+
 float MajorantGrid::maxValue() const {
     float m = 0.f;
     for (float v : mValues) m = std::max(m, v);

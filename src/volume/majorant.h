@@ -26,6 +26,10 @@ public:
     void addGridMonotone(const FloatGrid& grid, const std::function<float(float)>& f);
     // Adds a constant (homogeneous component) over the whole bounds.
     void addConstant(float value);
+    // Replaces each cell by the maximum over the cells within `radius` (object-space metres)
+    // along every axis: the grid then bounds f(x − d) for any |d| ≤ radius wherever it bounded
+    // f, which is what a medium advected by at most `radius` needs (motion blur).
+    void dilate(float radius);
 
     const Bounds3& bounds() const { return mBounds; }
     int res(int axis) const { return mRes[axis]; }

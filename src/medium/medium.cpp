@@ -253,13 +253,16 @@ void Medium::setMotion(VectorGrid velocity, float velocityScale, float maxTimeOf
                           " m); velocities are in object units per second: check "
                           "velocity_scale, [output] fps and the shutter");
     mBlurRadius = float(R);
-    // σt at x and time Δt is the still σt at x − v·Δt, a point at most R away: the maximum of
-    // the still majorant over the cells within R bounds it, over bounds grown by R.
+    // σt at x and time Δt is the still σt at x − v·Δt, a point at most |v_a|·|Δt| away along
+    // each axis a: the maximum of the still majorant over the cells within that reach bounds
+    // it, over bounds grown by it. Per axis, so a rising plume's box grows mostly upwards.
+    const Vec3 reach = mVelocity.componentBound() *
+                       float(std::abs(double(velocityScale)) * std::abs(double(maxTimeOffset)));
     Bounds3 grown = mStillBounds;
-    grown.lo = grown.lo - Vec3(mBlurRadius);
-    grown.hi = grown.hi + Vec3(mBlurRadius);
+    grown.lo = grown.lo - reach;
+    grown.hi = grown.hi + reach;
     fillMajorant(grown, mMajorantResolution);
-    mMajorant.dilate(mBlurRadius);
+    mMajorant.dilate(reach);
     updateWorldBounds();
 }
 

@@ -156,6 +156,15 @@ public:
         bool mGrey = false;  // the medium's grey path: σ set once, scalar eval
     };
 
+    // How far the flow carries the medium at object-space point p over the context's time
+    // offset, v(p)·velocityScale·Δt (object metres); 0 for a still context.
+    Vec3 displacement(Context& ctx, const Vec3& p) const {
+        if (ctx.mTime == 0.f) return Vec3(0.f);
+        return mVelocity.sample(*ctx.mVelocityAcc, p) * (mVelocityScale * ctx.mTime);
+    }
+    // The object-space point whose still grids hold the medium at p at the context's time.
+    Vec3 lookupPoint(Context& ctx, const Vec3& p) const { return advected(ctx, p); }
+
     // Coefficients at an object-space point (zero outside the region the medium is confined to).
     void eval(const Vec3& pObject, Context& ctx, MediumPoint* out) const;
     // The same, ignoring confinement and exclusions: what the shader gives at the point. For a
@@ -189,7 +198,7 @@ private:
     // the context is still, else p − v(p)·velocityScale·Δt.
     Vec3 advected(Context& ctx, const Vec3& p) const {
         if (ctx.mTime == 0.f) return p;
-        return p - mVelocity.sample(*ctx.mVelocityAcc, p) * (mVelocityScale * ctx.mTime);
+        return p - displacement(ctx, p);
     }
     double checkedSigmaMax(int i, const FloatGrid* grid, float k) const;
     void checkEmissionBound(double sigmaMax) const;

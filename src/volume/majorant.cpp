@@ -29,14 +29,15 @@ void MajorantGrid::addConstant(float value) {
     for (float& v : mValues) v += value;
 }
 
-void MajorantGrid::dilate(float radius) {
-    if (!(radius > 0.f) || mValues.empty()) return;
-    // A point of cell i moved by |d_a| ≤ radius lands within ceil(radius / h_a) cells of i on
-    // axis a (a thousandth more for the rounding of x − d in float). The box max filter is
+void MajorantGrid::dilate(const Vec3& reach) {
+    if (mValues.empty()) return;
+    // A point of cell i moved by |d_a| ≤ reach[a] lands within ceil(reach[a] / h_a) cells of i
+    // on axis a (a thousandth more for the rounding of x − d in float). The box max filter is
     // separable: one pass per axis.
     for (int a = 0; a < 3; ++a) {
-        const double reach = mCellSize[a] > 0.f ? double(radius) / mCellSize[a] * 1.001 : 0.0;
-        const int n = int(std::min<double>(std::ceil(reach), mRes[a]));
+        const double cells =
+            mCellSize[a] > 0.f && reach[a] > 0.f ? double(reach[a]) / mCellSize[a] * 1.001 : 0.0;
+        const int n = int(std::min<double>(std::ceil(cells), mRes[a]));
         if (n <= 0) continue;
         const size_t stride = a == 0 ? 1 : a == 1 ? size_t(mRes[0]) : size_t(mRes[0]) * mRes[1];
         std::vector<float> line(size_t(mRes[a]));

@@ -26,10 +26,10 @@ public:
     void addGridMonotone(const FloatGrid& grid, const std::function<float(float)>& f);
     // Adds a constant (homogeneous component) over the whole bounds.
     void addConstant(float value);
-    // Replaces each cell by the maximum over the cells within `radius` (object-space metres)
-    // along every axis: the grid then bounds f(x − d) for any |d| ≤ radius wherever it bounded
-    // f, which is what a medium advected by at most `radius` needs (motion blur).
-    void dilate(float radius);
+    // Replaces each cell by the maximum over the cells within reach[a] (object-space metres)
+    // along each axis a: the grid then bounds f(x − d) for any |d_a| ≤ reach[a] wherever it
+    // bounded f, which is what a medium advected by at most that needs (motion blur).
+    void dilate(const Vec3& reach);
 
     const Bounds3& bounds() const { return mBounds; }
     int res(int axis) const { return mRes[axis]; }

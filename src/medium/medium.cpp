@@ -262,7 +262,12 @@ void Medium::setMotion(VectorGrid velocity, float velocityScale, float maxTimeOf
     grown.lo = grown.lo - reach;
     grown.hi = grown.hi + reach;
     fillMajorant(grown, mMajorantResolution);
-    mMajorant.dilate(reach);
+    // Per cell, the reach of the velocity found in that cell: a fast jet then widens the
+    // majorant only around itself, not across the whole cache.
+    std::vector<Vec3> local = mMajorant.cellComponentBounds(mVelocity);
+    const float k = float(std::abs(double(velocityScale)) * std::abs(double(maxTimeOffset)));
+    for (Vec3& r : local) r = r * k;
+    mMajorant.dilateLocally(local);
     updateWorldBounds();
 }
 

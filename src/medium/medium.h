@@ -113,8 +113,10 @@ public:
     // backward (Kim & Ko 2007, semi-Lagrangian): every grid the shader reads is looked up at
     // x − v(x)·Δt instead of x. maxTimeOffset (seconds) is the largest |Δt| a path may carry
     // (the shutter's reach from the frame); the majorant grid is rebuilt over bounds grown by
-    // the largest displacement R = max|v|·velocityScale·maxTimeOffset and dilated by R, so that
-    // it bounds σt at every time in the shutter. A zero R leaves the medium as it was.
+    // the largest displacement along each axis, max|v_a|·velocityScale·maxTimeOffset, and
+    // each cell is dilated by the displacement of the velocity found in it, so that it bounds
+    // σt at every time in the shutter. R = max|v|·velocityScale·maxTimeOffset = 0 leaves the
+    // medium as it was.
     void setMotion(VectorGrid velocity, float velocityScale, float maxTimeOffset);
     const VectorGrid& velocity() const { return mVelocity; }
     float velocityScale() const { return mVelocityScale; }

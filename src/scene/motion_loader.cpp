@@ -46,9 +46,10 @@ ShutterFrames readShutter(const TableReader& camera) {
     // Beyond a frame either way a shutter overlaps the neighbouring frames' exposures: almost
     // always degrees (180) or seconds written where frames were meant.
     if (!(v[0] <= v[1]) || !(v[0] >= -1.0) || !(v[1] <= 1.0))
-        camera.fail("shutter", "expected [open, close] in frames relative to the frame, "
-                               "open ≤ close, each within [-1, 1] (Houdini's default is "
-                               "[-0.25, 0.25]; [0, 0] switches motion blur off)");
+        camera.fail("shutter",
+                    "expected [open, close] in frames relative to the frame, "
+                    "open ≤ close, each within [-1, 1] (Houdini's default is "
+                    "[-0.25, 0.25]; [0, 0] switches motion blur off)");
     s.open = v[0];
     s.close = v[1];
     return s;
@@ -108,8 +109,9 @@ std::string describeVelocity(const VelocityRecord& v) {
     if (v.grid.empty()) return v.why;
     char buf[256];
     if (!v.velocity.valid()) {
-        std::snprintf(buf, sizeof buf, "grid '%s' (%s), velocity_scale %g; not loaded: the "
-                                       "shutter is closed",
+        std::snprintf(buf, sizeof buf,
+                      "grid '%s' (%s), velocity_scale %g; not loaded: the "
+                      "shutter is closed",
                       v.grid.c_str(), v.why.c_str(), double(v.scale));
         return buf;
     }

@@ -46,7 +46,8 @@ void MajorantGrid::dilateLocally(const std::vector<Vec3>& reach) {
                 if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
                 float m = 0.f;
                 for (int cz = std::max(0, z - n[2]); cz <= std::min(mRes[2] - 1, z + n[2]); ++cz)
-                    for (int cy = std::max(0, y - n[1]); cy <= std::min(mRes[1] - 1, y + n[1]); ++cy) {
+                    for (int cy = std::max(0, y - n[1]); cy <= std::min(mRes[1] - 1, y + n[1]);
+                         ++cy) {
                         const float* row = &still[(size_t(cz) * mRes[1] + cy) * mRes[0]];
                         for (int cx = std::max(0, x - n[0]); cx <= std::min(mRes[0] - 1, x + n[0]);
                              ++cx)

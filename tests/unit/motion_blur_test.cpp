@@ -26,9 +26,9 @@ namespace {
 
 constexpr double kVoxel = 0.05;  // m
 constexpr double kPuffRadius = 0.25;
-constexpr double kSpeed = 2.0;   // m/s along +x
-constexpr double kFps = 2.0;     // the scene's frame rate
-constexpr double kShutter = 1.0; // frames, centred: Δt in [-0.25, 0.25] s, blur 1 m
+constexpr double kSpeed = 2.0;    // m/s along +x
+constexpr double kFps = 2.0;      // the scene's frame rate
+constexpr double kShutter = 1.0;  // frames, centred: Δt in [-0.25, 0.25] s, blur 1 m
 
 // A soft ball of density at the origin and a constant velocity over a box that holds every
 // point the ball reaches within the shutter (plus the trilinear stencil).
@@ -40,8 +40,8 @@ std::string writePuff(const std::string& dir, Vec3d velocity = Vec3d(kSpeed, 0, 
     for (int i = -r; i <= r; ++i)
         for (int j = -r; j <= r; ++j)
             for (int k = -r; k <= r; ++k) {
-                const double d2 = (i * i + j * j + k * k) * kVoxel * kVoxel /
-                                  (kPuffRadius * kPuffRadius);
+                const double d2 =
+                    (i * i + j * j + k * k) * kVoxel * kVoxel / (kPuffRadius * kPuffRadius);
                 if (d2 < 1.0) density.voxels.push_back({i, j, k, (1 - d2) * (1 - d2)});
             }
     TestGridSpec vel;
@@ -60,16 +60,16 @@ std::string writePuff(const std::string& dir, Vec3d velocity = Vec3d(kSpeed, 0, 
 
 // A scene of the puff with `shutter` ("[open, close]" frames, "" for none) and the volume's
 // extra keys, translated by dx.
-std::string writeScene(const std::string& dir, const std::string& name,
-                       const std::string& shutter, const std::string& volumeKeys, double dx = 0) {
+std::string writeScene(const std::string& dir, const std::string& name, const std::string& shutter,
+                       const std::string& volumeKeys, double dx = 0) {
     const std::string path = dir + "/" + name + ".toml";
     std::ofstream f(path);
     f << "[film]\nresolution = [48, 24]\nspp = 32\ntile_size = 8\n"
       << "[camera]\nposition = [0, 0, 4]\nlook_at = [0, 0, 0]\nfov = 25\n";
     if (!shutter.empty()) f << "shutter = " << shutter << "\n";
     f << "[output]\nfps = " << kFps << "\n"
-      << "[[volume]]\nfile = \"puff.vdb\"\ndensity_scale = 6\n" << volumeKeys
-      << "[volume.transform]\ntranslate = [" << dx << ", 0, 0]\n"
+      << "[[volume]]\nfile = \"puff.vdb\"\ndensity_scale = 6\n"
+      << volumeKeys << "[volume.transform]\ntranslate = [" << dx << ", 0, 0]\n"
       << "[[light]]\ntype = \"sun\"\ndirection = [0.6, -1, -0.5]\n";
     return path;
 }
@@ -163,7 +163,8 @@ void expectBlurIsMeanOfTranslatedStills(const std::string& integrator) {
     constexpr int kReps = 4;
     std::vector<std::vector<double>> blurred;
     for (int r = 0; r < kReps; ++r) {
-        Rendered b = renderScene(writeScene(dir, "blur", kOpen, ""), 1000 + uint64_t(r), integrator);
+        Rendered b =
+            renderScene(writeScene(dir, "blur", kOpen, ""), 1000 + uint64_t(r), integrator);
         EXPECT_EQ(b.stats.aboveMajorant, 0u);
         EXPECT_GT(b.stats.mediumLookups, 0u);
         blurred.push_back(b.Y);
@@ -174,8 +175,8 @@ void expectBlurIsMeanOfTranslatedStills(const std::string& integrator) {
     const Estimate stills = stillComposite(dir, half, kReps, 5000, integrator);
     EXPECT_LT(worstColumnZ(blur, stills, 48, 24), 4.0);
     // The same stills spread over the blur an fps of 24 would give: clearly not the render.
-    const Estimate wrongFps = stillComposite(dir, 0.5 * kSpeed * kShutter / 24.0, kReps, 9000,
-                                             integrator, 4);
+    const Estimate wrongFps =
+        stillComposite(dir, 0.5 * kSpeed * kShutter / 24.0, kReps, 9000, integrator, 4);
     EXPECT_GT(worstColumnZ(blur, wrongFps, 48, 24), 10.0);
 }
 
@@ -207,7 +208,8 @@ TEST(MotionBlur, PhotonPassSamplesTimesInTheShutter) {
         pass.shutterClose = scene.render.camera.shutterClose;
         std::vector<const Light*> lights;
         for (const auto& l : scene.render.lights) lights.push_back(l.get());
-        const PhotonList photons = tracePhotons(lights, scene.render.mediaPointers(), pass, nullptr);
+        const PhotonList photons =
+            tracePhotons(lights, scene.render.mediaPointers(), pass, nullptr);
         double n = 0, sx = 0, sxx = 0;
         *lo = kInfinity;
         *hi = -kInfinity;
@@ -241,8 +243,7 @@ bool sameFilm(const Film& a, const Film& b) {
     if (a.width() != b.width() || a.height() != b.height()) return false;
     for (int y = 0; y < a.height(); ++y)
         for (int x = 0; x < a.width(); ++x)
-            if (std::memcmp(&a.pixel(x, y), &b.pixel(x, y), sizeof(Film::Pixel)) != 0)
-                return false;
+            if (std::memcmp(&a.pixel(x, y), &b.pixel(x, y), sizeof(Film::Pixel)) != 0) return false;
     return true;
 }
 
@@ -297,7 +298,8 @@ TEST(MotionBlur, DilatedMajorantBoundsEveryAdvectedLookup) {
         for (int j = -6; j <= 6; ++j)
             for (int k = -6; k <= 6; ++k) {
                 if (u(rng) < 0.5) density.voxels.push_back({i, j, k, u(rng) * u(rng) * 4.0});
-                vel.voxels.push_back({i, j, k, 0.0, Vec3d(-j * 0.8, i * 0.8, 3.0 * (u(rng) - 0.5))});
+                vel.voxels.push_back(
+                    {i, j, k, 0.0, Vec3d(-j * 0.8, i * 0.8, 3.0 * (u(rng) - 0.5))});
             }
     const std::string path = dir + "/lumpy.vdb";
     writeTestGrids(path, {density, vel});
@@ -343,8 +345,7 @@ TEST(MotionBlur, BadVelocityGridsGetTheRuleOrAClearError) {
     }
     // A grid the file lacks: refused, listing the file's grids.
     try {
-        loadScene(writeScene(dir, "missing", kOpen, "velocity = \"wind\"\n"), LoadOptions{},
-                  color);
+        loadScene(writeScene(dir, "missing", kOpen, "velocity = \"wind\"\n"), LoadOptions{}, color);
         FAIL() << "expected an error";
     } catch (const MirageError& e) {
         EXPECT_NE(std::string(e.what()).find("'wind'"), std::string::npos) << e.what();
@@ -356,8 +357,7 @@ TEST(MotionBlur, BadVelocityGridsGetTheRuleOrAClearError) {
         loadScene(writeScene(dir, "absurd", kOpen, ""), LoadOptions{}, color);
         FAIL() << "expected an error";
     } catch (const MirageError& e) {
-        EXPECT_NE(std::string(e.what()).find("velocity grid 'vel'"), std::string::npos)
-            << e.what();
+        EXPECT_NE(std::string(e.what()).find("velocity grid 'vel'"), std::string::npos) << e.what();
     }
     // NaN and infinite vectors become 0 (the vector voxel rule): the render is finite.
     writePuff(dir, Vec3d(std::nan(""), 0, std::numeric_limits<double>::infinity()));
@@ -380,7 +380,8 @@ TEST(MotionBlur, ThreeScalarGridsActAsOneVectorGrid) {
         c.name = std::string("vel.") + "xyz"[a];
         c.gridClass = "unknown";
         c.voxelSize = kVoxel;
-        for (int i = -3; i <= 3; ++i) c.voxels.push_back({i, 0, 0, a == 0 ? -2.0 : a == 1 ? 0.5 : 0.0});
+        for (int i = -3; i <= 3; ++i)
+            c.voxels.push_back({i, 0, 0, a == 0 ? -2.0 : a == 1 ? 0.5 : 0.0});
         specs.push_back(c);
     }
     const std::string path = dir + "/scalars.vdb";

@@ -28,6 +28,8 @@ struct RenderOptions {
     bool resume = false;           // --resume: continue from <out>.partial
     bool skipExisting = false;     // --skip-existing: skip frames whose EXR is complete
     std::string maxMemory;         // --max-memory SIZE (4G, 512M); "" = no budget
+    double shutter = -1;           // --shutter WIDTH in frames, centred; < 0 = the scene's
+    bool motionBlur = false;       // --motion-blur: --shutter 0.5
 };
 int runRender(const RenderOptions& o);
 Command addRenderCommand(CLI::App& app);

@@ -72,6 +72,17 @@ int runInfo(const InfoOptions& o) {
         for (const auto& u : v.unusedGrids)
             std::printf("    grid '%s' is read by no shader slot or expression: not loaded\n",
                         u.c_str());
+        if (!v.file.empty()) {
+            // Described even with the shutter closed (the render then does not load it).
+            VelocityRecord velocity = v.velocity;
+            if (!velocity.grid.empty() && !velocity.velocity.valid())
+                velocity.velocity = loadVelocityGrid(v.file, velocity.grid);
+            std::printf("    velocity: %s\n", describeVelocity(velocity).c_str());
+            if (m.moving())
+                std::printf("    motion blur: lookups advected by up to %g m within the shutter; "
+                            "majorant dilated by it\n",
+                            double(m.blurRadius()));
+        }
         std::printf("    coefficients: %s\n",
                     m.greyPath() ? "grey path (every σ wavelength-independent, none fluoresces)"
                                  : "spectral path (σ evaluated at each path's 4 wavelengths)");
@@ -94,6 +105,12 @@ int runInfo(const InfoOptions& o) {
     const CameraDesc& c = scene.render.camera;
     std::printf("camera: position (%g, %g, %g), look_at (%g, %g, %g), fov %g°\n", c.position.x,
                 c.position.y, c.position.z, c.lookAt.x, c.lookAt.y, c.lookAt.z, c.fovDeg);
+    if (c.motionBlur())
+        std::printf("shutter: [%g, %g] frames at %g fps ([%g, %g] s): velocity motion blur\n",
+                    scene.shutter.open, scene.shutter.close, scene.output.fps,
+                    double(c.shutterOpen), double(c.shutterClose));
+    else
+        std::printf("shutter: closed (no motion blur; [camera] shutter or --shutter opens it)\n");
     std::printf("film: %dx%d, %d spp, tile %d, seed %llu; integrator '%s' (%s); colour: %s (%s)\n",
                 scene.settings.width, scene.settings.height, scene.settings.spp,
                 scene.settings.tileSize, (unsigned long long)scene.settings.seed,

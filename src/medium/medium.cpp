@@ -22,6 +22,10 @@ void checkComponentCount(const ShaderDesc& shader) {
                           std::to_string(shader.components.size()));
 }
 
+// The longest displacement over the shutter a velocity grid may give, in units of the
+// medium's own size (the diagonal of its bounds).
+constexpr double kMaxBlurToSize = 100.0;
+
 std::string quotedList(const std::vector<std::string>& names) {
     std::string list;
     for (const auto& n : names) list += (list.empty() ? "'" : ", '") + n + "'";
@@ -105,11 +109,32 @@ void Medium::resolveSlots() {
     mTemperatureSlot = indexOf(mShader.emission->temperatureGrid);
 }
 
-void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantResolution) {
-    mWorldBounds = mObjectToWorld.apply(objectBounds);
-
-    // Majorant: Σ_c of each component's bound at the largest concentration in each cell.
+// Majorant: Σ_c of each component's bound at the largest concentration in each cell.
+void Medium::fillMajorant(const Bounds3& objectBounds, int majorantResolution) {
     mMajorant = MajorantGrid(objectBounds, majorantResolution);
+    for (size_t i = 0; i < mShader.components.size(); ++i) {
+        const int slot = mComponentSlot[i];
+        mModels[i]->addToMajorant(&mMajorant, slot < 0 ? nullptr : &mGrids[size_t(slot)],
+                                  mShader.components[i].concentration * mDensityScale);
+    }
+}
+
+void Medium::updateWorldBounds() {
+    mWorldBounds = mObjectToWorld.apply(mMajorant.bounds());
+    if (!mRegion) return;
+    // The medium's world bounds (the photon pass aims sun photons at them) shrink to the region
+    // (empty when the two do not overlap: then the medium is nowhere).
+    const Bounds3 r = mRegion->bounds();
+    mWorldBounds.lo = vmax(mWorldBounds.lo, r.lo);
+    mWorldBounds.hi = vmin(mWorldBounds.hi, r.hi);
+}
+
+void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantResolution) {
+    mStillBounds = objectBounds;
+    mMajorantResolution = majorantResolution;
+    fillMajorant(objectBounds, majorantResolution);
+    updateWorldBounds();
+
     bool greyAll = true;
     double sigmaMax = 0.0;  // the largest σt anywhere, summed over components, 1/m
     for (size_t i = 0; i < mShader.components.size(); ++i) {
@@ -118,7 +143,6 @@ void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantRes
         const int slot = mComponentSlot[i];
         const FloatGrid* grid = slot < 0 ? nullptr : &mGrids[size_t(slot)];
         sigmaMax += checkedSigmaMax(int(i), grid, k);
-        mModels[i]->addToMajorant(&mMajorant, grid, k);
         mPhases.emplace_back(c.phase, c.g, c.g2, c.phaseWeight);
         greyAll &= mModels[i]->grey() && !c.fluorescent();
         mFluorescent |= c.fluorescent();
@@ -178,6 +202,7 @@ double Medium::checkedSigmaMax(int i, const FloatGrid* grid, float k) const {
 
 Medium::Context::Context(const Medium& m) : mMedium(&m) {
     for (const auto& g : m.mGrids) mAcc.push_back(g.accessor());
+    if (m.mVelocity.valid()) mVelocityAcc.emplace(m.mVelocity.accessor());
     for (size_t i = 0; i < m.mShader.components.size(); ++i) {
         mSlot[i] = m.mComponentSlot[i];
         mModel[i] = m.mModels[i].get();
@@ -202,12 +227,48 @@ void Medium::Context::setWavelengths(const SampledWavelengths& w) {
 
 void Medium::confineTo(std::shared_ptr<const Region> region) {
     mRegion = std::move(region);
-    if (!mRegion) return;
-    // The medium's world bounds (the photon pass aims sun photons at them) shrink to the region
-    // (empty when the two do not overlap: then the medium is nowhere).
-    const Bounds3 r = mRegion->bounds();
-    mWorldBounds.lo = vmax(mWorldBounds.lo, r.lo);
-    mWorldBounds.hi = vmin(mWorldBounds.hi, r.hi);
+    updateWorldBounds();
+}
+
+void Medium::setMotion(VectorGrid velocity, float velocityScale, float maxTimeOffset) {
+    mVelocity = std::move(velocity);
+    mVelocityScale = velocityScale;
+    mBlurRadius = 0.f;
+    if (!mVelocity.valid() || homogeneous()) return;
+    const double R = double(mVelocity.magnitudeBound()) * std::abs(double(velocityScale)) *
+                     std::abs(double(maxTimeOffset));
+    if (!(R > 0.0)) return;
+    // A displacement far beyond the medium's size smears it over a box the majorant grid
+    // cannot resolve (a few cells, each as dense as the densest voxel), and tracking then
+    // crawls through it: almost always a unit mistake (cm/s read as m/s, a frame count taken
+    // for seconds), so it is refused with the figures that show it.
+    const double size = double(length(mStillBounds.diagonal()));
+    if (!(R <= kMaxBlurToSize * size))
+        throw MirageError("velocity grid '" + mVelocity.name() + "': |v| up to " +
+                          formatNumber(mVelocity.magnitudeBound()) + " m/s × velocity_scale " +
+                          formatNumber(velocityScale) + " moves shader '" + mShader.name +
+                          "' up to " + formatNumber(R) + " m within the shutter, more than " +
+                          formatNumber(kMaxBlurToSize) + " times its size (" +
+                          formatNumber(size) +
+                          " m); velocities are in object units per second: check "
+                          "velocity_scale, [output] fps and the shutter");
+    mBlurRadius = float(R);
+    // σt at x and time Δt is the still σt at x − v·Δt, a point at most |v_a|·|Δt| away along
+    // each axis a: the maximum of the still majorant over the cells within that reach bounds
+    // it, over bounds grown by it. Per axis, so a rising plume's box grows mostly upwards.
+    const Vec3 reach = mVelocity.componentBound() *
+                       float(std::abs(double(velocityScale)) * std::abs(double(maxTimeOffset)));
+    Bounds3 grown = mStillBounds;
+    grown.lo = grown.lo - reach;
+    grown.hi = grown.hi + reach;
+    fillMajorant(grown, mMajorantResolution);
+    // Per cell, the reach of the velocity found in that cell: a fast jet then widens the
+    // majorant only around itself, not across the whole cache.
+    std::vector<Vec3> local = mMajorant.cellComponentBounds(mVelocity);
+    const float k = float(std::abs(double(velocityScale)) * std::abs(double(maxTimeOffset)));
+    for (Vec3& r : local) r = r * k;
+    mMajorant.dilateLocally(local);
+    updateWorldBounds();
 }
 
 void Medium::excludeFrom(std::shared_ptr<const Region> region) {
@@ -226,7 +287,8 @@ void Medium::eval(const Vec3& p, Context& ctx, MediumPoint* out) const {
     evalUnconfined(p, ctx, out);
 }
 
-void Medium::evalUnconfined(const Vec3& p, Context& ctx, MediumPoint* out) const {
+void Medium::evalUnconfined(const Vec3& pAtTime, Context& ctx, MediumPoint* out) const {
+    const Vec3 p = advected(ctx, pAtTime);
     out->sigmaA = SampledSpectrum(0.f);
     out->sigmaS = SampledSpectrum(0.f);
     out->components = int(mShader.components.size());
@@ -264,9 +326,10 @@ void Medium::evalUnconfined(const Vec3& p, Context& ctx, MediumPoint* out) const
     }
 }
 
-float Medium::sigmaSAt(const Vec3& p, Context& ctx, float lambdaNm) const {
+float Medium::sigmaSAt(const Vec3& pAtTime, Context& ctx, float lambdaNm) const {
     float sigmaS = 0.f;
-    if (!inRegion(p)) return 0.f;
+    if (!inRegion(pAtTime)) return 0.f;
+    const Vec3 p = advected(ctx, pAtTime);
     for (size_t i = 0; i < mShader.components.size(); ++i) {
         const MediumComponent& comp = mShader.components[i];
         // A component that does not scatter at λ needs no grid lookup.
@@ -277,9 +340,10 @@ float Medium::sigmaSAt(const Vec3& p, Context& ctx, float lambdaNm) const {
     return sigmaS;
 }
 
-void Medium::sigmaAComponentsAt(const Vec3& p, Context& ctx, float lambdaNm,
+void Medium::sigmaAComponentsAt(const Vec3& pAtTime, Context& ctx, float lambdaNm,
                                 float* sigmaA) const {
-    const bool inside = inRegion(p);
+    const bool inside = inRegion(pAtTime);
+    const Vec3 p = advected(ctx, pAtTime);
     for (size_t i = 0; i < mShader.components.size(); ++i) {
         if (!inside) {
             sigmaA[i] = 0.f;

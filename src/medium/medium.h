@@ -7,6 +7,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/region.h"
@@ -17,6 +18,7 @@
 #include "medium/shader.h"
 #include "volume/grid.h"
 #include "volume/majorant.h"
+#include "volume/vector_grid.h"
 
 namespace mirage {
 
@@ -106,6 +108,23 @@ public:
         return true;
     }
 
+    // Velocity motion blur. The medium at time t₀ + Δt is the still medium advected by its
+    // velocity field v (object-space metres per second, times velocityScale) to first order,
+    // backward (Kim & Ko 2007, semi-Lagrangian): every grid the shader reads is looked up at
+    // x − v(x)·Δt instead of x. maxTimeOffset (seconds) is the largest |Δt| a path may carry
+    // (the shutter's reach from the frame); the majorant grid is rebuilt over bounds grown by
+    // the largest displacement along each axis, max|v_a|·velocityScale·maxTimeOffset, and
+    // each cell is dilated by the displacement of the velocity found in it, so that it bounds
+    // σt at every time in the shutter. R = max|v|·velocityScale·maxTimeOffset = 0 leaves the
+    // medium as it was.
+    void setMotion(VectorGrid velocity, float velocityScale, float maxTimeOffset);
+    const VectorGrid& velocity() const { return mVelocity; }
+    float velocityScale() const { return mVelocityScale; }
+    // Whether lookups move with time (a velocity grid and a non-zero displacement bound).
+    bool moving() const { return mBlurRadius > 0.f; }
+    // R above: the longest displacement a lookup can make (object-space metres).
+    float blurRadius() const { return mBlurRadius; }
+
     // The ray in object space with the same parameter t (direction not renormalised).
     Ray toObject(const Ray& worldRay) const {
         return {mWorldToObject.point(worldRay.o), mWorldToObject.vector(worldRay.d),
@@ -118,12 +137,19 @@ public:
         explicit Context(const Medium& m);
         void setWavelengths(const SampledWavelengths& w);
         const SampledWavelengths& wavelengths() const { return mLambda; }
+        // The path's time relative to the frame, Δt = t − t₀ (seconds): lookups of a moving
+        // medium are advected by it. Ignored (kept 0) by a medium that does not move, so a
+        // still medium makes exactly the lookups it makes without motion blur.
+        void setTimeOffset(float seconds) { mTime = mMedium->moving() ? seconds : 0.f; }
+        float timeOffset() const { return mTime; }
 
     private:
         friend class Medium;
         const Medium* mMedium;
         SampledWavelengths mLambda;
+        float mTime = 0.f;
         std::vector<FloatGrid::Accessor> mAcc;
+        std::optional<VectorGrid::Accessor> mVelocityAcc;
         // Per component: its coefficients at the path's wavelengths, its law, its grid index.
         std::array<PathCoefficients, kMaxComponents> mPath;
         std::array<const ComponentModel*, kMaxComponents> mModel;
@@ -131,6 +157,15 @@ public:
         int mTemperatureSlot = -1;
         bool mGrey = false;  // the medium's grey path: σ set once, scalar eval
     };
+
+    // How far the flow carries the medium at object-space point p over the context's time
+    // offset, v(p)·velocityScale·Δt (object metres); 0 for a still context.
+    Vec3 displacement(Context& ctx, const Vec3& p) const {
+        if (ctx.mTime == 0.f) return Vec3(0.f);
+        return mVelocity.sample(*ctx.mVelocityAcc, p) * (mVelocityScale * ctx.mTime);
+    }
+    // The object-space point whose still grids hold the medium at p at the context's time.
+    Vec3 lookupPoint(Context& ctx, const Vec3& p) const { return advected(ctx, p); }
 
     // Coefficients at an object-space point (zero outside the region the medium is confined to).
     void eval(const Vec3& pObject, Context& ctx, MediumPoint* out) const;
@@ -159,6 +194,14 @@ public:
 private:
     void resolveSlots();
     void buildMajorantAndPhases(const Bounds3& objectBounds, int majorantResolution);
+    void fillMajorant(const Bounds3& objectBounds, int majorantResolution);
+    void updateWorldBounds();
+    // Where the still grids are read for a lookup at p at the context's time: p itself when
+    // the context is still, else p − v(p)·velocityScale·Δt.
+    Vec3 advected(Context& ctx, const Vec3& p) const {
+        if (ctx.mTime == 0.f) return p;
+        return p - displacement(ctx, p);
+    }
     double checkedSigmaMax(int i, const FloatGrid* grid, float k) const;
     void checkEmissionBound(double sigmaMax) const;
     // Component i's grid value at an object-space point (1 for a constant component).
@@ -175,7 +218,11 @@ private:
     std::vector<int> mComponentSlot;
     int mTemperatureSlot = -1;
     Bounds3 mWorldBounds;
+    Bounds3 mStillBounds;  // object bounds of the grids, before any motion
+    int mMajorantResolution = 64;
     MajorantGrid mMajorant;
+    VectorGrid mVelocity;
+    float mVelocityScale = 1.f, mBlurRadius = 0.f;
     std::vector<ComponentPhase> mPhases;
     std::vector<FluorescenceEmission> mFluorescence;  // per component (empty when Γ = 0)
     std::shared_ptr<const Region> mRegion;             // null: the whole box

@@ -155,6 +155,7 @@ Vec3 BeamEstimator::estimate(const Ray& ray, float tMax, const RayOpticalDepth& 
     // nothing; T is held at its end values beyond the span.
     query(ray, 0.f, tMax, hits);
     ScatteringProbe& probe = mProbes->perThread.local();
+    probe.setTimeOffset(depth.timeOffset());  // σs along the ray at the ray's time
     const Vec3 wo = -ray.d;
     Vec3 sum(0.f);
     for (const BeamHit& h : *hits) {

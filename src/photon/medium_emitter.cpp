@@ -242,13 +242,20 @@ bool MediumEmitter::sample(Sampler& sampler, Medium::Context& ctx, PhotonEmissio
     w.lambda.fill(lambda);
     w.pdf.fill(1.f);
     ctx.setWavelengths(w);
+    // Motion blur: the point is drawn from the still emission, which the flow carries to
+    // pObject + v·Δt at the photon's time (to first order, and with the power it had: the
+    // advection of Medium::setMotion moves emission without creating it).
+    const float time = ctx.timeOffset();
+    const Vec3 moved = pObject + mMedium->displacement(ctx, pObject);
+    ctx.setTimeOffset(0.f);
     MediumPoint mp;
     mMedium->eval(pObject, ctx, &mp);
+    ctx.setTimeOffset(time);
     const double f = kFourPi * double(mp.sigmaA[0]) * double(mp.Le[0]);  // W·m⁻³·nm⁻¹
     out->weight = float(f * mCellVolume / (cellPower * double(pdf)));
     if (!(out->weight > 0.f) || !std::isfinite(out->weight)) return false;
 
-    out->origin = mMedium->objectToWorld().point(pObject);
+    out->origin = mMedium->objectToWorld().point(moved);
     out->direction = sampleUniformSphere(sampler.get1D(), sampler.get1D());
     out->lambda = lambda;
     return true;

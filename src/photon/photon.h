@@ -21,6 +21,9 @@ struct Photon {
     // isotropically (phase 1/4π, whatever the medium's lobes) at `lambda`, and the density of
     // such events is Σ_c Γ_c σa,c(x, λi), not σs(x, λ) (photon/volume_estimate.h).
     float lambdaIn = 0.f;
+    // The photon's time relative to the frame (s, motion blur): the medium it met was the one
+    // at this time, and its event density is taken there (volume_estimate.h).
+    float time = 0.f;
 
     bool reemitted() const { return lambdaIn > 0.f; }
 };

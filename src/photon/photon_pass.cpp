@@ -168,11 +168,13 @@ FlightEvent flyPhoton(const PhotonPassSettings& settings, const GeometryScene* g
 }
 
 // Appends a photon to `list` when it is finite; false (and the path ends) when it is not.
-bool storePhoton(const Photon& ph, PhotonList* list, PhotonPath* path) {
+// Stores ph at the walk's time (motion blur; 0 for a still pass).
+bool storePhoton(Photon ph, const PhotonWalk& walk, PhotonList* list, PhotonPath* path) {
     if (!finitePhoton(ph)) {
         path->nonFinite = true;
         return false;
     }
+    ph.time = walk.timeOffset();
     list->push_back(ph);
     return true;
 }
@@ -190,7 +192,8 @@ bool photonAtSurface(const SurfaceHit& hit, const PhotonPassSettings& settings,
         if (!state->direct || (settings.field && settings.storeFirstInteraction)) {
             PhotonList* list = !state->direct && state->specularOnly ? &out->surfaceCaustic
                                                                      : &out->surfaceGlobal;
-            if (!storePhoton(Photon{hit.p, state->ray.d, walk.wavelength(), power}, list, path))
+            if (!storePhoton(Photon{hit.p, state->ray.d, walk.wavelength(), power}, walk, list,
+                             path))
                 return false;
         }
         state->specularOnly = false;
@@ -220,7 +223,7 @@ bool photonInMedium(const FlightEvent& ev, const PhotonPassSettings& settings, P
         const Photon ph = reemitted
                               ? Photon{ev.p, ev.wi, ev.lambdaOut, power * ev.weight, ev.lambdaIn}
                               : Photon{ev.p, ev.wi, walk.wavelength(), power};
-        if (!storePhoton(ph, &out->volume, path)) return false;
+        if (!storePhoton(ph, walk, &out->volume, path)) return false;
     }
     state->direct = false;
     state->specularOnly = false;
@@ -238,6 +241,14 @@ PhotonPath tracePhoton(uint64_t index, const PhotonSources& sources, const Light
                        const GeometryScene* geometry, PhotonWalk& walk, PhotonMapLists* out) {
     PhotonPath path;
     Sampler sampler(settings.seed, index, 0);
+    if (settings.shutterClose != settings.shutterOpen) {
+        // From a stream of its own, like the camera's (render/camera.h, shutterTime): every
+        // other number of the photon's walk is the one a still pass draws.
+        Sampler time(hashCombine(settings.seed, 0x5b7e1f3a9c2d4e61ull), index, 0);
+        walk.tracking().setTimeOffset(settings.shutterOpen +
+                                      (settings.shutterClose - settings.shutterOpen) *
+                                          time.get1D());
+    }
     PhotonState state;
     if (!emitPhoton(sources, chooser, photonPower, sampler, walk, &path, &state)) return path;
     for (;;) {

@@ -51,6 +51,9 @@ struct PhotonPassSettings {
     CurvedPathSettings curvedPath;
     float curvedMaxArc = 1000.f;
     Progress::Mode progress = Progress::Mode::Auto;
+    // Motion blur: each photon draws its time uniformly in [shutterOpen, shutterClose] (seconds
+    // relative to the frame) and meets every medium as it is then; equal: the frame's time.
+    float shutterOpen = 0.f, shutterClose = 0.f;
 };
 
 struct PhotonPassStats {

@@ -62,6 +62,7 @@ public:
                           float maxArc, Sampler& sampler, CurvedWalkEnd* end);
 
     TrackingContext& tracking() { return mTracking; }
+    float timeOffset() const { return mTracking.timeOffset(); }
 
 private:
     // The albedo and Γ roulettes at a tentative collision met flying along dir.

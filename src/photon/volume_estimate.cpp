@@ -61,8 +61,11 @@ VolumePhotons::VolumePhotons(PhotonList photons, const std::vector<const Medium*
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1024),
                       [&](const tbb::blocked_range<size_t>& r) {
                           ScatteringProbe probe(media);
-                          for (size_t i = r.begin(); i < r.end(); ++i)
+                          for (size_t i = r.begin(); i < r.end(); ++i) {
+                              // The density of its event where and when it happened.
+                              probe.setTimeOffset(mMap[i].time);
                               mSigmaS[i] = probe.eventDensity(mMap[i].p, mMap[i]);
+                          }
                       });
 
     // The lobes of every component of every medium, in order. One lobe, or lobes that are all
@@ -107,6 +110,7 @@ VolumePhotons::VolumePhotons(PhotonList photons, const std::vector<const Medium*
                     continue;
                 }
                 contexts[mi].setWavelengths(w);
+                contexts[mi].setTimeOffset(mMap[i].time);
                 MediumPoint mp;
                 m.eval(p, contexts[mi], &mp);
                 for (int c = 0; c < components; ++c, ++lobe) {
@@ -170,6 +174,7 @@ Vec3 pointEstimateAlongRay(const VolumePhotons& photons, const Ray& ray,
                            const ViewWeight& view) {
     MIRAGE_CHECK(k >= 2);
     if (depth.empty() || photons.size() == 0 || !(step > 0.f)) return Vec3(0.f);
+    probe.setTimeOffset(depth.timeOffset());  // σs along the ray at the ray's time
     const Vec3 wo = -ray.d;
     Vec3 sum(0.f);
     // Points beyond the last medium's exit are not taken: σs = 0 there, even if photons inside

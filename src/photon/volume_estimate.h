@@ -41,6 +41,10 @@ public:
     // True when no medium's σs varies with wavelength and none fluoresces: σs(x) may then be
     // taken once per point.
     bool grey() const { return mGrey; }
+    // The time (s from the frame, motion blur) at which the media are probed.
+    void setTimeOffset(float seconds) {
+        for (auto& c : mContexts) c.setTimeOffset(seconds);
+    }
 
 private:
     std::vector<const Medium*> mMedia;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/math.h"
+#include "core/rng.h"
 
 namespace mirage {
 
@@ -11,7 +12,20 @@ struct CameraDesc {
     Vec3 lookAt{0, 0, 0};
     Vec3 up{0, 1, 0};
     float fovDeg = 40.f;  // vertical
+    // The shutter, in seconds relative to the frame's time (motion blur): each camera sample
+    // draws its time uniformly in [shutterOpen, shutterClose]. Equal: no blur.
+    float shutterOpen = 0.f, shutterClose = 0.f;
+    bool motionBlur() const { return shutterClose != shutterOpen; }
 };
+
+// The time offset (seconds) of camera sample `sample` of pixel `pixel`, uniform in the shutter.
+// It comes from a stream of its own, keyed like the sample's, so that every other dimension of
+// the path is the one a still render draws (a blur of a still medium gives the still image).
+inline float shutterTime(const CameraDesc& c, uint64_t seed, uint64_t pixel, uint64_t sample) {
+    constexpr uint64_t kShutterStream = 0x5b7e1f3a9c2d4e61ull;
+    Sampler t(hashCombine(seed, kShutterStream), pixel, sample);
+    return c.shutterOpen + (c.shutterClose - c.shutterOpen) * t.get1D();
+}
 
 class PerspectiveCamera {
 public:

@@ -111,6 +111,8 @@ public:
             mCurved = true;
         }
         pass.progress = mSettings.progress;
+        pass.shutterOpen = scene.camera.shutterOpen;  // photons sample times too (motion blur)
+        pass.shutterClose = scene.camera.shutterClose;
         PhotonMapLists lists = tracePhotonMaps(
             lights, mMedia, scene.hasSurfaces() ? scene.geometry.get() : nullptr, pass,
             &mPassStats);
@@ -163,6 +165,7 @@ public:
     RadianceSample Li(const RenderScene& scene, const Ray& ray, const SampledWavelengths& w,
                       Sampler& sampler, ThreadState& ts) const override {
         RadianceSample out = mSingle->Li(scene, ray, w, sampler, ts);
+        if (mThreads) mThreads->local().depth.setTimeOffset(ts.tracking.timeOffset());
         if (scene.hasSurfaces()) {
             out.xyz = photonsAlongSpecularChain(scene, ray, w, sampler, ts.photonView);
             return out;

@@ -40,7 +40,7 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
 
     Progress progress("render", uint64_t(tiles), "tiles", s.progress);
     if (resumed > 0) progress.advance(uint64_t(resumed));
-    std::atomic<uint64_t> lookups{0}, cappedFlights{0};
+    std::atomic<uint64_t> lookups{0}, cappedFlights{0}, aboveMajorant{0};
     std::atomic<int64_t> finishedNow{0};
     std::mutex checkpointMutex;
     tbb::enumerable_thread_specific<ThreadState> states([&] { return ThreadState(scene); });
@@ -52,6 +52,7 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
         [&](const tbb::blocked_range<int>& r) {
             ThreadState& ts = states.local();
             uint64_t before = ts.tracking.lookups, cappedBefore = ts.tracking.cappedFlights;
+            uint64_t aboveBefore = ts.tracking.aboveMajorant;
             for (int tile = r.begin(); tile < r.end(); ++tile) {
                 if (done[tile].load(std::memory_order_relaxed) || interruptRequested()) continue;
                 int x0 = (tile % tilesX) * s.tileSize, y0 = (tile / tilesX) * s.tileSize;
@@ -66,6 +67,9 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
                             SampledWavelengths w =
                                 SampledWavelengths::sampleVisible(sampler.get1D());
                             ts.tracking.setWavelengths(w);
+                            if (scene.camera.motionBlur())
+                                ts.tracking.setTimeOffset(
+                                    shutterTime(scene.camera, s.seed, pixel, uint64_t(i)));
                             Ray ray = camera.generate(float(x) + jx, float(y) + jy);
                             RadianceSample rs = integrator.Li(scene, ray, w, sampler, ts);
                             film.addSample(x, y, rs.L, w, rs.alpha, rs.xyz);
@@ -85,6 +89,7 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
             }
             lookups += ts.tracking.lookups - before;
             cappedFlights += ts.tracking.cappedFlights - cappedBefore;
+            aboveMajorant += ts.tracking.aboveMajorant - aboveBefore;
         },
         tbb::simple_partitioner());
     progress.finish();
@@ -110,6 +115,7 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
         stats->tilesResumed = resumed;
         stats->interrupted = tilesDone < tiles;
         stats->cappedFlights = cappedFlights.load();
+        stats->aboveMajorant = aboveMajorant.load();
     }
     return film;
 }

@@ -28,6 +28,7 @@ struct RenderStats {
     uint64_t mediumLookups = 0;  // medium evaluations (each reads every grid of its shader)
     uint64_t nonFiniteSamples = 0;  // camera samples dropped by the film (NaN/∞)
     uint64_t cappedFlights = 0;     // free flights cut at the collision cap (tracking.h)
+    uint64_t aboveMajorant = 0;     // lookups whose σt exceeded their majorant (must be 0)
     int tiles = 0;             // tiles in the image
     int tilesDone = 0;         // finished, including those restored from a partial file
     int tilesResumed = 0;      // restored from a partial file, not rendered now

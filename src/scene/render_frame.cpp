@@ -24,9 +24,12 @@ void applyFrameSettings(Scene& scene, const std::string& input, const FrameSetti
         s.width = w;
         s.height = h;
         // Keep an automatic camera framed for the new aspect ratio.
-        if (isVolumeFile(input))
-            scene.render.camera =
-                frameBounds(scene.render.bounds(), scene.render.camera.fovDeg, float(w) / float(h));
+        if (isVolumeFile(input)) {
+            const CameraDesc old = scene.render.camera;
+            scene.render.camera = frameBounds(scene.render.bounds(), old.fovDeg, float(w) / float(h));
+            scene.render.camera.shutterOpen = old.shutterOpen;
+            scene.render.camera.shutterClose = old.shutterClose;
+        }
     }
     if (cli.spp > 0) s.spp = cli.spp;
     if (cli.seed >= 0) s.seed = uint64_t(cli.seed);

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "render/render_scene.h"
 #include "render/renderer.h"
 #include "render/curved_camera.h"
+#include "scene/motion_loader.h"
 #include "volume/grid_expression.h"
 
 namespace mirage {
@@ -23,6 +25,7 @@ struct OutputSettings {
     bool halfFloat = true;
     std::string preview;                  // "" = none; else a PNG/JPEG path
     std::string display = "sRGB", view = "Standard";
+    double fps = 24;  // frames per second: converts the shutter (frames) and velocities (1/s)
 };
 
 // A grid expression as loaded: the code, where it came from, its grids and its cost.
@@ -42,6 +45,7 @@ struct VolumeRecord {
     // Grids in the file that no shader slot and no expression reads (not loaded).
     std::vector<std::string> unusedGrids;
     float densityScale = 1;
+    VelocityRecord velocity;  // motion blur: the velocity grid bound, or why there is none
 };
 
 struct PhysicsTerm {
@@ -61,6 +65,7 @@ struct Scene {
     // settings (its seed and progress mode come from the render settings).
     PhotonIntegratorSettings photon;
     int majorantResolution = 64;
+    ShutterFrames shutter;  // [camera] shutter (frames); render.camera holds it in seconds
     std::vector<VolumeRecord> volumes;
     // [refraction]: camera rays bend in this index field; null when the scene has none (or its
     // gradient is 0 everywhere), and then nothing changes.
@@ -79,6 +84,8 @@ struct LoadOptions {
     std::function<void(const Scene&, const std::string& file, const std::string& grid,
                        uint64_t bytes)>
         beforeGridLoad = nullptr;
+    // --shutter / --motion-blur: replaces the scene's [camera] shutter (and gives a bare VDB one).
+    std::optional<ShutterFrames> shutter = std::nullopt;
 };
 
 Scene loadScene(const std::string& path, const LoadOptions& options, const ColorPipeline& color);

@@ -335,8 +335,35 @@ static void readSettings(const TableReader& top,
                                               scene.output.display, scene.output.view))
             o->fail(miss->key, "'" + miss->value + "' is not in the OCIO config; it has: " +
                                    joinList(miss->known));
+        scene.output.fps = o->getNumber("fps", 24.0, 1e-3, 1e6);
         o->finish();
     }
+}
+
+// The file's grid names in order (unnamed ones as "#N"), for the velocity lookup.
+static std::vector<std::string> gridNames(const std::string& file) {
+    std::vector<std::string> names;
+    const VdbFileInfo info = inspectVdbFile(file);
+    for (size_t i = 0; i < info.grids.size(); ++i) names.push_back(gridName(info.grids[i].name, i));
+    return names;
+}
+
+// Moves a medium with its velocity grid over the shutter (Medium::setMotion) and takes the
+// grids it reads off the list of unused ones.
+static void applyVelocity(const Scene& scene, Medium* medium, VolumeRecord* rec) {
+    const VelocityRecord& v = rec->velocity;
+    if (v.velocity.valid())
+        medium->setMotion(v.velocity, v.scale,
+                          float(scene.shutter.maxTimeOffset(scene.output.fps)));
+    auto& unused = rec->unusedGrids;
+    for (const std::string& n : {v.grid, v.grid + ".x", v.grid + ".y", v.grid + ".z"})
+        unused.erase(std::remove(unused.begin(), unused.end(), n), unused.end());
+}
+
+// The camera's shutter in seconds from the frames the scene (or the command line) gives.
+static void setShutterSeconds(Scene* scene) {
+    scene->render.camera.shutterOpen = float(scene->shutter.open / scene->output.fps);
+    scene->render.camera.shutterClose = float(scene->shutter.close / scene->output.fps);
 }
 
 namespace {
@@ -473,13 +500,22 @@ void readVolume(const TableReader& v, const Resolve& resolve, const std::string&
     if (auto t = v.optionalTable("transform")) xf = readTransform(*t);
     Bounds3 box;
     if (boxed) box = readVolumeBox(v, shader);
+    // The velocity grid is read only when the shutter opens (it is read before the volumes).
+    if (!boxed)
+        rec.velocity = readVelocity(v, rec.file, gridNames(rec.file), scene->shutter.blurs());
     v.finish();
-    if (boxed)
+    if (boxed) {
         scene->render.media.push_back(std::make_unique<Medium>(shader, box, xf, rec.densityScale));
-    else
-        scene->render.media.push_back(buildMedium(shader, rec, bind, xf,
-                                                  scene->majorantResolution, where, *scene,
-                                                  options));
+    } else {
+        auto medium = buildMedium(shader, rec, bind, xf, scene->majorantResolution, where, *scene,
+                                  options);
+        try {
+            applyVelocity(*scene, medium.get(), &rec);
+        } catch (const MirageError& e) {
+            v.fail(v.has("velocity") ? "velocity" : "file", e.what());
+        }
+        scene->render.media.push_back(std::move(medium));
+    }
     scene->volumes.push_back(std::move(rec));
 }
 
@@ -526,6 +562,7 @@ CameraDesc readCamera(const TableReader& top, int frame, const Scene& scene) {
         const int k = ((frame - 1) % frames + frames) % frames;
         cam = orbitCamera(cam, 360.f * float(k) / float(frames));
     }
+    readShutter(*c);  // read before the volumes (loadScene); here so that finish() knows it
     c->finish();
     return cam;
 }
@@ -557,11 +594,17 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
     scene.source = path;
     TableReader top(doc, path, "");
     readSettings(top, resolve, color, &scene);
+    // The shutter before the volumes: a velocity grid is read only when it opens.
+    if (options.shutter)
+        scene.shutter = *options.shutter;
+    else if (auto c = top.optionalTable("camera"))
+        scene.shutter = readShutter(*c);
     for (const auto& v : top.tables("volume")) readVolume(v, resolve, dir, options, &scene);
     for (const auto& l : top.tables("light")) scene.render.lights.push_back(readLight(l, color));
     scene.render.geometry = readGeometry(top, resolve, scene.render.media.size(), color);
     confineInteriorMedia(&scene);
     scene.render.camera = readCamera(top, options.frame, scene);
+    setShutterSeconds(&scene);
     readSceneRefraction(top, &scene);
     top.finish();
     return scene;
@@ -586,12 +629,21 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
     ShaderDesc shader = loadShader("smoke", "");
     // A smoke.toml in $MIRAGE_SHADER_PATH may carry an expression of its own.
     addShaderExpression(shader, &rec);
-    scene.render.media.push_back(
-        buildMedium(shader, rec, {}, Transform(), scene.majorantResolution,
-                    FileLoc{rec.file, 0, 0}, scene, options));
-    scene.volumes.push_back(rec);
+    if (options.shutter) scene.shutter = *options.shutter;
+    auto medium = buildMedium(shader, rec, {}, Transform(), scene.majorantResolution,
+                              FileLoc{rec.file, 0, 0}, scene, options);
+    // Its still bounds frame the camera: the blur may reach beyond them.
     float aspect = float(scene.settings.width) / float(scene.settings.height);
-    scene.render.camera = frameBounds(scene.render.bounds(), 40.f, aspect);
+    scene.render.camera = frameBounds(medium->worldBounds(), 40.f, aspect);
+    rec.velocity = findVelocity(rec.file, gridNames(rec.file), scene.shutter.blurs());
+    try {
+        applyVelocity(scene, medium.get(), &rec);
+    } catch (const MirageError& e) {
+        throw MirageError(rec.file + ": " + e.what());
+    }
+    scene.render.media.push_back(std::move(medium));
+    scene.volumes.push_back(rec);
+    setShutterSeconds(&scene);
     // Key light from the camera's upper left, white in the working space (a D65 spectrum's
     // colour); a white diffuser facing it would read Y = 1.
     scene.render.lights.push_back(makeDistantLight(

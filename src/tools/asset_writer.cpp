@@ -12,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <optional>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -123,7 +124,26 @@ struct AssetField {
     std::vector<std::string> units;
     Vec3 lo, hi;                                    // object-space domain (m)
     std::function<void(const Vec3&, float*)> eval;  // writes one value per grid
+    // The flow (m/s) where the first grid is non-zero, written as the collocated vec3s grid
+    // `vel` (Houdini's convention) for motion blur; empty for a still asset.
+    std::function<Vec3(const Vec3&)> velocity;
 };
+
+// The flow of a rising plume whose radius grows linearly from rBase at yBase to rTop at 2 m:
+// an updraft `rise` (m/s) slowing by `slow` per metre of height, the self-similar spreading
+// that keeps the plume's profile (radial speed ∝ r · dR/dy · v_y / R), and a swirl about the
+// axis, solid-body within the plume, `swirl` m/s at its edge.
+std::function<Vec3(const Vec3&)> plumeFlow(float yBase, float rBase, float rTop, float rise,
+                                           float slow, float swirl) {
+    return [=](const Vec3& p) {
+        const float vy = rise * std::max(0.2f, 1.f - slow * p.y);
+        const float t = clamp((p.y - yBase) / (2.f - yBase), 0.f, 1.f);
+        const float radius = rBase + (rTop - rBase) * t;
+        const float spread = (rTop - rBase) / (2.f - yBase) * vy / radius;  // 1/s
+        const float omega = swirl / radius;                                // rad/s
+        return Vec3(spread * p.x - omega * p.z, vy, spread * p.z + omega * p.x);
+    };
+}
 
 // A rising plume of radius growing from rBase at yBase to rTop at y = 2 m, billowing (its
 // radius swells and shrinks by up to 30% with low-frequency noise), whose axis wanders with
@@ -192,6 +212,7 @@ AssetField smokeField(uint64_t seed) {
         const float heat = (1.f - r2) * (1.f - r2) * (1.f - r2) * (1.f - 0.35f * p.y);
         out[1] = 300.f + 600.f * clamp(heat * (0.9f + 0.3f * n), 0.f, 1.f);
     };
+    a.velocity = plumeFlow(0.f, 0.12f, 0.27f, 1.2f, 0.25f, 0.3f);
     return a;
 }
 
@@ -246,6 +267,12 @@ AssetField fireField(uint64_t seed) {
         // than its core. The smoke cools from ~700 K above the flames to ambient.
         const float tSmoke = 300.f + 400.f * shape * clamp(1.6f - p.y, 0.f, 1.f);
         out[1] = std::max(300.f + 1500.f * std::pow(flame, 0.3f), tSmoke);
+    };
+    // Flames rise faster than the smoke they feed (buoyancy of ~1800 K gas).
+    const auto smokeFlow = plumeFlow(0.45f, 0.15f, 0.21f, 1.5f, 0.2f, 0.25f);
+    a.velocity = [smokeFlow](const Vec3& p) {
+        const Vec3 v = smokeFlow(p);
+        return p.y < 1.f ? Vec3(v.x, v.y * (2.f - p.y), v.z) : v;
     };
     return a;
 }
@@ -382,6 +409,16 @@ void writeProceduralAsset(const std::string& kind, const std::string& path, int 
         grids.push_back(grid);
     }
 
+    openvdb::Vec3SGrid::Ptr vel;
+    if (field.velocity) {
+        vel = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
+        vel->setName("vel");
+        vel->setGridClass(openvdb::GRID_UNKNOWN);
+        vel->setVectorType(openvdb::VEC_CONTRAVARIANT_RELATIVE);
+        vel->setTransform(xform->copy());
+        vel->insertMeta("units", openvdb::StringMetadata("m/s"));
+    }
+
     // Slabs of z-slices evaluated in parallel, then inserted serially: the memory stays
     // bounded and the voxel values do not depend on the thread count or scheduling.
     constexpr int kSlab = 8;
@@ -389,6 +426,8 @@ void writeProceduralAsset(const std::string& kind, const std::string& path, int 
     std::vector<float> values(kSlab * slice * numGrids);
     std::vector<openvdb::FloatGrid::Accessor> accessors;
     for (auto& g : grids) accessors.push_back(g->getAccessor());
+    std::optional<openvdb::Vec3SGrid::Accessor> velAcc;
+    if (vel) velAcc.emplace(vel->getAccessor());
     for (int k0 = 0; k0 < n[2]; k0 += kSlab) {
         const int k1 = std::min(n[2], k0 + kSlab);
         tbb::parallel_for(tbb::blocked_range<int>(k0, k1), [&](const tbb::blocked_range<int>& r) {
@@ -406,6 +445,12 @@ void writeProceduralAsset(const std::string& kind, const std::string& path, int 
                     const float* v = &values[((size_t(k - k0) * n[1] + j) * n[0] + i) * numGrids];
                     for (size_t g = 0; g < numGrids; ++g)
                         if (v[g] > 0.f) accessors[g].setValue(openvdb::Coord(i, j, k), v[g]);
+                    // The flow where there is something to move (cheap: no noise).
+                    if (vel && v[0] > 0.f) {
+                        const Vec3 u =
+                            field.velocity(first + Vec3(float(i), float(j), float(k)) * h);
+                        velAcc->setValue(openvdb::Coord(i, j, k), openvdb::Vec3s(u.x, u.y, u.z));
+                    }
                 }
     }
 
@@ -418,6 +463,7 @@ void writeProceduralAsset(const std::string& kind, const std::string& path, int 
     meta.insertMeta("mirage_asset_seed", openvdb::StringMetadata(std::to_string(seed)));
     meta.insertMeta("mirage_asset_resolution", openvdb::Int32Metadata(resolution));
     openvdb::GridPtrVec out(grids.begin(), grids.end());
+    if (vel) out.push_back(vel);
     writeVdbFile(path, out, meta, "blosc");
 }
 

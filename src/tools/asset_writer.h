@@ -28,6 +28,9 @@ const std::vector<std::string>& proceduralAssetKinds();
 //   "fire"       flames rising from a 0.6 m wide base into smoke, 1 m wide. `flame` (0..1
 //                reaction intensity), `temperature` (K) up to ~1800 K in the flames, ~300–700 K
 //                in the smoke, `density` (soot, unitless, ≤ ~1).
+//   Both also write `vel` (vec3s, collocated, m/s) over the density's voxels: the plume's
+//   updraft (~1.2 m/s for smoke, up to ~3 m/s in the flames), its spreading and a swirl about
+//   its axis (0.3 m/s at the edge), for velocity motion blur.
 //   "fog-sphere" `density` of a soft sphere centred at (0, 1, 0) m: 1 within 0.6 m of the
 //                centre, falling smoothly (smoothstep) to 0 at 1 m. Analytic; the seed is
 //                unused.

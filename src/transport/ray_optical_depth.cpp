@@ -12,8 +12,7 @@ RayOpticalDepth::RayOpticalDepth(const std::vector<const Medium*>& media, float 
     MIRAGE_CHECK(stepVoxels > 0.f);
     std::vector<SpectralComponent> linear, nonLinear;
     for (const Medium* m : media) {
-        MediumInfo info;
-        info.medium = m;
+        MediumInfo info(m);
         info.voxel = kInfinity;
         for (const FloatGrid& g : m->grids()) {
             info.accessors.push_back(g.accessor());
@@ -111,9 +110,10 @@ void RayOpticalDepth::march(const Ray& ray, float tMax) {
                 !medium.inRegionWorld(ray.at(0.5f * (lo + hi))))
                 continue;
             const auto& grids = info.medium->grids();
+            const Vec3 q = medium.lookupPoint(info.context, p);  // p unless blurred
             for (const Term& term : info.terms) {
                 size_t g = size_t(term.grid);
-                float v = term.grid < 0 ? 1.f : grids[g].sample(info.accessors[g], p);
+                float v = term.grid < 0 ? 1.f : grids[g].sample(info.accessors[g], q);
                 float x = term.scale * v;
                 if (term.exponent != 1.f) x = x > 0.f ? std::pow(x, term.exponent) : 0.f;
                 mIntegrand[size_t(term.channel)] += (hi - lo) * x;

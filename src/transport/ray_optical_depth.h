@@ -48,6 +48,13 @@ public:
 
     // Tabulates τ along worldRay (unit direction) over [0, tMax].
     void march(const Ray& worldRay, float tMax);
+    // The time (s from the frame, motion blur) of the rays marched from now on: moving media
+    // are read where Medium::lookupPoint says.
+    void setTimeOffset(float seconds) {
+        mTime = seconds;
+        for (MediumInfo& m : mMedia) m.context.setTimeOffset(seconds);
+    }
+    float timeOffset() const { return mTime; }
 
     // The span of the last ray that lies inside some medium's box; empty when tBegin ≥ tEnd.
     float tBegin() const { return mT0; }
@@ -75,9 +82,11 @@ private:
         float exponent = 1.f;  // the channel integrates (scale · grid)^exponent
     };
     struct MediumInfo {
+        explicit MediumInfo(const Medium* m) : medium(m), context(*m) {}
         const Medium* medium;
         std::vector<Term> terms;
         std::vector<FloatGrid::Accessor> accessors;
+        Medium::Context context;  // the medium's time and velocity accessor
         float voxel;  // finest object-space voxel (a majorant cell when it has no grid)
     };
     std::vector<MediumInfo> mMedia;
@@ -85,6 +94,7 @@ private:
     std::vector<SpectralComponent> mSpectral;
     int mChannels = 1;
     float mStepVoxels;
+    float mTime = 0.f;
 
     // The last march: nodes at mT0 + j·mH, j = 0..mNodes, τ per channel per node.
     float mT0 = 0.f, mT1 = 0.f, mH = 1.f;

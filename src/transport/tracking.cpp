@@ -26,6 +26,11 @@ void TrackingContext::setWavelengths(const SampledWavelengths& w) {
     }
 }
 
+void TrackingContext::setTimeOffset(float seconds) {
+    mTime = seconds;
+    for (auto& c : mContexts) c.setTimeOffset(seconds);
+}
+
 bool nextTentativeCollision(const MajorantGrid& majorant, const Ray& objectRay, float t,
                             float tEnd, float tau, float* tHit, float* sigmaMaj,
                             float pathMajorant) {

@@ -29,6 +29,10 @@ public:
     explicit TrackingContext(const std::vector<const Medium*>& media);
     void setWavelengths(const SampledWavelengths& w);
     const SampledWavelengths& wavelengths() const { return mLambda; }
+    // The path's time relative to the frame (seconds, motion blur): every medium lookup on the
+    // path is made at it (Medium::Context::setTimeOffset).
+    void setTimeOffset(float seconds);
+    float timeOffset() const { return mTime; }
     size_t size() const { return mMedia.size(); }
     const Medium& medium(size_t i) const { return *mMedia[i]; }
     Medium::Context& context(size_t i) { return mContexts[i]; }
@@ -46,12 +50,17 @@ public:
     // voxel of σ = 1e6/m inside a kilometre-wide majorant cell (1e9 null collisions per ray).
     uint64_t cappedFlights = 0;
     uint64_t maxCollisions = kMaxCollisionsPerFlight;
+    // Tentative collisions whose σt (at any of the path's wavelengths) exceeded the majorant
+    // they were sampled with: each one biases delta and ratio tracking, so the count must be 0
+    // (it checks the majorant, e.g. the one dilated for motion blur, on every lookup).
+    uint64_t aboveMajorant = 0;
 
 private:
     std::vector<const Medium*> mMedia;
     std::vector<Medium::Context> mContexts;
     std::vector<float> mPathMajorant;
     SampledWavelengths mLambda;
+    float mTime = 0.f;
 };
 
 // Next tentative collision of one medium along an object-space ray, after parameter t: walks

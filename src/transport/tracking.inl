@@ -56,6 +56,7 @@ bool trackCollisions(TrackingContext& ctx, const Ray& worldRay, float tMax, Samp
         c.sigmaMaj = s.sigmaMaj;
         ctx.medium(m).eval(s.objectRay.at(c.t), ctx.context(m), &c.mp);
         ++ctx.lookups;
+        if ((c.mp.sigmaA + c.mp.sigmaS).maxValue() > c.sigmaMaj) ++ctx.aboveMajorant;
         if (f(static_cast<const Collision&>(c)) == Track::Stop) return false;
         if (!nextTentativeCollision(ctx.medium(m).majorant(), s.objectRay, c.t, s.tEnd, exp1(),
                                     &s.tNext, &s.sigmaMaj, ctx.pathMajorant(m)))

@@ -29,6 +29,108 @@ void MajorantGrid::addConstant(float value) {
     for (float& v : mValues) v += value;
 }
 
+void MajorantGrid::dilateLocally(const std::vector<Vec3>& reach) {
+    MIRAGE_CHECK(reach.size() == mValues.size());
+    const std::vector<float> still = mValues;
+    for (int z = 0; z < mRes[2]; ++z)
+        for (int y = 0; y < mRes[1]; ++y)
+            for (int x = 0; x < mRes[0]; ++x) {
+                const size_t i = (size_t(z) * mRes[1] + y) * mRes[0] + x;
+                int n[3];
+                for (int a = 0; a < 3; ++a) {
+                    const double cells = mCellSize[a] > 0.f && reach[i][a] > 0.f
+                                             ? double(reach[i][a]) / mCellSize[a] * 1.001
+                                             : 0.0;
+                    n[a] = int(std::min<double>(std::ceil(cells), mRes[a]));
+                }
+                if (n[0] == 0 && n[1] == 0 && n[2] == 0) continue;
+                float m = 0.f;
+                for (int cz = std::max(0, z - n[2]); cz <= std::min(mRes[2] - 1, z + n[2]); ++cz)
+                    for (int cy = std::max(0, y - n[1]); cy <= std::min(mRes[1] - 1, y + n[1]);
+                         ++cy) {
+                        const float* row = &still[(size_t(cz) * mRes[1] + cy) * mRes[0]];
+                        for (int cx = std::max(0, x - n[0]); cx <= std::min(mRes[0] - 1, x + n[0]);
+                             ++cx)
+                            m = std::max(m, row[cx]);
+                    }
+                mValues[i] = m;
+            }
+}
+
+std::vector<Vec3> MajorantGrid::cellComponentBounds(const VectorGrid& velocity) const {
+    std::vector<Vec3> bounds(mValues.size(), Vec3(0.f));
+    if (!velocity.valid() || mValues.empty()) return bounds;
+    const nanovdb::Vec3fGrid& g = *velocity.grid();
+    // A stored vector at index position q reaches lookups within one voxel of q (trilinear);
+    // a staggered component sits half a voxel off its voxel, so 1.5 voxels on its own axis.
+    // One box per block of voxels (a leaf, or a tile), padded a thousandth of a voxel for the
+    // rounding of the world → index map, as the scalar splats are.
+    const double reach = (velocity.staggered() ? 1.5 : 1.0) + 1e-3;
+    auto splat = [&](const nanovdb::Coord& origin, int dim, const Vec3& m) {
+        if (!(m.x > 0.f || m.y > 0.f || m.z > 0.f)) return;
+        Bounds3 box;
+        for (int c = 0; c < 8; ++c) {
+            nanovdb::Vec3d corner;
+            for (int a = 0; a < 3; ++a)
+                corner[a] = c & (1 << a) ? double(origin[a]) + (dim - 1) + reach
+                                         : double(origin[a]) - reach;
+            const nanovdb::Vec3d p = g.indexToWorld(corner);
+            box.expand(Vec3(float(p[0]), float(p[1]), float(p[2])));
+        }
+        int lo[3], hi[3];
+        for (int a = 0; a < 3; ++a) {
+            if (box.hi[a] < mBounds.lo[a] || box.lo[a] > mBounds.hi[a]) return;
+            auto cellOf = [&](float v) {
+                const float c = (v - mBounds.lo[a]) / mCellSize[a];
+                if (!(c > 0.f)) return 0;
+                return c >= float(mRes[a]) ? mRes[a] - 1 : int(c);
+            };
+            lo[a] = cellOf(box.lo[a]);
+            hi[a] = cellOf(box.hi[a]);
+        }
+        for (int z = lo[2]; z <= hi[2]; ++z)
+            for (int y = lo[1]; y <= hi[1]; ++y)
+                for (int x = lo[0]; x <= hi[0]; ++x) {
+                    Vec3& b = bounds[(size_t(z) * mRes[1] + y) * mRes[0] + x];
+                    b = vmax(b, m);
+                }
+    };
+    auto absMax = [](const nanovdb::Vec3f& v, Vec3* m) {
+        *m = vmax(*m, Vec3(std::abs(v[0]), std::abs(v[1]), std::abs(v[2])));
+    };
+    const auto& tree = g.tree();
+    const auto* leaf = tree.getFirstLeaf();
+    for (uint32_t i = 0; i < tree.nodeCount(0); ++i) {
+        Vec3 m(0.f);
+        for (const auto& v : leaf[i].data()->mValues) absMax(v, &m);
+        splat(leaf[i].origin(), 8, m);
+    }
+    const auto* lower = tree.getFirstLower();
+    for (uint32_t i = 0; i < tree.nodeCount(1); ++i)
+        for (uint32_t n = 0; n < 4096; ++n)
+            if (!lower[i].data()->isChild(n)) {
+                Vec3 m(0.f);
+                absMax(lower[i].data()->mTable[n].value, &m);
+                splat(lower[i].offsetToGlobalCoord(n), 8, m);
+            }
+    const auto* upper = tree.getFirstUpper();
+    for (uint32_t i = 0; i < tree.nodeCount(2); ++i)
+        for (uint32_t n = 0; n < 32768; ++n)
+            if (!upper[i].data()->isChild(n)) {
+                Vec3 m(0.f);
+                absMax(upper[i].data()->mTable[n].value, &m);
+                splat(upper[i].offsetToGlobalCoord(n), 128, m);
+            }
+    const auto* root = tree.root().data();
+    for (uint32_t t = 0; t < root->mTableSize; ++t)
+        if (!root->tile(t)->isChild()) {
+            Vec3 m(0.f);
+            absMax(root->tile(t)->value, &m);
+            splat(root->tile(t)->origin(), 4096, m);
+        }
+    return bounds;
+}
+
 float MajorantGrid::maxValue() const {
     float m = 0.f;
     for (float v : mValues) m = std::max(m, v);

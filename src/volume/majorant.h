@@ -9,6 +9,7 @@
 
 #include "core/math.h"
 #include "volume/grid.h"
+#include "volume/vector_grid.h"
 
 namespace mirage {
 
@@ -26,6 +27,14 @@ public:
     void addGridMonotone(const FloatGrid& grid, const std::function<float(float)>& f);
     // Adds a constant (homogeneous component) over the whole bounds.
     void addConstant(float value);
+    // Replaces each cell c by the maximum over the cells within reach[c] of it (metres per
+    // axis, one entry per cell in the order of cell()). A point of c
+    // moved by at most reach[c] lands there, so this bounds f(x − d(x)) when |d_a(x)| ≤
+    // reach[c]_a for every x in c: the displacement depends on the velocity where x is.
+    void dilateLocally(const std::vector<Vec3>& reach);
+    // Per cell, the largest |v_a| a trilinear (or staggered) lookup of `velocity` can return
+    // inside the cell: the maximum over the stored vectors whose stencil reaches it.
+    std::vector<Vec3> cellComponentBounds(const VectorGrid& velocity) const;
 
     const Bounds3& bounds() const { return mBounds; }
     int res(int axis) const { return mRes[axis]; }

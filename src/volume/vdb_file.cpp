@@ -575,6 +575,10 @@ std::vector<FloatGrid> loadFloatGrids(const std::string& path,
     return out;
 }
 
+static VectorGrid finishVectorGrid(const std::string& path, const std::string& label,
+                            const openvdb::Vec3SGrid& grid, bool staggered,
+                            const std::string& name);
+
 VectorGrid loadVectorGrid(const std::string& path, const std::string& gridName) {
     const FileLayout layout = vdbformat::scanFile(path);
     const int index = requireGrid(path, layout, gridName);
@@ -599,13 +603,21 @@ VectorGrid loadVectorGrid(const std::string& path, const std::string& gridName) 
         grid = openvdb::Vec3SGrid::create(std::make_shared<openvdb::Vec3STree>(dgrid->tree()));
         grid->setTransform(dgrid->transform().copy());
     }
+    return finishVectorGrid(path, label, *grid, staggered,
+                            mirage::gridName(record.name, size_t(index)));
+}
+
+// The common end of both vector loaders: background check, NanoVDB conversion, voxel rule.
+static VectorGrid finishVectorGrid(const std::string& path, const std::string& label,
+                            const openvdb::Vec3SGrid& grid, bool staggered,
+                            const std::string& name) {
     // Outside its active voxels a velocity field is still; a non-zero background would move
     // all of space.
-    if (grid->background() != openvdb::Vec3s(0.f))
+    if (grid.background() != openvdb::Vec3s(0.f))
         fail(path, "grid " + label + " has a non-zero background vector, expected (0, 0, 0)");
     nanovdb::GridHandle<nanovdb::HostBuffer> handle;
     try {
-        handle = nanovdb::openToNanoVDB(*grid, nanovdb::StatsMode::All,
+        handle = nanovdb::openToNanoVDB(grid, nanovdb::StatsMode::All,
                                         nanovdb::ChecksumMode::Partial);
     } catch (const std::exception& e) {
         fail(path, "could not convert grid " + label + " to NanoVDB: " + boundedMessage(e.what()));
@@ -619,8 +631,47 @@ VectorGrid loadVectorGrid(const std::string& path, const std::string& gridName) 
         counts.clamped = changed - zeroed;
         warnSanitizedOnce(path, label, counts, /*vectors=*/true);
     }
-    return VectorGrid(std::move(handle), mirage::gridName(record.name, size_t(index)), staggered,
-                      changed);
+    return VectorGrid(std::move(handle), name, staggered, changed);
+}
+
+VectorGrid loadVectorGridFromScalars(const std::string& path, const std::string& stem) {
+    const FileLayout layout = vdbformat::scanFile(path);
+    if (layout.format == Format::NanoVdb)
+        fail(path, "velocity '" + stem + "': vector grids are read from OpenVDB (.vdb) files "
+                   "only; give the OpenVDB cache");
+    // Each component is a signed scalar grid: read as stored (the fog-volume rule, which
+    // zeroes negative values, would stop every particle moving towards −x).
+    openvdb::FloatGrid::Ptr parts[3];
+    for (int a = 0; a < 3; ++a) {
+        const std::string name = stem + "." + "xyz"[a];
+        const int index = requireGrid(path, layout, name);
+        const std::string label = vdbformat::gridLabel(layout, index);
+        if (vdbformat::valueTypeOf(layout.grids[size_t(index)]) != "float")
+            fail(path, "grid " + label + " holds " +
+                           describeValueType(vdbformat::valueTypeOf(layout.grids[size_t(index)])) +
+                           " values, expected a float grid (one velocity component)");
+        parts[a] = openvdb::gridPtrCast<openvdb::FloatGrid>(
+            readOpenVdbGrid(path, layout, index, false));
+        if (!parts[a]) fail(path, "grid " + label + " is not a float grid");
+        if (!parts[a]->transform().baseMap()->isLinear() ||
+            parts[a]->transform() != parts[0]->transform())
+            fail(path, "grid " + label + ": the three velocity components must share one "
+                           "affine transform");
+        if (parts[a]->background() != 0.f)
+            fail(path, "grid " + label + " has a non-zero background, expected 0");
+    }
+    // The vector grid covers the union of the components' active voxels.
+    openvdb::Vec3SGrid::Ptr grid = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
+    grid->setTransform(parts[0]->transform().copy());
+    for (int a = 0; a < 3; ++a) grid->tree().topologyUnion(parts[a]->tree());
+    openvdb::FloatGrid::ConstAccessor acc[3] = {parts[0]->getConstAccessor(),
+                                                parts[1]->getConstAccessor(),
+                                                parts[2]->getConstAccessor()};
+    for (auto it = grid->beginValueOn(); it; ++it) {
+        const openvdb::Coord c = it.getCoord();
+        it.setValue(openvdb::Vec3s(acc[0].getValue(c), acc[1].getValue(c), acc[2].getValue(c)));
+    }
+    return finishVectorGrid(path, "'" + stem + ".x/.y/.z'", *grid, false, stem);
 }
 
 }  // namespace mirage

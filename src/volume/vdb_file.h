@@ -68,6 +68,9 @@ FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName);
 // it, with one warning per grid. Throws MirageError if the file or grid is missing, the grid
 // is not a 3-vector grid, its background is not zero, or it comes from a NanoVDB file.
 VectorGrid loadVectorGrid(const std::string& path, const std::string& gridName);
+// The same from three signed scalar float grids `stem.x`, `stem.y`, `stem.z` (collocated,
+// sharing one transform), combined over the union of their active voxels; named `stem`.
+VectorGrid loadVectorGridFromScalars(const std::string& path, const std::string& stem);
 
 // Reads the grids `gridNames` of one OpenVDB file, as loadFloatGrid does, after running the
 // expressions on them in order (OpenVDB AX, grid_expression.h). The grids an expression names

@@ -79,6 +79,7 @@ VectorGrid::VectorGrid(nanovdb::GridHandle<nanovdb::HostBuffer> handle, std::str
         for (int a = 0; a < 3; ++a) componentMax[a] = std::max(componentMax[a], std::abs(v[a]));
     });
     if (mStaggered) mMagnitudeBound = norm(componentMax);
+    mComponentBound = Vec3(componentMax[0], componentMax[1], componentMax[2]);
     mMinMagnitude = kInfinity;
     const auto* leaf = mGrid->tree().getFirstLeaf();
     for (uint32_t i = 0; i < mGrid->tree().nodeCount(0); ++i)

@@ -42,6 +42,9 @@ public:
     // (trilinear weights are convex), the norm of the per-component maxima for a staggered
     // one (each component is a convex combination on its own lattice).
     float magnitudeBound() const { return mMagnitudeBound; }
+    // Per axis, the largest |v_a| stored: bounds |sample().a| (each component of a lookup is a
+    // convex combination of stored components, staggered or not).
+    Vec3 componentBound() const { return mComponentBound; }
     // The largest and smallest |v| over the active leaf voxels (for `mirage info`).
     float maxMagnitude() const { return mMaxMagnitude; }
     float minMagnitude() const { return mMinMagnitude; }
@@ -59,6 +62,7 @@ private:
     bool mStaggered = false;
     Bounds3 mObjectBounds;
     float mMagnitudeBound = 0.f, mMaxMagnitude = 0.f, mMinMagnitude = 0.f;
+    Vec3 mComponentBound;
     uint64_t mSanitized = 0;
 };
 

@@ -80,8 +80,8 @@ TEST(Asset, KindsHaveTheDocumentedGridsAndRanges) {
         const char* kind;
         std::vector<std::string> grids;
     };
-    const Expect expects[] = {{"smoke", {"density", "temperature"}},
-                              {"fire", {"density", "temperature", "flame"}},
+    const Expect expects[] = {{"smoke", {"density", "temperature", "vel"}},
+                              {"fire", {"density", "temperature", "flame", "vel"}},
                               {"fog-sphere", {"density"}}};
     for (const Expect& e : expects) {
         SCOPED_TRACE(e.kind);
@@ -92,8 +92,10 @@ TEST(Asset, KindsHaveTheDocumentedGridsAndRanges) {
         for (size_t i = 0; i < e.grids.size(); ++i) {
             const GridInfo& gi = info.grids[i];
             EXPECT_EQ(gi.name, e.grids[i]);
-            EXPECT_EQ(gi.valueType, "float");
-            EXPECT_EQ(gi.gridClass, "fog volume");
+            // The plumes' velocity (`vel`, m/s) is a collocated vector grid.
+            const bool velocity = e.grids[i] == std::string("vel");
+            EXPECT_EQ(gi.valueType, velocity ? "vec3s" : "float");
+            EXPECT_EQ(gi.gridClass, velocity ? "unknown" : "fog volume");
             EXPECT_NEAR(gi.voxelSize.x, 2.0 / res, 1e-6);
             // Sparse: far fewer active voxels than the dense domain.
             EXPECT_GT(gi.activeVoxels, 1000u);

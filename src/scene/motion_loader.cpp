@@ -1,0 +1,133 @@
+#include "scene/motion_loader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "volume/vdb_file.h"
+
+namespace mirage {
+
+namespace {
+
+bool contains(const std::vector<std::string>& names, const std::string& n) {
+    return std::find(names.begin(), names.end(), n) != names.end();
+}
+
+bool hasScalarTriple(const std::vector<std::string>& names, const std::string& stem) {
+    return contains(names, stem + ".x") && contains(names, stem + ".y") &&
+           contains(names, stem + ".z");
+}
+
+// A name the file holds as one grid, or as the stem of three component grids; "" otherwise.
+std::string resolveName(const std::vector<std::string>& names, const std::string& name) {
+    if (contains(names, name) || hasScalarTriple(names, name)) return name;
+    return "";
+}
+
+VectorGrid load(const std::string& file, const std::vector<std::string>& names,
+                const std::string& grid) {
+    return contains(names, grid) ? loadVectorGrid(file, grid)
+                                 : loadVectorGridFromScalars(file, grid);
+}
+
+}  // namespace
+
+VectorGrid loadVelocityGrid(const std::string& file, const std::string& grid) {
+    std::vector<std::string> names;
+    for (const GridInfo& g : inspectVdbFile(file).grids) names.push_back(g.name);
+    return load(file, names, grid);
+}
+
+ShutterFrames readShutter(const TableReader& camera) {
+    ShutterFrames s;
+    if (!camera.has("shutter")) return s;
+    const std::vector<double> v = camera.getNumbers("shutter", 2, 2);
+    // Beyond a frame either way a shutter overlaps the neighbouring frames' exposures: almost
+    // always degrees (180) or seconds written where frames were meant.
+    if (!(v[0] <= v[1]) || !(v[0] >= -1.0) || !(v[1] <= 1.0))
+        camera.fail("shutter",
+                    "expected [open, close] in frames relative to the frame, "
+                    "open ≤ close, each within [-1, 1] (Houdini's default is "
+                    "[-0.25, 0.25]; [0, 0] switches motion blur off)");
+    s.open = v[0];
+    s.close = v[1];
+    return s;
+}
+
+VelocityRecord findVelocity(const std::string& file, const std::vector<std::string>& grids,
+                            bool load_) {
+    VelocityRecord r;
+    for (const char* n : {"vel", "v", "velocity"}) {
+        r.grid = resolveName(grids, n);
+        if (!r.grid.empty()) break;
+    }
+    if (r.grid.empty()) {
+        r.why = "no grid named vel, v or velocity: the volume is still";
+        return r;
+    }
+    r.why = "found by its name";
+    if (load_) r.velocity = load(file, grids, r.grid);
+    return r;
+}
+
+VelocityRecord readVelocity(const TableReader& volume, const std::string& file,
+                            const std::vector<std::string>& grids, bool load_) {
+    const float scale = float(volume.getNumber("velocity_scale", 1.0, -1e6, 1e6));
+    if (!volume.has("velocity")) {
+        VelocityRecord r = findVelocity(file, grids, load_);
+        r.scale = scale;
+        return r;
+    }
+    VelocityRecord r;
+    r.scale = scale;
+    const std::string name = volume.getString("velocity");
+    if (name.empty()) {
+        r.why = "velocity = \"\": motion blur off for this volume";
+        return r;
+    }
+    r.grid = resolveName(grids, name);
+    if (r.grid.empty()) {
+        std::string list;
+        for (const auto& g : grids) list += (list.empty() ? "'" : ", '") + g + "'";
+        volume.fail("velocity", file + " has no grid '" + name + "' and no grids '" + name +
+                                    ".x', '" + name + ".y', '" + name + ".z' (it has: " + list +
+                                    ")");
+    }
+    r.why = "named by 'velocity'";
+    if (load_) {
+        try {
+            r.velocity = load(file, grids, r.grid);
+        } catch (const MirageError& e) {
+            volume.fail("velocity", e.what());
+        }
+    }
+    return r;
+}
+
+std::string describeVelocity(const VelocityRecord& v) {
+    if (v.grid.empty()) return v.why;
+    char buf[256];
+    if (!v.velocity.valid()) {
+        std::snprintf(buf, sizeof buf,
+                      "grid '%s' (%s), velocity_scale %g; not loaded: the "
+                      "shutter is closed",
+                      v.grid.c_str(), v.why.c_str(), double(v.scale));
+        return buf;
+    }
+    std::snprintf(buf, sizeof buf,
+                  "grid '%s' (%s): %s, |v| %.3g to %.3g m/s over %llu active voxels (bound "
+                  "%.3g), velocity_scale %g",
+                  v.grid.c_str(), v.why.c_str(),
+                  v.velocity.staggered() ? "staggered (face-centred, MAC)" : "collocated",
+                  double(v.velocity.minMagnitude()), double(v.velocity.maxMagnitude()),
+                  (unsigned long long)v.velocity.activeVoxels(),
+                  double(v.velocity.magnitudeBound()), double(v.scale));
+    std::string s = buf;
+    if (v.velocity.sanitizedVoxels() > 0)
+        s += "; " + std::to_string(v.velocity.sanitizedVoxels()) +
+             " voxel(s) changed by the vector voxel rule";
+    return s;
+}
+
+}  // namespace mirage

@@ -22,6 +22,7 @@
 #include "render/direct_light.h"
 #include "render/integrator.h"
 #include "transport/path_vertex.h"
+#include "transport/scatter_point.h"
 
 namespace mirage {
 
@@ -42,19 +43,16 @@ public:
             std::optional<SurfaceHit> hit;
             if (geometry) hit = geometry->intersect(ray);
             const float tEnd = hit ? hit->t : ray.tMax;
-            const bool escaped =
-                trackCollisions(ts.tracking, ray, tEnd, sampler, [&](const Collision& c) {
-                    const Medium& m = ts.tracking.medium(c.medium);
-                    const CollisionOutcome o = collisionEvent(c, m, path, sampler, &out.L);
-                    if (o.event == MediumEvent::Scattered && mDirect)
-                        out.L += path.beta * directLightMedium(scene, c, -ray.d, sampler, ts);
-                    if (o.event == MediumEvent::Null && path.roulette(sampler))
-                        return Track::Continue;
-                    path.beta = SampledSpectrum(0.f);  // absorbed, scattered once, or rouletted
-                    return Track::Stop;
-                });
+            // The scattering point along the whole flight (transport/scatter_point.h).
+            const ScatterPointWalk walk =
+                chooseScatterPoint(ts.tracking, ray, tEnd, path.beta, sampler, &out.L);
+            if (walk.chosen && mDirect)
+                out.L += path.beta * walk.weight *
+                         directLightMedium(scene, walk.collision, -ray.d, sampler, ts);
+            const bool escaped = walk.reachedEnd;
+            path.beta *= walk.T;
             if (bounce == 0)
-                out.alpha = escaped && !hit ? clamp(1.f - path.beta.average(), 0.f, 1.f) : 1.f;
+                out.alpha = escaped && !hit ? clamp(1.f - walk.T.average(), 0.f, 1.f) : 1.f;
             if (!escaped || !hit || bounce >= kMaxSpecularBounces) break;
 
             // The surface: emission and direct light where it is diffuse, else follow the mirror

@@ -19,18 +19,23 @@
 
 namespace mirage {
 
+// Scattering points per camera ray, chosen by systematic resampling (one stratified uniform):
+// each costs a shadow ray, and together they cover the ray's lit front and its shadowed depth.
+constexpr int kScatterPoints = 4;
+
 struct ScatterPointWalk {
-    bool chosen = false;      // a collision with σs > 0 was met
-    Collision collision;      // the chosen one
-    SampledSpectrum weight;   // W w_sel / w̄_sel: the factor of Ld at the chosen collision
+    bool chosen = false;                   // a collision with σs > 0 was met
+    Collision collision[kScatterPoints];   // the chosen ones (a collision may repeat)
+    // W w_sel / (w̄_sel kScatterPoints): the factor of Ld at each chosen collision.
+    SampledSpectrum weight[kScatterPoints];
     SampledSpectrum T{0.f};   // ratio-tracking transmittance over (0, tEnd); 0 when ended early
     bool reachedEnd = false;  // false: rouletted to 0 or cut at the collision cap
 };
 
 // Walks worldRay over (0, tEnd). Emission is scored into *L at every tentative collision
 // (β T σa Le / σ̄, the collision estimator of ∫ T σa Le). β is the path's throughput so far.
-ScatterPointWalk chooseScatterPoint(TrackingContext& ctx, const Ray& worldRay, float tEnd,
-                                    const SampledSpectrum& beta, Sampler& sampler,
-                                    SampledSpectrum* L);
+ScatterPointWalk chooseScatterPoints(TrackingContext& ctx, const Ray& worldRay, float tEnd,
+                                      const SampledSpectrum& beta, Sampler& sampler,
+                                     SampledSpectrum* L);
 
 }  // namespace mirage

@@ -11,7 +11,8 @@
 # ("sobol random": Mirage's [render] sampler values raced; "default" sets none), MIRAGE
 # (build/mirage: another build to race, e.g. an older one against the same references),
 # MIRAGE_SHARED_DATA.
-# Installs Blender when missing (pipeline/install-deps.sh blender). Prints one table per mode.
+# Installs Blender when missing (pipeline/install-deps.sh blender). Prints one table per mode (also
+# OUT/<integrator>.csv) and the equal-error time ratios.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 DATA=${MIRAGE_SHARED_DATA:-../shared/data}
@@ -58,16 +59,23 @@ race() {  # bounces integrator
   [ -f "$tag.cycles_ref.exr" ] || cycles "$bounces" "$REF_SPP" "$tag.cycles_ref.exr" 7 >/dev/null
   [ -f "$tag.mirage_ref.exr" ] || mirage "$integrator" sobol "$REF_SPP" "$tag.mirage_ref.exr" 7 >/dev/null
   printf '  %-5s %-16s %8s %10s\n' spp renderer seconds relMSE
+  echo "renderer,spp,seconds,relmse" > "$tag.csv"
+  row() {  # renderer spp seconds image reference
+    local e
+    e=$(python3 pipeline/relmse.py "$4" "$5")
+    printf '  %-5s %-16s %8.2f %10.4g\n' "$2" "$1" "$3" "$e"
+    echo "$1,$2,$3,$e" >> "$tag.csv"
+  }
   for spp in $SPPS; do
-    t=$(cycles "$bounces" "$spp" "$tag.cycles.exr")
-    printf '  %-5s %-16s %8.2f %10.4g\n' "$spp" cycles "$t" \
-      "$(python3 pipeline/relmse.py "$tag.cycles.exr" "$tag.cycles_ref.exr")"
+    row cycles "$spp" "$(cycles "$bounces" "$spp" "$tag.cycles.exr")" "$tag.cycles.exr" \
+      "$tag.cycles_ref.exr"
     for sampler in $SAMPLERS; do
-      t=$(mirage "$integrator" "$sampler" "$spp" "$tag.mirage.exr")
-      printf '  %-5s %-16s %8.2f %10.4g\n' "$spp" "mirage $sampler" "$t" \
-        "$(python3 pipeline/relmse.py "$tag.mirage.exr" "$tag.mirage_ref.exr")"
+      row "mirage $sampler" "$spp" "$(mirage "$integrator" "$sampler" "$spp" "$tag.mirage.exr")" \
+        "$tag.mirage.exr" "$tag.mirage_ref.exr"
     done
   done
+  # Equal error: each Mirage's time to Cycles' relMSE at each spp (pipeline/race_ratio.py).
+  python3 pipeline/race_ratio.py "$tag.csv"
 }
 
 [ "$MODE" = multiple ] || race 0 single

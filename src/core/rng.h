@@ -17,11 +17,12 @@
 // Dimension allocation of a camera sample (render/renderer.cpp, then the integrator in order):
 //   0, 1  pixel jitter (x, y)              — one pair: jointly stratified
 //   2     hero wavelength                  — paired with
-//   3     the first free flight (distance)
-//   4 …   per tentative collision: the event (absorb/scatter/null), then the next distance;
-//         at a scattering event: each light's two numbers (get2D: one pair), the shadow ray's
-//         distances and roulette, then the phase function's two numbers and the path's
-//         roulette (volpath), bounce after bounce.
+//   3     the integrator's first number: single, the scattering points' reservoir
+//         (transport/scatter_point.h); volpath, the first free flight (distance)
+//   4 …   per tentative collision: the next distance, and volpath's event (absorb/scatter/
+//         null) or the camera walk's roulette; at a scattering event each light's two numbers
+//         (get2D: one pair), the shadow ray's distances and roulette, then volpath's phase
+//         function's two numbers and the path's roulette, bounce after bounce.
 // The sequence of draws depends on the path, so only the leading dimensions line up across
 // samples; past kSobolDimensions the numbers are random.
 #pragma once

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages Mirage needs, only those missing. Root or sudo.
-# Usage: pipeline/install-deps.sh [fuzz]   "fuzz" adds clang 14 with its libFuzzer, ASan, UBSan
+# Usage: pipeline/install-deps.sh [fuzz | blender]   "fuzz" adds clang 14 with its libFuzzer, ASan, UBSan
 # and TSan runtimes (libclang-rt-14-dev) and llvm (llvm-symbolizer for readable sanitizer
 # reports), which pipeline/fuzz.sh and pipeline/sanitize.sh need; the default build is g++.
+# "blender" adds Blender (Cycles, the peer pipeline/race.sh races against); never in CI.
 set -euo pipefail
 
 PACKAGES=(
@@ -19,6 +20,9 @@ PACKAGES=(
 )
 if [ "${1:-}" = "fuzz" ]; then
   PACKAGES+=(clang clang-14 libclang-rt-14-dev llvm)
+fi
+if [ "${1:-}" = "blender" ]; then
+  PACKAGES+=(blender)
 fi
 
 missing=()

@@ -17,7 +17,8 @@ SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, 
     SampledSpectrum L(0.f);
     const Medium& m = ts.tracking.medium(c.medium);
     for (const auto& light : scene.lights) {
-        float u1 = sampler.get1D(), u2 = sampler.get1D();
+        float u1, u2;
+        sampler.get2D(&u1, &u2);  // one pair of dimensions: stratified over the light
         LightSample ls;
         if (!light->sampleLi(c.p, u1, u2, ts.tracking.wavelengths(), &ls)) continue;
         // The light travels along −wi into the point and leaves along wo.
@@ -41,7 +42,8 @@ SampledSpectrum directLightSurface(const RenderScene& scene, const SurfaceHit& h
     Vec3 woL = frame.toLocal(wo);
     const float side = dot(wo, hit.ng);
     for (const auto& light : scene.lights) {
-        float u1 = sampler.get1D(), u2 = sampler.get1D();
+        float u1, u2;
+        sampler.get2D(&u1, &u2);  // one pair of dimensions: stratified over the light
         LightSample ls;
         if (!light->sampleLi(hit.p, u1, u2, ts.tracking.wavelengths(), &ls)) continue;
         // Light from behind the geometric surface cannot reach the viewer's side.

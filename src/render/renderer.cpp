@@ -62,7 +62,7 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
                     for (int x = x0; x < x1; ++x) {
                         uint64_t pixel = uint64_t(y) * uint64_t(s.width) + uint64_t(x);
                         for (int i = 0; i < s.spp; ++i) {
-                            Sampler sampler(s.seed, pixel, uint64_t(i));
+                            Sampler sampler(s.sampler, s.seed, pixel, uint64_t(i));
                             float jx = sampler.get1D(), jy = sampler.get1D();
                             SampledWavelengths w =
                                 SampledWavelengths::sampleVisible(sampler.get1D());

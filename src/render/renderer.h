@@ -1,5 +1,5 @@
 // The render pass: tiles over the image, scheduled by TBB over all cores. Each pixel's samples
-// use the counter-based sampler keyed by (seed, pixel, sample), and each pixel is accumulated
+// use the sampler keyed by (seed, pixel, sample), and each pixel is accumulated
 // by the one task that owns its tile, so the image is bit-identical for any thread count — and
 // for any order or subset of tiles, which is what lets a killed render resume exactly.
 #pragma once
@@ -19,6 +19,8 @@ struct RenderSettings {
     int tileSize = 32;
     int spp = 16;
     uint64_t seed = 0;
+    // The camera samples' numbers (core/rng.h): Sobol is stratified over each pixel's samples.
+    SamplerKind sampler = SamplerKind::Sobol;
     Progress::Mode progress = Progress::Mode::Auto;
 };
 

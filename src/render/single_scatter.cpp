@@ -1,16 +1,15 @@
-// Single scattering + emission by null-collision tracking.
+// Single scattering + emission along the camera ray, by null-collision tracking.
 //
 // Along the camera ray, the radiance is L = ∫ T(t) [σa Le + σs Σ_lights ∫ p Li T_l] dt.
-// Tentative collisions come at rate σ̄. At each one:
-//  - emission is scored at every tentative collision, β σa Le / σ̄ (a collision estimator
-//    whose expectation is ∫ T σa Le dt);
-//  - then an event is chosen with the probabilities of eventProbabilities(): absorption ends
-//    the path, real scattering scores β σs/(σ̄ P_s) · (direct light) and ends it (single
-//    scattering), a null collision multiplies β by σn/(σ̄ P_n) and continues.
-// β is 1 at every wavelength for grey media; Russian roulette (PathThroughput::roulette) keeps
-// long spectral walks short.
-// The probability of leaving the medium is T, so β at escape estimates the transmittance and
-// 1 − β is the pixel's coverage (alpha).
+// The flight is followed to its end by ratio tracking (transport/scatter_point.h): tentative
+// collisions at rate σ̄, the transmittance T multiplied by σn/σ̄ at each. Emission is scored at
+// every tentative collision, β T σa Le / σ̄ (a collision estimator of ∫ T σa Le dt); the
+// scattering points (kScatterPoints of them) are chosen among the tentative collisions ∝ T σs
+// by systematic resampling, and each scores its weight times the direct light (next-event
+// estimation with a residual-ratio-tracked shadow ray). No sample escapes or is absorbed with
+// a score of 0, as one stopped at its first real collision would.
+// T at the end estimates the transmittance of the flight: 1 − T is the pixel's coverage
+// (alpha), and β T the throughput that reaches a surface behind the medium.
 //
 // Surfaces: the camera ray's flight ends at the nearest surface. A diffuse surface scores its
 // emission and its direct light (NEE through the media, blocked by surfaces) and ends the path:
@@ -22,6 +21,7 @@
 #include "render/direct_light.h"
 #include "render/integrator.h"
 #include "transport/path_vertex.h"
+#include "transport/scatter_point.h"
 
 namespace mirage {
 
@@ -42,19 +42,16 @@ public:
             std::optional<SurfaceHit> hit;
             if (geometry) hit = geometry->intersect(ray);
             const float tEnd = hit ? hit->t : ray.tMax;
-            const bool escaped =
-                trackCollisions(ts.tracking, ray, tEnd, sampler, [&](const Collision& c) {
-                    const Medium& m = ts.tracking.medium(c.medium);
-                    const CollisionOutcome o = collisionEvent(c, m, path, sampler, &out.L);
-                    if (o.event == MediumEvent::Scattered && mDirect)
-                        out.L += path.beta * directLightMedium(scene, c, -ray.d, sampler, ts);
-                    if (o.event == MediumEvent::Null && path.roulette(sampler))
-                        return Track::Continue;
-                    path.beta = SampledSpectrum(0.f);  // absorbed, scattered once, or rouletted
-                    return Track::Stop;
-                });
+            // The scattering point along the whole flight (transport/scatter_point.h).
+            const ScatterPointWalk walk =
+                chooseScatterPoints(ts.tracking, ray, tEnd, path.beta, sampler, &out.L);
+            for (int k = 0; walk.chosen && mDirect && k < kScatterPoints; ++k)
+                out.L += path.beta * walk.weight[k] *
+                         directLightMedium(scene, walk.collision[k], -ray.d, sampler, ts);
+            const bool escaped = walk.reachedEnd;
+            path.beta *= walk.T;
             if (bounce == 0)
-                out.alpha = escaped && !hit ? clamp(1.f - path.beta.average(), 0.f, 1.f) : 1.f;
+                out.alpha = escaped && !hit ? clamp(1.f - walk.T.average(), 0.f, 1.f) : 1.f;
             if (!escaped || !hit || bounce >= kMaxSpecularBounces) break;
 
             // The surface: emission and direct light where it is diffuse, else follow the mirror

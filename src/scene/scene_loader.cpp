@@ -308,6 +308,10 @@ static void readSettings(const TableReader& top,
             r->fail("integrator", e.what());
         }
         scene.maxDepth = int(r->getInt("max_depth", 10000, 1, 1 << 30));
+        const std::string sampler = r->getString("sampler", "sobol");
+        if (sampler != "sobol" && sampler != "random")
+            r->fail("sampler", "unknown sampler '" + sampler + "'; expected sobol or random");
+        scene.settings.sampler = sampler == "sobol" ? SamplerKind::Sobol : SamplerKind::Random;
         scene.majorantResolution = int(r->getInt("majorant_resolution", 64, 1, 1024));
         scene.photon.photons = uint64_t(r->getInt("photons", 100000, 0, int64_t(1) << 40));
         std::string estimate = r->getString("estimate", "beam");

@@ -85,6 +85,24 @@ EventProbabilities eventProbabilities(const Collision& c, const SampledSpectrum&
     return e;
 }
 
+bool russianRoulette(SampledSpectrum* T, Sampler& sampler) {
+    const float maxT = T->maxValue();
+    if (maxT <= 0.f) {
+        *T = SampledSpectrum(0.f);
+        return false;
+    }
+    if (maxT < 0.05f) {
+        constexpr float q = 0.75f;
+        if (sampler.get1D() < q) {
+            *T = SampledSpectrum(0.f);
+            return false;
+        }
+        *T /= (1.f - q);
+    }
+    return true;
+}
+
+
 SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float tMax,
                               Sampler& sampler) {
     // Optical depths add over superposed media, so T is the product of each medium's
@@ -112,34 +130,62 @@ SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float t
     SampledSpectrum T = exp(tau * -1.f);
     if (!heterogeneous || T.maxValue() <= 0.f) return T;
 
-    // The rest by ratio tracking. Each medium's tentative collisions are an independent
-    // Poisson stream, so skipping the homogeneous media's collisions leaves an unbiased
-    // estimate of the heterogeneous media's transmittance alone (it still pays for sampling
-    // them; trackCollisions has no per-medium mask).
-    const uint64_t capped = ctx.cappedFlights;
-    trackCollisions(ctx, worldRay, tMax, sampler, [&](const Collision& c) {
-        if (ctx.medium(size_t(c.medium)).closedFormTransmittance()) return Track::Continue;
-        // Ratio tracking: multiply by the null-collision probability σn/σ̄ per wavelength.
-        SampledSpectrum sigmaT = c.mp.sigmaA + c.mp.sigmaS;
-        T *= (SampledSpectrum(c.sigmaMaj) - sigmaT) / c.sigmaMaj;
-        float maxT = T.maxValue();
-        if (maxT <= 0.f) {
-            T = SampledSpectrum(0.f);
-            return Track::Stop;
+    // The rest by residual ratio tracking, medium by medium (optical depths add, so their
+    // transmittances multiply).
+    for (size_t i = 0; i < ctx.size() && T.maxValue() > 0.f; ++i)
+        if (!ctx.medium(i).closedFormTransmittance())
+            T *= residualRatioTracking(ctx, i, worldRay, tMax, sampler);
+    return T;
+}
+
+SampledSpectrum residualRatioTracking(TrackingContext& ctx, size_t i, const Ray& worldRay,
+                                      float tMax, Sampler& sampler) {
+    const Medium& m = ctx.medium(i);
+    Medium::Context& mc = ctx.context(i);
+    const Ray r = m.toObject(worldRay);
+    SampledSpectrum T(1.f);
+    float tau = -std::log1p(-sampler.get1D());  // majorant optical depth to the next collision
+    uint64_t collisions = 0;
+    bool capped = false;
+    m.majorant().traverse(r.o, r.d, 0.f, tMax, [&](float t0, float t1, float sigmaMaj) {
+        if (!(sigmaMaj > 0.f)) return true;  // empty cell: T unchanged
+        // The control: σt at the middle of the segment, a function of the ray alone, clamped
+        // into [0, σ̄] per wavelength.
+        MediumPoint mp;
+        m.eval(r.at(0.5f * (t0 + t1)), mc, &mp);
+        ++ctx.lookups;
+        SampledSpectrum sigmaC = mp.sigmaA + mp.sigmaS;
+        float sigmaR = 0.f;
+        for (int k = 0; k < kSpectrumSamples; ++k) {
+            sigmaC[k] = clamp(sigmaC[k], 0.f, sigmaMaj);
+            sigmaR = std::max(sigmaR, std::max(sigmaMaj - sigmaC[k], sigmaC[k]));
         }
-        if (maxT < 0.05f) {
-            // Russian roulette: survive with probability 1 − q and reweight by 1/(1 − q).
-            constexpr float q = 0.75f;
-            if (sampler.get1D() < q) {
-                T = SampledSpectrum(0.f);
-                return Track::Stop;
+        T *= exp(sigmaC * -(t1 - t0));
+        // The residual σt − σc by ratio tracking at rate σ̄r ≥ max(σ̄ − σc, σc): each factor
+        // 1 − (σt − σc)/σ̄r lies in [0, 2], close to 1 where σt stays near its control.
+        for (float t = t0;;) {
+            const float need = tau / sigmaR;
+            if (!(t + need < t1)) {
+                tau -= sigmaR * (t1 - t);
+                return true;
             }
-            T /= (1.f - q);
+            t += need;
+            tau = -std::log1p(-sampler.get1D());
+            if (++collisions >= ctx.maxCollisions) {
+                capped = true;
+                return false;
+            }
+            m.eval(r.at(t), mc, &mp);
+            ++ctx.lookups;
+            T *= SampledSpectrum(1.f) - (mp.sigmaA + mp.sigmaS - sigmaC) / sigmaR;
+            if (!russianRoulette(&T, sampler)) return false;
         }
-        return Track::Continue;
     });
-    // A flight cut at the collision cap has an unfinished estimate: treated as opaque.
-    if (ctx.cappedFlights != capped) return SampledSpectrum(0.f);
+    if (capped) {
+        // A flight cut at the collision cap has an unfinished estimate: treated as opaque.
+        ++ctx.cappedFlights;
+        return SampledSpectrum(0.f);
+    }
     return T;
 }
 

@@ -92,10 +92,25 @@ bool trackCollisions(TrackingContext& ctx, const Ray& worldRay, float tMax, Samp
                      F&& f);
 
 // Transmittance along worldRay over (0, tMax): the closed form exp(−σt(λ)·d) for homogeneous
-// media, ratio tracking (Novák et al. 2014) for the others — unbiased, with Russian roulette
-// once it falls below 0.05.
+// media, residual ratio tracking for the others — unbiased, with Russian roulette once it
+// falls below 0.05.
 SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float tMax,
                               Sampler& sampler);
+
+// Russian roulette on a transmittance estimate once it falls below 0.05: survives with
+// probability 1 − q = 1/4 and is reweighted by 1/(1 − q). False (and T = 0) when it ends.
+bool russianRoulette(SampledSpectrum* T, Sampler& sampler);
+
+// Residual ratio tracking (Novák et al. 2014, "Residual ratio tracking for estimating
+// attenuation in participating media") through medium i alone. In each majorant cell the ray
+// crosses, a control σc (σt at the middle of the ray's segment in the cell) is integrated in
+// closed form, exp(−σc ℓ), and only the residual σt − σc is tracked, at a rate σ̄r chosen so
+// that every factor 1 − (σt − σc)/σ̄r lies in [0, 2]. E[Π factors] = exp(−∫(σt − σc)) for any
+// σc that does not depend on the random numbers, so the product is unbiased; where σt varies
+// little within a cell (the inside of dense smoke, where plain ratio tracking multiplies many
+// factors near 0) the factors stay near 1 and the estimate is nearly deterministic.
+SampledSpectrum residualRatioTracking(TrackingContext& ctx, size_t i, const Ray& worldRay,
+                                      float tMax, Sampler& sampler);
 
 // Null-collision weight factors for the three events of one tentative collision: the
 // per-wavelength σ/σ̄ and the probabilities of choosing each event. Spectral tracking (Kutz et

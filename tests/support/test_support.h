@@ -64,6 +64,13 @@ std::unique_ptr<Medium> gridMedium(const std::function<float(int, int, int)>& va
                                    int hi, double h, float sigmaA, float sigmaS, float g = 0.f,
                                    const Transform& objectToWorld = Transform());
 
+// The numbers of path i of an estimate averaged over paths 0, 1, …: with Sobol, the paths are
+// the samples of one pixel (one low-discrepancy sequence); with random, independent streams.
+inline Sampler pathSampler(SamplerKind kind, uint64_t seed, uint64_t i) {
+    return kind == SamplerKind::Sobol ? Sampler(kind, seed, 0, i) : Sampler(seed, i, 0);
+}
+constexpr SamplerKind kSamplerKinds[] = {SamplerKind::Sobol, SamplerKind::Random};
+
 // Small test renders: width × height pixels in 8-pixel tiles, quiet.
 RenderSettings smallRenderSettings(int spp, uint64_t seed, int width = 32, int height = 32);
 

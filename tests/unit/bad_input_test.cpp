@@ -249,6 +249,7 @@ TEST_F(BadInput, AbsurdValuesAreRefusedOrBounded) {
         {"[render]\nphotons = -1\n", "photons"},
         {"[render]\nk = -5\n", "k"},
         {"[render]\nintegrator = \"magic\"\n", "integrator"},
+        {"[render]\nsampler = \"halton\"\n", "sampler"},
         {"[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 5]\n", "look_at"},
         {"[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nfov = 0\n", "fov"},
         {"[camera]\nposition = [0, 0, nan]\nlook_at = [0, 0, 0]\n", "position"},

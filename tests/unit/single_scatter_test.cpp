@@ -64,22 +64,25 @@ TEST(SingleScatter, MatchesQuadratureOfTheSingleScatteringIntegral) {
 
     auto integrator = makeSingleScatterIntegrator();
     ThreadState ts(scene);
-    double sum = 0, sum2 = 0, alpha = 0;
-    const int samples = 40000;
-    for (int i = 0; i < samples; ++i) {
-        Sampler s(1, 0, uint64_t(i));
-        SampledWavelengths w = SampledWavelengths::sampleVisible(s.get1D());
-        ts.tracking.setWavelengths(w);
-        RadianceSample r = integrator->Li(scene, ray, w, s, ts);
-        for (int k = 1; k < kSpectrumSamples; ++k) ASSERT_EQ(r.L[k], r.L[0]);  // grey medium
-        sum += r.L[0];
-        sum2 += double(r.L[0]) * r.L[0];
-        alpha += r.alpha;
+    for (SamplerKind kind : test::kSamplerKinds) {
+        SCOPED_TRACE(kind == SamplerKind::Sobol ? "sobol" : "random");
+        double sum = 0, sum2 = 0, alpha = 0;
+        const int samples = 40000;
+        for (int i = 0; i < samples; ++i) {
+            Sampler s(kind, 1, 0, uint64_t(i));
+            SampledWavelengths w = SampledWavelengths::sampleVisible(s.get1D());
+            ts.tracking.setWavelengths(w);
+            RadianceSample r = integrator->Li(scene, ray, w, s, ts);
+            for (int k = 1; k < kSpectrumSamples; ++k) ASSERT_EQ(r.L[k], r.L[0]);  // grey medium
+            sum += r.L[0];
+            sum2 += double(r.L[0]) * r.L[0];
+            alpha += r.alpha;
+        }
+        double mean = sum / samples;
+        double se = std::sqrt((sum2 / samples - mean * mean) / samples);
+        EXPECT_NEAR(mean, expected, 4 * se) << "expected " << expected << " ± " << se;
+        EXPECT_NEAR(alpha / samples, 1.0 - std::exp(-tauCam), 0.01);
     }
-    double mean = sum / samples;
-    double se = std::sqrt((sum2 / samples - mean * mean) / samples);
-    EXPECT_NEAR(mean, expected, 4 * se) << "expected " << expected << " ± " << se;
-    EXPECT_NEAR(alpha / samples, 1.0 - std::exp(-tauCam), 0.01);
 }
 
 TEST(SingleScatter, EmptyRayIsBlackAndTransparent) {

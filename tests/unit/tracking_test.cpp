@@ -29,11 +29,11 @@ struct Estimate {
     double mean, stderr_;
 };
 
-Estimate estimateT(const Medium& m, const Ray& r, float tMax, int n) {
+Estimate estimateT(const Medium& m, const Ray& r, float tMax, int n, SamplerKind kind) {
     TrackingContext ctx({&m});
     double sum = 0, sum2 = 0;
     for (int i = 0; i < n; ++i) {
-        Sampler s(3, uint64_t(i), 0);
+        Sampler s = test::pathSampler(kind, 3, uint64_t(i));
         ctx.setWavelengths(SampledWavelengths::sampleVisible(s.get1D()));
         double T = transmittance(ctx, r, tMax, s)[0];
         sum += T;
@@ -52,10 +52,12 @@ TEST(Tracking, HomogeneousBoxTransmittanceMatchesBeerLambert) {
     Vec3 a(float(2 * kH), float(5 * kH), float(7 * kH)),
         b(float(29 * kH), float(5 * kH), float(7 * kH));
     float L = length(b - a);
-    Estimate e = estimateT(*m, Ray{a, normalize(b - a), L}, L, 20000);
-    double exact = std::exp(-sigma * L);
-    EXPECT_NEAR(e.mean, exact, 4 * e.stderr_ + 1e-6) << "exact " << exact;
-    EXPECT_GT(e.stderr_, 0.0);  // ratio tracking with RR is a random estimator
+    for (SamplerKind kind : test::kSamplerKinds) {
+        Estimate e = estimateT(*m, Ray{a, normalize(b - a), L}, L, 20000, kind);
+        double exact = std::exp(-sigma * L);
+        EXPECT_NEAR(e.mean, exact, 4 * e.stderr_ + 1e-6) << "exact " << exact;
+        EXPECT_GT(e.stderr_, 0.0);  // ratio tracking with RR is a random estimator
+    }
 }
 
 TEST(Tracking, LinearRampTransmittanceMatchesClosedForm) {
@@ -68,8 +70,10 @@ TEST(Tracking, LinearRampTransmittanceMatchesClosedForm) {
     float L = float(x1 - x0);
     auto F = [](double x) { return 0.5 * x + x * x / (2.0 * 31.0 * kH); };
     double exact = std::exp(-sigma * (F(x1) - F(x0)));
-    Estimate e = estimateT(*m, Ray{a, Vec3(1, 0, 0), L}, L, 20000);
-    EXPECT_NEAR(e.mean, exact, 4 * e.stderr_ + 1e-6) << "exact " << exact;
+    for (SamplerKind kind : test::kSamplerKinds) {
+        Estimate e = estimateT(*m, Ray{a, Vec3(1, 0, 0), L}, L, 20000, kind);
+        EXPECT_NEAR(e.mean, exact, 4 * e.stderr_ + 1e-6) << "exact " << exact;
+    }
 }
 
 TEST(Tracking, ScaledTransformStretchesOpticalDepth) {
@@ -79,13 +83,16 @@ TEST(Tracking, ScaledTransformStretchesOpticalDepth) {
         makeMedium([](int, int, int) { return 1.f; }, sigma, 0.f, Transform::scale(Vec3d(2.0)));
     Vec3 a(float(2 * 2 * kH), float(10 * 2 * kH), float(10 * 2 * kH));
     float L = float(2 * 25 * kH);
-    Estimate e = estimateT(*m, Ray{a, Vec3(1, 0, 0), L}, L, 20000);
-    EXPECT_NEAR(e.mean, std::exp(-sigma * L), 4 * e.stderr_ + 1e-6);
+    for (SamplerKind kind : test::kSamplerKinds) {
+        Estimate e = estimateT(*m, Ray{a, Vec3(1, 0, 0), L}, L, 20000, kind);
+        EXPECT_NEAR(e.mean, std::exp(-sigma * L), 4 * e.stderr_ + 1e-6);
+    }
 }
 
 TEST(Tracking, TransmittanceOutsideMediumIsOne) {
     auto m = makeMedium([](int, int, int) { return 1.f; }, 1.f, 1.f);
-    Estimate e = estimateT(*m, Ray{Vec3(-1, -1, -1), Vec3(0, 1, 0), 10.f}, 10.f, 100);
+    Estimate e = estimateT(*m, Ray{Vec3(-1, -1, -1), Vec3(0, 1, 0), 10.f}, 10.f, 100,
+                           SamplerKind::Sobol);
     EXPECT_EQ(e.mean, 1.0);
 }
 

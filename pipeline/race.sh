@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# The race against Blender Cycles on ../shared/data/vdb/smoke1.vdb (tests/bench/smoke1_race.toml:
+# σt = 5 per unit density, albedo 0.95, isotropic, the sun, 256×256, a 1-px box filter on both
+# sides). Each renderer is measured against its own converged image (REF_SPP samples, kept in
+# OUT between runs: Cycles' ray marching and Mirage's tracking converge to slightly different
+# images), by relMSE over the smoke's pixels (pipeline/relmse.py), at each of SPPS.
+#   single    Cycles with 0 volume bounces against mirage --integrator single
+#   multiple  Cycles with 64 volume bounces against mirage --integrator volpath
+# Usage: pipeline/race.sh [single | multiple | both]   (default single)
+# Environment: SPPS ("4 16 64"), REF_SPP (1024), THREADS (2), OUT (out/race), SAMPLERS
+# ("sobol random": Mirage's [render] sampler values raced; "default" sets none), MIRAGE
+# (build/mirage: another build to race, e.g. an older one against the same references),
+# MIRAGE_SHARED_DATA.
+# Installs Blender when missing (pipeline/install-deps.sh blender). Prints one table per mode (also
+# OUT/<integrator>.csv) and the equal-error time ratios.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+DATA=${MIRAGE_SHARED_DATA:-../shared/data}
+SMOKE="$(realpath -m "$DATA/vdb/smoke1.vdb")"
+CYCLES_PY="$(realpath -m "$DATA/../tools/cycles_vdb.py")"
+for f in "$SMOKE" "$CYCLES_PY"; do
+  [ -f "$f" ] || { echo "race: $f not found: the race needs the reference data folder" >&2; exit 1; }
+done
+MODE=${1:-single}
+case "$MODE" in single | multiple | both) ;; *) echo "race: expected single, multiple or both" >&2; exit 1 ;; esac
+SPPS=${SPPS:-4 16 64}
+REF_SPP=${REF_SPP:-1024}
+THREADS=${THREADS:-2}
+OUT=${OUT:-out/race}
+SAMPLERS=${SAMPLERS:-sobol random}
+MIRAGE=${MIRAGE:-build/mirage}
+command -v blender >/dev/null || pipeline/install-deps.sh blender >/dev/null
+[ -x build/mirage ] || pipeline/build.sh build >/dev/null
+mkdir -p "$OUT"
+
+# References take another seed (7): with a low-discrepancy sampler, their first samples would
+# otherwise be the very samples of the images they judge.
+# Cycles: prints its render seconds (scene set-up excluded).
+cycles() {  # bounces spp exr [seed]
+  blender -b --factory-startup --python-exit-code 1 --python "$CYCLES_PY" -- "$SMOKE" "$3" \
+    256 256 "$2" --density-scale 5 --albedo 0.95 --anisotropy 0 --volume-bounces "$1" \
+    --sun-strength 5 --threads "$THREADS" --pixel-filter box --seed "${4:-0}" 2>&1 |
+    awk '/RENDER_SECONDS/ {print $2}'
+}
+# Mirage: prints its render seconds (mirage:render_seconds: loading and writing excluded).
+mirage() {  # integrator sampler spp exr [seed]
+  local sampler=()
+  [ "$2" = default ] || sampler=(--set "render.sampler=$2")
+  "$MIRAGE" render tests/bench/smoke1_race.toml --set "volume.0.file=$SMOKE" \
+    --set "render.integrator=$1" "${sampler[@]}" --spp "$3" --threads "$THREADS" \
+    --seed "${5:-0}" -o "$4" --quiet >/dev/null
+  oiiotool --info -v "$4" | awk -F'"' '/mirage:render_seconds/ {print $2}'
+}
+
+race() {  # bounces integrator
+  local bounces=$1 integrator=$2 tag="$OUT/$2"
+  printf '\nsmoke1.vdb 256x256, %d threads: Cycles --volume-bounces %d against mirage --integrator %s\n' \
+    "$THREADS" "$bounces" "$integrator"
+  [ -f "$tag.cycles_ref.exr" ] || cycles "$bounces" "$REF_SPP" "$tag.cycles_ref.exr" 7 >/dev/null
+  [ -f "$tag.mirage_ref.exr" ] || mirage "$integrator" sobol "$REF_SPP" "$tag.mirage_ref.exr" 7 >/dev/null
+  printf '  %-5s %-16s %8s %10s\n' spp renderer seconds relMSE
+  echo "renderer,spp,seconds,relmse" > "$tag.csv"
+  row() {  # renderer spp seconds image reference
+    local e
+    e=$(python3 pipeline/relmse.py "$4" "$5")
+    printf '  %-5s %-16s %8.2f %10.4g\n' "$2" "$1" "$3" "$e"
+    echo "$1,$2,$3,$e" >> "$tag.csv"
+  }
+  for spp in $SPPS; do
+    row cycles "$spp" "$(cycles "$bounces" "$spp" "$tag.cycles.exr")" "$tag.cycles.exr" \
+      "$tag.cycles_ref.exr"
+    for sampler in $SAMPLERS; do
+      row "mirage $sampler" "$spp" "$(mirage "$integrator" "$sampler" "$spp" "$tag.mirage.exr")" \
+        "$tag.mirage.exr" "$tag.mirage_ref.exr"
+    done
+  done
+  # Equal error: each Mirage's time to Cycles' relMSE at each spp (pipeline/race_ratio.py).
+  python3 pipeline/race_ratio.py "$tag.csv"
+}
+
+[ "$MODE" = multiple ] || race 0 single
+[ "$MODE" = single ] || race 64 volpath

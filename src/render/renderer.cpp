@@ -15,6 +15,36 @@
 
 namespace mirage {
 
+namespace {
+
+// Every sample of one tile's pixels into the film (tiles do not overlap: no two threads write
+// one pixel). A sample's numbers come from its own (seed, pixel, sample): pixel jitter, its
+// wavelengths, then the integrator's; its time in the shutter from a stream of its own, so
+// that a closed shutter leaves every other number where it was.
+void renderTile(const RenderScene& scene, const Integrator& integrator, const RenderSettings& s,
+                const PerspectiveCamera& camera, int tile, ThreadState& ts, Film* film) {
+    const int tilesX = tileCountX(s);
+    const int x0 = (tile % tilesX) * s.tileSize, y0 = (tile / tilesX) * s.tileSize;
+    const int x1 = std::min(x0 + s.tileSize, s.width), y1 = std::min(y0 + s.tileSize, s.height);
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+            const uint64_t pixel = uint64_t(y) * uint64_t(s.width) + uint64_t(x);
+            for (int i = 0; i < s.spp; ++i) {
+                Sampler sampler(s.sampler, s.seed, pixel, uint64_t(i));
+                const float jx = sampler.get1D(), jy = sampler.get1D();
+                const SampledWavelengths w = SampledWavelengths::sampleVisible(sampler.get1D());
+                ts.tracking.setWavelengths(w);
+                if (scene.camera.motionBlur())
+                    ts.tracking.setTimeOffset(shutterTime(scene.camera, s.seed, pixel, uint64_t(i)));
+                const Ray ray = camera.generate(float(x) + jx, float(y) + jy);
+                const RadianceSample rs = integrator.Li(scene, ray, w, sampler, ts);
+                film->addSample(x, y, rs.L, w, rs.alpha, rs.xyz);
+            }
+        }
+}
+
+}  // namespace
+
 Film render(const RenderScene& scene, Integrator& integrator, const RenderSettings& s,
             RenderStats* stats, TileCheckpoint* checkpoint) {
     const int tilesX = tileCountX(s);
@@ -55,26 +85,7 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
             uint64_t aboveBefore = ts.tracking.aboveMajorant;
             for (int tile = r.begin(); tile < r.end(); ++tile) {
                 if (done[tile].load(std::memory_order_relaxed) || interruptRequested()) continue;
-                int x0 = (tile % tilesX) * s.tileSize, y0 = (tile / tilesX) * s.tileSize;
-                int x1 = std::min(x0 + s.tileSize, s.width);
-                int y1 = std::min(y0 + s.tileSize, s.height);
-                for (int y = y0; y < y1; ++y)
-                    for (int x = x0; x < x1; ++x) {
-                        uint64_t pixel = uint64_t(y) * uint64_t(s.width) + uint64_t(x);
-                        for (int i = 0; i < s.spp; ++i) {
-                            Sampler sampler(s.sampler, s.seed, pixel, uint64_t(i));
-                            float jx = sampler.get1D(), jy = sampler.get1D();
-                            SampledWavelengths w =
-                                SampledWavelengths::sampleVisible(sampler.get1D());
-                            ts.tracking.setWavelengths(w);
-                            if (scene.camera.motionBlur())
-                                ts.tracking.setTimeOffset(
-                                    shutterTime(scene.camera, s.seed, pixel, uint64_t(i)));
-                            Ray ray = camera.generate(float(x) + jx, float(y) + jy);
-                            RadianceSample rs = integrator.Li(scene, ray, w, sampler, ts);
-                            film.addSample(x, y, rs.L, w, rs.alpha, rs.xyz);
-                        }
-                    }
+                renderTile(scene, integrator, s, camera, tile, ts, &film);
                 done[tile].store(1, std::memory_order_release);
                 progress.advance();
                 int64_t n = ++finishedNow;

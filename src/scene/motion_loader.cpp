@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/grid_name.h"
+#include "medium/medium.h"
+#include "scene/scene.h"
 #include "volume/vdb_file.h"
 
 namespace mirage {
@@ -128,6 +131,32 @@ std::string describeVelocity(const VelocityRecord& v) {
         s += "; " + std::to_string(v.velocity.sanitizedVoxels()) +
              " voxel(s) changed by the vector voxel rule";
     return s;
+}
+
+// The file's grid names in order (unnamed ones as "#N"), for the velocity lookup.
+std::vector<std::string> fileGridNames(const std::string& file) {
+    std::vector<std::string> names;
+    const VdbFileInfo info = inspectVdbFile(file);
+    for (size_t i = 0; i < info.grids.size(); ++i) names.push_back(gridName(info.grids[i].name, i));
+    return names;
+}
+
+// Moves a medium with its velocity grid over the shutter (Medium::setMotion) and takes the
+// grids it reads off the list of unused ones.
+void applyVelocity(const Scene& scene, Medium* medium, VolumeRecord* rec) {
+    const VelocityRecord& v = rec->velocity;
+    if (v.velocity.valid())
+        medium->setMotion(v.velocity, v.scale,
+                          float(scene.shutter.maxTimeOffset(scene.output.fps)));
+    auto& unused = rec->unusedGrids;
+    for (const std::string& n : {v.grid, v.grid + ".x", v.grid + ".y", v.grid + ".z"})
+        unused.erase(std::remove(unused.begin(), unused.end(), n), unused.end());
+}
+
+// The camera's shutter in seconds from the frames the scene (or the command line) gives.
+void setShutterSeconds(Scene* scene) {
+    scene->render.camera.shutterOpen = float(scene->shutter.open / scene->output.fps);
+    scene->render.camera.shutterClose = float(scene->shutter.close / scene->output.fps);
 }
 
 }  // namespace mirage

@@ -53,4 +53,16 @@ VectorGrid loadVelocityGrid(const std::string& file, const std::string& grid);
 // One line describing the bound velocity (class, range of |v|), for reports.
 std::string describeVelocity(const VelocityRecord& v);
 
+struct Scene;
+struct VolumeRecord;
+class Medium;
+
+// The grid names of a VDB file in order (an unnamed grid as "#N"), where a velocity is sought.
+std::vector<std::string> fileGridNames(const std::string& file);
+// Moves `medium` with its record's velocity grid over the scene's shutter (Medium::setMotion)
+// and takes the grids it reads off the record's unused ones.
+void applyVelocity(const Scene& scene, Medium* medium, VolumeRecord* rec);
+// The camera's shutter in seconds, from the frames the scene (or the command line) gives.
+void setShutterSeconds(Scene* scene);
+
 }  // namespace mirage

@@ -12,6 +12,7 @@
 #include "film/color.h"
 #include "medium/ocean_components.h"
 #include "scene/geometry_loader.h"
+#include "scene/light_loader.h"
 #include "scene/refraction_loader.h"
 #include "scene/scene.h"
 #include "scene/shader_loader.h"
@@ -84,52 +85,6 @@ CameraDesc frameBounds(const Bounds3& b, float fovDeg, float aspect) {
     c.up = Vec3(0, 1, 0);
     return c;
 }
-
-namespace {
-
-Spectrum lightColour(const TableReader& t, const ColorPipeline& color) {
-    if (t.has("temperature") && t.has("color"))
-        t.fail("temperature", "give either 'color' or 'temperature', not both");
-    if (t.has("temperature")) {
-        double T = t.getNumber("temperature", 6500, 100, 1e6);
-        return blackbodyNormalized(float(T));
-    }
-    Vec3 rgb = t.getVec3("color", Vec3(1, 1, 1));
-    if (rgb.x < 0 || rgb.y < 0 || rgb.z < 0 || (rgb.x + rgb.y + rgb.z) <= 0)
-        t.fail("color", "expected non-negative RGB values, not all zero");
-    return rgbIlluminantSpectrum(rgb, color.xyzToWorking());
-}
-
-std::unique_ptr<Light> readLight(const TableReader& t, const ColorPipeline& color) {
-    std::string type = t.getString("type");
-    std::unique_ptr<Light> light;
-    if (type == "point") {
-        light = makePointLight(t.getVec3("position"), float(t.getNumber("power", 100, 0, 1e15)),
-                               lightColour(t, color));
-    } else if (type == "spot") {
-        Vec3 p = t.getVec3("position");
-        Vec3 dir = t.has("look_at") ? t.getVec3("look_at") - p : t.getVec3("direction");
-        if (!(length(dir) > 0)) t.fail("direction", "the spot light points nowhere");
-        float outer = float(t.getNumber("cone_angle", 30, 0.1, 180));
-        float inner = float(t.getNumber("cone_inner", outer * 0.8, 0, outer));
-        light = makeSpotLight(p, dir, float(t.getNumber("power", 100, 0, 1e15)), inner, outer,
-                              lightColour(t, color));
-    } else if (type == "distant" || type == "sun") {
-        Vec3 dir = t.getVec3("direction");
-        if (!(length(dir) > 0)) t.fail("direction", "expected a non-zero direction");
-        light = makeDistantLight(dir, float(t.getNumber("irradiance", kUnitWhiteIrradiance, 0, 1e15)),
-                                 lightColour(t, color));
-    } else if (type == "quad") {
-        light = makeQuadLight(t.getVec3("corner"), t.getVec3("edge_u"), t.getVec3("edge_v"),
-                              float(t.getNumber("power", 100, 0, 1e15)), lightColour(t, color));
-    } else {
-        t.fail("type", "unknown light type '" + type + "'; expected point, spot, distant, sun or quad");
-    }
-    t.finish();
-    return light;
-}
-
-}  // namespace
 
 Transform readTransform(const TableReader& t) {
     Transform xf;
@@ -344,31 +299,6 @@ static void readSettings(const TableReader& top,
     }
 }
 
-// The file's grid names in order (unnamed ones as "#N"), for the velocity lookup.
-static std::vector<std::string> gridNames(const std::string& file) {
-    std::vector<std::string> names;
-    const VdbFileInfo info = inspectVdbFile(file);
-    for (size_t i = 0; i < info.grids.size(); ++i) names.push_back(gridName(info.grids[i].name, i));
-    return names;
-}
-
-// Moves a medium with its velocity grid over the shutter (Medium::setMotion) and takes the
-// grids it reads off the list of unused ones.
-static void applyVelocity(const Scene& scene, Medium* medium, VolumeRecord* rec) {
-    const VelocityRecord& v = rec->velocity;
-    if (v.velocity.valid())
-        medium->setMotion(v.velocity, v.scale,
-                          float(scene.shutter.maxTimeOffset(scene.output.fps)));
-    auto& unused = rec->unusedGrids;
-    for (const std::string& n : {v.grid, v.grid + ".x", v.grid + ".y", v.grid + ".z"})
-        unused.erase(std::remove(unused.begin(), unused.end(), n), unused.end());
-}
-
-// The camera's shutter in seconds from the frames the scene (or the command line) gives.
-static void setShutterSeconds(Scene* scene) {
-    scene->render.camera.shutterOpen = float(scene->shutter.open / scene->output.fps);
-    scene->render.camera.shutterClose = float(scene->shutter.close / scene->output.fps);
-}
 
 namespace {
 
@@ -506,7 +436,7 @@ void readVolume(const TableReader& v, const Resolve& resolve, const std::string&
     if (boxed) box = readVolumeBox(v, shader);
     // The velocity grid is read only when the shutter opens (it is read before the volumes).
     if (!boxed)
-        rec.velocity = readVelocity(v, rec.file, gridNames(rec.file), scene->shutter.blurs());
+        rec.velocity = readVelocity(v, rec.file, fileGridNames(rec.file), scene->shutter.blurs());
     v.finish();
     if (boxed) {
         scene->render.media.push_back(std::make_unique<Medium>(shader, box, xf, rec.densityScale));
@@ -639,7 +569,7 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
     // Its still bounds frame the camera: the blur may reach beyond them.
     float aspect = float(scene.settings.width) / float(scene.settings.height);
     scene.render.camera = frameBounds(medium->worldBounds(), 40.f, aspect);
-    rec.velocity = findVelocity(rec.file, gridNames(rec.file), scene.shutter.blurs());
+    rec.velocity = findVelocity(rec.file, fileGridNames(rec.file), scene.shutter.blurs());
     try {
         applyVelocity(scene, medium.get(), &rec);
     } catch (const MirageError& e) {

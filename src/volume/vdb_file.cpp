@@ -27,7 +27,7 @@
 #include "core/error.h"
 #include "core/grid_name.h"
 #include "volume/openvdb_expression.h"
-#include "volume/stored_values.h"
+#include "volume/voxel_rule.h"
 #include "volume/vdb_format.h"
 #include "volume/vdb_tree.h"
 
@@ -182,39 +182,6 @@ openvdb::FloatGrid::Ptr readFogVolume(const std::string& path, const FileLayout&
     return grid;
 }
 
-// True when the grid's fixed-size parts, the root's tile table and each level's node array lie
-// within the `bytes` of its buffer. Unsigned arithmetic: an offset or count from a corrupt file
-// cannot wrap the comparisons (each product is at most 2^32 × a node's size).
-bool nanoLayoutFits(const nanovdb::FloatGrid& grid, uint64_t bytes) {
-    using TreeT = nanovdb::FloatTree;
-    const auto* base = reinterpret_cast<const uint8_t*>(&grid);
-    auto fits = [&](const void* p, uint64_t size) {
-        const auto* q = reinterpret_cast<const uint8_t*>(p);
-        if (q < base) return false;
-        const uint64_t at = uint64_t(q - base);
-        return at <= bytes && size <= bytes - at;
-    };
-    const TreeT& tree = grid.tree();
-    if (!fits(&tree, sizeof(TreeT))) return false;
-    const auto* data = tree.data();
-    if (data->mNodeOffset[3] > bytes) return false;
-    const auto* root = reinterpret_cast<const uint8_t*>(data) + data->mNodeOffset[3];
-    if (!fits(root, sizeof(nanovdb::FloatTree::RootType))) return false;
-    if (!fits(root, tree.root().memUsage())) return false;
-    // The checksum's first span: grid, tree and root as one contiguous run.
-    if (grid.memUsage() + tree.memUsage() + tree.root().memUsage() > bytes) return false;
-    const uint64_t nodeBytes[3] = {sizeof(nanovdb::FloatTree::LeafNodeType),
-                                   sizeof(nanovdb::FloatTree::Node1),
-                                   sizeof(nanovdb::FloatTree::Node2)};
-    for (int level = 0; level < 3; ++level) {
-        if (data->mNodeCount[level] == 0) continue;
-        if (data->mNodeOffset[level] > bytes) return false;
-        const auto* first = reinterpret_cast<const uint8_t*>(data) + data->mNodeOffset[level];
-        if (!fits(first, uint64_t(data->mNodeCount[level]) * nodeBytes[level])) return false;
-    }
-    return true;
-}
-
 // Reads a NanoVDB grid's bytes, decompressing with OpenVDB's Blosc/zip readers: their stream
 // format (an int64 byte count, then the compressed bytes) is the one nanovdb::io writes, and it
 // spares Mirage a direct dependency on libblosc.
@@ -281,7 +248,7 @@ nanovdb::GridHandle<nanovdb::HostBuffer> readNanoVdbGrid(const std::string& path
     // NanoVDB's validator computes the checksum first, walking the root's tile table and the
     // node arrays by the counts and offsets the file states: bound those by the buffer before
     // it reads a byte through them (a corrupt table size sent it far past the buffer).
-    if (!nanoLayoutFits(*grid, record.nanoGridBytes))
+    if (!vdbformat::nanoLayoutFits(*grid, record.nanoGridBytes))
         fail(path, "corrupt: NanoVDB grid " + label +
                        " has node tables that do not fit in its " +
                        std::to_string(record.nanoGridBytes) + " bytes");
@@ -297,58 +264,6 @@ nanovdb::GridHandle<nanovdb::HostBuffer> readNanoVdbGrid(const std::string& path
         nanovdb::updateChecksum(*grid, nanovdb::ChecksumMode::Partial);
     }
     return handle;
-}
-
-// The voxel rule (docs/hostile-input.md, "Input rules"), in leaves (active and inactive values: the
-// sampler reads both) and tiles: NaN and negative values (−∞ included) become 0, +∞ and values
-// above kMaxVoxelValue become kMaxVoxelValue. Fog volumes are densities: a negative σ would make
-// free-flight sampling meaningless, a NaN poisons every pixel it reaches, and an unbounded value
-// overflows σ = scale × value × cross-section. Counts are of voxels (a tile counts all of its
-// voxels).
-struct SanitizeCounts {
-    uint64_t zeroed = 0, clamped = 0;
-    uint64_t total() const { return zeroed + clamped; }
-};
-
-SanitizeCounts sanitize(nanovdb::FloatGrid& grid) {
-    SanitizeCounts count;
-    auto fix = [&count](float& v, uint64_t voxels) {
-        if (!(v >= 0.f)) {  // NaN or negative
-            v = 0.f;
-            count.zeroed += voxels;
-        } else if (v > kMaxVoxelValue) {  // +∞ included
-            v = kMaxVoxelValue;
-            count.clamped += voxels;
-        }
-    };
-    forEachStoredValue(grid.tree(), fix);
-    if (count.total() > 0) {
-        // The node statistics (min/max) and the checksum describe the old values.
-        nanovdb::gridStats(grid, nanovdb::StatsMode::All);
-        nanovdb::updateChecksum(grid, nanovdb::ChecksumMode::Partial);
-    }
-    return count;
-}
-
-void warnSanitizedOnce(const std::string& path, const std::string& label,
-                       const SanitizeCounts& count, bool vectors = false) {
-    static std::mutex mutex;
-    static std::set<std::string> warned;
-    std::lock_guard<std::mutex> lock(mutex);
-    if (!warned.insert(path + '\n' + label).second) return;
-    std::string what;
-    if (count.zeroed > 0)
-        what = std::to_string(count.zeroed) +
-               (vectors ? " vectors had a NaN or infinite component and were set to 0"
-                        : " voxels were negative or NaN and were set to 0");
-    if (count.clamped > 0)
-        what += (what.empty() ? "" : "; ") + std::to_string(count.clamped) +
-                (vectors ? " vectors were longer than " + fmt(kMaxVoxelValue) +
-                               " and were shortened to it"
-                         : " voxels were +inf or above " + fmt(kMaxVoxelValue) +
-                               " and were clamped to it");
-    std::fprintf(stderr, "warning: %s: grid %s: %s\n", path.c_str(), label.c_str(),
-                 what.c_str());
 }
 
 GridInfo openVdbGridInfo(const std::string& path, const FileLayout& layout, int index) {
@@ -450,7 +365,7 @@ nanovdb::GridHandle<nanovdb::HostBuffer> toNanoVdb(const std::string& path,
 // the grid goes by: its own, or "#N".
 FloatGrid finishGrid(const std::string& path, const FileLayout& layout, int index,
                      nanovdb::GridHandle<nanovdb::HostBuffer> handle, const std::string& label) {
-    const SanitizeCounts sanitized = sanitize(*handle.grid<float>());
+    const SanitizeCounts sanitized = sanitizeScalarVoxels(*handle.grid<float>());
     if (sanitized.total() > 0) warnSanitizedOnce(path, label, sanitized);
     std::string name = gridName(layout.grids[size_t(index)].name, size_t(index));
     return FloatGrid(std::move(handle), std::move(name), sanitized.total());

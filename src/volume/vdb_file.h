@@ -15,13 +15,10 @@
 #include "volume/grid.h"
 #include "volume/grid_expression.h"
 #include "volume/vector_grid.h"
+#include "volume/voxel_rule.h"
 
 namespace mirage {
 
-// The largest voxel value a grid keeps (grid units: density, K, mg/m³). Far above any physical
-// density or temperature, and low enough that scale × value × cross-section stays finite in
-// float for any sane shader (Medium refuses the products that do not).
-constexpr float kMaxVoxelValue = 1e10f;
 
 struct GridInfo {
     std::string name;       // may be empty: unnamed grids are addressed as "#<index>"

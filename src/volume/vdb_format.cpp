@@ -1,5 +1,7 @@
 #include "volume/vdb_format.h"
 
+#include <nanovdb/NanoVDB.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
@@ -431,6 +433,39 @@ std::string valueTypeOf(const GridRecord& g) {
 
 std::string nanoVersionString(uint32_t packed) {
     return num(packed >> 21) + "." + num((packed >> 10) & 0x7ff) + "." + num(packed & 0x3ff);
+}
+
+// True when the grid's fixed-size parts, the root's tile table and each level's node array lie
+// within the `bytes` of its buffer. Unsigned arithmetic: an offset or count from a corrupt file
+// cannot wrap the comparisons (each product is at most 2^32 × a node's size).
+bool nanoLayoutFits(const nanovdb::FloatGrid& grid, uint64_t bytes) {
+    using TreeT = nanovdb::FloatTree;
+    const auto* base = reinterpret_cast<const uint8_t*>(&grid);
+    auto fits = [&](const void* p, uint64_t size) {
+        const auto* q = reinterpret_cast<const uint8_t*>(p);
+        if (q < base) return false;
+        const uint64_t at = uint64_t(q - base);
+        return at <= bytes && size <= bytes - at;
+    };
+    const TreeT& tree = grid.tree();
+    if (!fits(&tree, sizeof(TreeT))) return false;
+    const auto* data = tree.data();
+    if (data->mNodeOffset[3] > bytes) return false;
+    const auto* root = reinterpret_cast<const uint8_t*>(data) + data->mNodeOffset[3];
+    if (!fits(root, sizeof(nanovdb::FloatTree::RootType))) return false;
+    if (!fits(root, tree.root().memUsage())) return false;
+    // The checksum's first span: grid, tree and root as one contiguous run.
+    if (grid.memUsage() + tree.memUsage() + tree.root().memUsage() > bytes) return false;
+    const uint64_t nodeBytes[3] = {sizeof(nanovdb::FloatTree::LeafNodeType),
+                                   sizeof(nanovdb::FloatTree::Node1),
+                                   sizeof(nanovdb::FloatTree::Node2)};
+    for (int level = 0; level < 3; ++level) {
+        if (data->mNodeCount[level] == 0) continue;
+        if (data->mNodeOffset[level] > bytes) return false;
+        const auto* first = reinterpret_cast<const uint8_t*>(data) + data->mNodeOffset[level];
+        if (!fits(first, uint64_t(data->mNodeCount[level]) * nodeBytes[level])) return false;
+    }
+    return true;
 }
 
 }  // namespace mirage::vdbformat

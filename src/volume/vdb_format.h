@@ -25,6 +25,8 @@
 #include <string>
 #include <vector>
 
+#include <nanovdb/NanoVDB.h>
+
 namespace mirage::vdbformat {
 
 enum class Format { OpenVdb, NanoVdb };
@@ -86,5 +88,10 @@ std::string valueTypeOf(const GridRecord& record);
 
 // "nanovdb 32.4.2" style version text from NanoVDB's packed version number.
 std::string nanoVersionString(uint32_t packed);
+
+// True when a NanoVDB float grid's fixed-size parts, its root's tile table and each level's
+// node array lie within the `bytes` of its buffer (a corrupt file's offsets, checked before any
+// NanoVDB accessor follows them).
+bool nanoLayoutFits(const nanovdb::FloatGrid& grid, uint64_t bytes);
 
 }  // namespace mirage::vdbformat

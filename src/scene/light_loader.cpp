@@ -1,0 +1,57 @@
+// [[light]] tables → lights: point, spot, distant/sun and quad, coloured by RGB in the working
+// space or by a blackbody temperature (docs/scene-file.md, "Lights").
+#include "scene/light_loader.h"
+
+#include "film/color.h"
+#include "scene/scene.h"
+#include "spectrum/spectrum.h"
+
+namespace mirage {
+
+namespace {
+
+Spectrum lightColour(const TableReader& t, const ColorPipeline& color) {
+    if (t.has("temperature") && t.has("color"))
+        t.fail("temperature", "give either 'color' or 'temperature', not both");
+    if (t.has("temperature")) {
+        double T = t.getNumber("temperature", 6500, 100, 1e6);
+        return blackbodyNormalized(float(T));
+    }
+    Vec3 rgb = t.getVec3("color", Vec3(1, 1, 1));
+    if (rgb.x < 0 || rgb.y < 0 || rgb.z < 0 || (rgb.x + rgb.y + rgb.z) <= 0)
+        t.fail("color", "expected non-negative RGB values, not all zero");
+    return rgbIlluminantSpectrum(rgb, color.xyzToWorking());
+}
+
+}  // namespace
+
+std::unique_ptr<Light> readLight(const TableReader& t, const ColorPipeline& color) {
+    std::string type = t.getString("type");
+    std::unique_ptr<Light> light;
+    if (type == "point") {
+        light = makePointLight(t.getVec3("position"), float(t.getNumber("power", 100, 0, 1e15)),
+                               lightColour(t, color));
+    } else if (type == "spot") {
+        Vec3 p = t.getVec3("position");
+        Vec3 dir = t.has("look_at") ? t.getVec3("look_at") - p : t.getVec3("direction");
+        if (!(length(dir) > 0)) t.fail("direction", "the spot light points nowhere");
+        float outer = float(t.getNumber("cone_angle", 30, 0.1, 180));
+        float inner = float(t.getNumber("cone_inner", outer * 0.8, 0, outer));
+        light = makeSpotLight(p, dir, float(t.getNumber("power", 100, 0, 1e15)), inner, outer,
+                              lightColour(t, color));
+    } else if (type == "distant" || type == "sun") {
+        Vec3 dir = t.getVec3("direction");
+        if (!(length(dir) > 0)) t.fail("direction", "expected a non-zero direction");
+        light = makeDistantLight(dir, float(t.getNumber("irradiance", kUnitWhiteIrradiance, 0, 1e15)),
+                                 lightColour(t, color));
+    } else if (type == "quad") {
+        light = makeQuadLight(t.getVec3("corner"), t.getVec3("edge_u"), t.getVec3("edge_v"),
+                              float(t.getNumber("power", 100, 0, 1e15)), lightColour(t, color));
+    } else {
+        t.fail("type", "unknown light type '" + type + "'; expected point, spot, distant, sun or quad");
+    }
+    t.finish();
+    return light;
+}
+
+}  // namespace mirage

@@ -120,7 +120,9 @@ void Medium::fillMajorant(const Bounds3& objectBounds, int majorantResolution) {
 }
 
 void Medium::updateWorldBounds() {
-    mWorldBounds = mObjectToWorld.apply(mMajorant.bounds());
+    mWorldBounds = mTransformKeys.moves()
+                       ? mTransformKeys.sweep(mMajorant.bounds(), mShutterOpen, mShutterClose)
+                       : mObjectToWorld.apply(mMajorant.bounds());
     if (!mRegion) return;
     // The medium's world bounds (the photon pass aims sun photons at them) shrink to the region
     // (empty when the two do not overlap: then the medium is nowhere).
@@ -200,7 +202,8 @@ double Medium::checkedSigmaMax(int i, const FloatGrid* grid, float k) const {
     return sigma;
 }
 
-Medium::Context::Context(const Medium& m) : mMedium(&m) {
+Medium::Context::Context(const Medium& m)
+    : mMedium(&m), mObjectToWorld(m.mObjectToWorld), mWorldToObject(m.mWorldToObject) {
     for (const auto& g : m.mGrids) mAcc.push_back(g.accessor());
     if (m.mVelocity.valid()) mVelocityAcc.emplace(m.mVelocity.accessor());
     for (size_t i = 0; i < m.mShader.components.size(); ++i) {
@@ -223,6 +226,18 @@ void Medium::Context::setWavelengths(const SampledWavelengths& w) {
     for (size_t i = 0; i < comps.size(); ++i)
         mModel[i]->sampleWavelengths(w, comps[i].concentration * mMedium->mDensityScale,
                                      &mPath[i]);
+}
+
+void Medium::Context::placeAt(float seconds) {
+    mObjectToWorld = mMedium->mTransformKeys.at(seconds);
+    mWorldToObject = mObjectToWorld.inverse();
+}
+
+void Medium::setTransformMotion(KeyedTransform keys, float shutterOpen, float shutterClose) {
+    mTransformKeys = std::move(keys);
+    mShutterOpen = shutterOpen;
+    mShutterClose = shutterClose;
+    updateWorldBounds();
 }
 
 void Medium::confineTo(std::shared_ptr<const Region> region) {
@@ -279,7 +294,7 @@ void Medium::eval(const Vec3& p, Context& ctx, MediumPoint* out) const {
     out->sigmaA = SampledSpectrum(0.f);
     out->sigmaS = SampledSpectrum(0.f);
     out->components = int(mShader.components.size());
-    if (!inRegion(p)) {
+    if (!inRegion(p, ctx)) {
         for (int i = 0; i < out->components; ++i) out->sigmaSComponent[i] = SampledSpectrum(0.f);
         out->Le = SampledSpectrum(0.f);
         return;
@@ -328,7 +343,7 @@ void Medium::evalUnconfined(const Vec3& pAtTime, Context& ctx, MediumPoint* out)
 
 float Medium::sigmaSAt(const Vec3& pAtTime, Context& ctx, float lambdaNm) const {
     float sigmaS = 0.f;
-    if (!inRegion(pAtTime)) return 0.f;
+    if (!inRegion(pAtTime, ctx)) return 0.f;
     const Vec3 p = advected(ctx, pAtTime);
     for (size_t i = 0; i < mShader.components.size(); ++i) {
         const MediumComponent& comp = mShader.components[i];
@@ -342,7 +357,7 @@ float Medium::sigmaSAt(const Vec3& pAtTime, Context& ctx, float lambdaNm) const 
 
 void Medium::sigmaAComponentsAt(const Vec3& pAtTime, Context& ctx, float lambdaNm,
                                 float* sigmaA) const {
-    const bool inside = inRegion(pAtTime);
+    const bool inside = inRegion(pAtTime, ctx);
     const Vec3 p = advected(ctx, pAtTime);
     for (size_t i = 0; i < mShader.components.size(); ++i) {
         if (!inside) {

@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/keyed_transform.h"
 #include "core/region.h"
 #include "core/transform.h"
 #include "medium/component.h"
@@ -96,10 +97,11 @@ public:
         return homogeneous() && (!mRegion || mRegion->convex()) && mExcluded.empty();
     }
     // False for an object-space point outside the region the medium is confined to, or inside
-    // one cut out of it.
-    bool inRegion(const Vec3& pObject) const {
+    // one cut out of it (where the medium is at the context's time).
+    class Context;
+    bool inRegion(const Vec3& pObject, const Context& ctx) const {
         if (!mRegion && mExcluded.empty()) return true;
-        return inRegionWorld(mObjectToWorld.point(pObject));
+        return inRegionWorld(ctx.mObjectToWorld.point(pObject));
     }
     bool inRegionWorld(const Vec3& p) const {
         if (mRegion && !mRegion->contains(p)) return false;
@@ -125,11 +127,16 @@ public:
     // R above: the longest displacement a lookup can make (object-space metres).
     float blurRadius() const { return mBlurRadius; }
 
-    // The ray in object space with the same parameter t (direction not renormalised).
-    Ray toObject(const Ray& worldRay) const {
-        return {mWorldToObject.point(worldRay.o), mWorldToObject.vector(worldRay.d),
-                worldRay.tMax};
-    }
+    // Rigid motion of the whole volume within the shutter (`[[volume.transform.key]]`): at time
+    // offset Δt its object-to-world transform is keys.at(Δt) (core/keyed_transform.h). A path
+    // has one time, so along it the volume stands still and its rays stay straight in object
+    // space: each lookup is the still volume's, in the frame the context's time places it in
+    // (Context::setTimeOffset), and the object-space majorant bounds it at every time. The
+    // world bounds grow to what the volume sweeps over [shutterOpen, shutterClose] (seconds).
+    // The transform given to the constructor is the one at Δt = 0.
+    void setTransformMotion(KeyedTransform keys, float shutterOpen, float shutterClose);
+    bool transformMoves() const { return mTransformKeys.moves(); }
+    const KeyedTransform& transformKeys() const { return mTransformKeys; }
 
     // Per-path state: grid accessors and the cross-sections at the path's wavelengths.
     class Context {
@@ -140,14 +147,25 @@ public:
         // The path's time relative to the frame, Δt = t − t₀ (seconds): lookups of a moving
         // medium are advected by it. Ignored (kept 0) by a medium that does not move, so a
         // still medium makes exactly the lookups it makes without motion blur.
-        void setTimeOffset(float seconds) { mTime = mMedium->moving() ? seconds : 0.f; }
-        float timeOffset() const { return mTime; }
+        // A volume whose transform is keyed moves to where it is at that time.
+        void setTimeOffset(float seconds) {
+            mPathTime = seconds;
+            mTime = mMedium->moving() ? seconds : 0.f;
+            if (mMedium->transformMoves()) placeAt(seconds);
+        }
+        float timeOffset() const { return mPathTime; }
+        // The volume's transforms at the context's time.
+        const Transform& objectToWorld() const { return mObjectToWorld; }
+        const Transform& worldToObject() const { return mWorldToObject; }
 
     private:
         friend class Medium;
+        void placeAt(float seconds);
         const Medium* mMedium;
+        Transform mObjectToWorld, mWorldToObject;
         SampledWavelengths mLambda;
-        float mTime = 0.f;
+        float mPathTime = 0.f;  // as set
+        float mTime = 0.f;      // the advection's Δt: 0 when the medium has no velocity
         std::vector<FloatGrid::Accessor> mAcc;
         std::optional<VectorGrid::Accessor> mVelocityAcc;
         // Per component: its coefficients at the path's wavelengths, its law, its grid index.
@@ -157,6 +175,16 @@ public:
         int mTemperatureSlot = -1;
         bool mGrey = false;  // the medium's grey path: σ set once, scalar eval
     };
+
+    // A world ray in object space at the context's time, with the same parameter t (direction
+    // not renormalised); and a world point.
+    Ray toObject(const Ray& worldRay, const Context& ctx) const {
+        return {ctx.mWorldToObject.point(worldRay.o), ctx.mWorldToObject.vector(worldRay.d),
+                worldRay.tMax};
+    }
+    Vec3 pointToObject(const Vec3& pWorld, const Context& ctx) const {
+        return ctx.mWorldToObject.point(pWorld);
+    }
 
     // How far the flow carries the medium at object-space point p over the context's time
     // offset, v(p)·velocityScale·Δt (object metres); 0 for a still context.
@@ -219,6 +247,8 @@ private:
     int mTemperatureSlot = -1;
     Bounds3 mWorldBounds;
     Bounds3 mStillBounds;  // object bounds of the grids, before any motion
+    KeyedTransform mTransformKeys;
+    float mShutterOpen = 0.f, mShutterClose = 0.f;  // seconds: what the world bounds cover
     int mMajorantResolution = 64;
     MajorantGrid mMajorant;
     VectorGrid mVelocity;

@@ -255,7 +255,13 @@ bool MediumEmitter::sample(Sampler& sampler, Medium::Context& ctx, PhotonEmissio
     out->weight = float(f * mCellVolume / (cellPower * double(pdf)));
     if (!(out->weight > 0.f) || !std::isfinite(out->weight)) return false;
 
-    out->origin = mMedium->objectToWorld().point(moved);
+    // A volume whose transform is keyed is where the photon's time places it; a keyed scale
+    // changes its world volume, and the power it emits with it.
+    const Transform& xf = ctx.objectToWorld();
+    if (mMedium->transformMoves())
+        out->weight *= float(
+            std::abs(xf.linear.determinant() / mMedium->objectToWorld().linear.determinant()));
+    out->origin = xf.point(moved);
     out->direction = sampleUniformSphere(sampler.get1D(), sampler.get1D());
     out->lambda = lambda;
     return true;

@@ -12,7 +12,6 @@ namespace mirage {
 
 ScatteringProbe::ScatteringProbe(const std::vector<const Medium*>& media) : mMedia(media) {
     for (const Medium* m : media) {
-        mWorldToObject.push_back(m->objectToWorld().inverse());
         mContexts.emplace_back(*m);
         for (const MediumComponent& c : m->shader().components) mGrey &= c.sigmaS.isConstant();
         mGrey &= !m->fluorescent();
@@ -23,7 +22,7 @@ ScatteringProbe::ScatteringProbe(const std::vector<const Medium*>& media) : mMed
 float ScatteringProbe::sigmaS(const Vec3& worldP, float lambdaNm) {
     float sigmaS = 0.f;
     for (size_t i = 0; i < mMedia.size(); ++i) {
-        Vec3 p = mWorldToObject[i].point(worldP);
+        Vec3 p = mMedia[i]->pointToObject(worldP, mContexts[i]);
         Bounds3 box = mMedia[i]->objectBounds();
         if (!(p.x >= box.lo.x && p.y >= box.lo.y && p.z >= box.lo.z && p.x <= box.hi.x &&
               p.y <= box.hi.y && p.z <= box.hi.z))
@@ -38,7 +37,7 @@ float ScatteringProbe::reemissionDensity(const Vec3& worldP, float lambdaInNm) {
     for (size_t i = 0; i < mMedia.size(); ++i) {
         const Medium& m = *mMedia[i];
         if (!m.fluorescent()) continue;
-        Vec3 p = mWorldToObject[i].point(worldP);
+        Vec3 p = mMedia[i]->pointToObject(worldP, mContexts[i]);
         Bounds3 box = m.objectBounds();
         if (!(p.x >= box.lo.x && p.y >= box.lo.y && p.z >= box.lo.z && p.x <= box.hi.x &&
               p.y <= box.hi.y && p.z <= box.hi.z))
@@ -84,8 +83,6 @@ VolumePhotons::VolumePhotons(PhotonList photons, const std::vector<const Medium*
     // Mixture weights σs,c(x_p, λ_p) / Σ σs at each photon, all 4 path wavelengths set to λ_p.
     const size_t L = mLobes.size();
     mLobeWeights.assign(n * L, 0.f);
-    std::vector<Transform> worldToObject;
-    for (const Medium* m : media) worldToObject.push_back(m->objectToWorld().inverse());
     auto weigh = [&](const tbb::blocked_range<size_t>& r) {
         std::vector<Medium::Context> contexts;
         for (const Medium* m : media) contexts.emplace_back(*m);
@@ -102,7 +99,8 @@ VolumePhotons::VolumePhotons(PhotonList photons, const std::vector<const Medium*
                 const int components = int(m.shader().components.size());
                 // Outside its box a medium has no particles (its homogeneous components would
                 // still report their constant).
-                Vec3 p = worldToObject[mi].point(mMap[i].p);
+                contexts[mi].setTimeOffset(mMap[i].time);
+                Vec3 p = m.pointToObject(mMap[i].p, contexts[mi]);
                 Bounds3 box = m.objectBounds();
                 if (!(p.x >= box.lo.x && p.y >= box.lo.y && p.z >= box.lo.z && p.x <= box.hi.x &&
                       p.y <= box.hi.y && p.z <= box.hi.z)) {
@@ -110,7 +108,6 @@ VolumePhotons::VolumePhotons(PhotonList photons, const std::vector<const Medium*
                     continue;
                 }
                 contexts[mi].setWavelengths(w);
-                contexts[mi].setTimeOffset(mMap[i].time);
                 MediumPoint mp;
                 m.eval(p, contexts[mi], &mp);
                 for (int c = 0; c < components; ++c, ++lobe) {

@@ -48,7 +48,6 @@ public:
 
 private:
     std::vector<const Medium*> mMedia;
-    std::vector<Transform> mWorldToObject;
     std::vector<Medium::Context> mContexts;
     std::vector<float> mSigmaA;  // scratch: one medium's σa per component
     bool mGrey = true;

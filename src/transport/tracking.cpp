@@ -118,7 +118,7 @@ SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float t
             heterogeneous = true;
             continue;
         }
-        Ray r = m.toObject(worldRay);
+        Ray r = m.toObject(worldRay, ctx.context(i));
         float t0, t1;
         if (!m.objectBounds().intersect(r.o, r.d, 0.f, tMax, &t0, &t1) || !(t1 > t0)) continue;
         // A medium confined to a convex region: the chord through region ∩ box.
@@ -142,7 +142,7 @@ SampledSpectrum residualRatioTracking(TrackingContext& ctx, size_t i, const Ray&
                                       float tMax, Sampler& sampler) {
     const Medium& m = ctx.medium(i);
     Medium::Context& mc = ctx.context(i);
-    const Ray r = m.toObject(worldRay);
+    const Ray r = m.toObject(worldRay, ctx.context(i));
     SampledSpectrum T(1.f);
     float tau = -std::log1p(-sampler.get1D());  // majorant optical depth to the next collision
     uint64_t collisions = 0;

@@ -31,7 +31,7 @@ bool trackCollisions(TrackingContext& ctx, const Ray& worldRay, float tMax, Samp
 
     for (size_t i = 0; i < n; ++i) {
         Stream& s = streams[i];
-        s.objectRay = ctx.medium(i).toObject(worldRay);
+        s.objectRay = ctx.medium(i).toObject(worldRay, ctx.context(i));
         s.tEnd = tMax;
         if (!nextTentativeCollision(ctx.medium(i).majorant(), s.objectRay, 0.f, s.tEnd, exp1(),
                                     &s.tNext, &s.sigmaMaj, ctx.pathMajorant(i)))

@@ -105,7 +105,8 @@ public:
             const SampledSpectrum chordT =
                 transmittance(ts.tracking, Ray{pa, unit * (len / h)}, h, sampler);
             T *= chordT;
-            if (mPhotonPart) attenuate(Ray{pa, unit}, len, h, chordT, w, &prefix);
+            if (mPhotonPart)
+                attenuate(Ray{pa, unit}, len, h, chordT, w, ts.tracking.timeOffset(), &prefix);
             return T.maxValue() > 0.f;
         };
         const CurvedPathResult r = traceCurvedPath(*rf.field, Vec3d(ray.o), Vec3d(ray.d), lambda,
@@ -136,9 +137,11 @@ private:
     // chord's length len to the arc length h the path covers):
     //     W(λ) = mean_i T̂(λi) · T_m(λ) / mean_i T_m(λi),
     // whose expectation is T(λ) up to the march's own error; in grey media it is T̂'s mean.
+    // The march is made at the camera sample's time (motion blur), like the chord's T̂.
     void attenuate(const Ray& chord, float len, float h, const SampledSpectrum& chordT,
-                   const SampledWavelengths& w, ViewWeight* prefix) const {
+                   const SampledWavelengths& w, float time, ViewWeight* prefix) const {
         RayOpticalDepth& depth = mDepth->local();
+        depth.setTimeOffset(time);
         depth.march(chord, len);
         if (depth.empty() || depth.grey()) {
             prefix->scale(chordT.average());

@@ -20,7 +20,8 @@ namespace {
 // Every sample of one tile's pixels into the film (tiles do not overlap: no two threads write
 // one pixel). A sample's numbers come from its own (seed, pixel, sample): pixel jitter, its
 // wavelengths, then the integrator's; its time in the shutter from a stream of its own, so
-// that a closed shutter leaves every other number where it was.
+// that a closed shutter leaves every other number where it was. A camera that moves within the
+// shutter is placed at that time (CameraDesc::poseAt) for the sample's ray.
 void renderTile(const RenderScene& scene, const Integrator& integrator, const RenderSettings& s,
                 const PerspectiveCamera& camera, int tile, ThreadState& ts, Film* film) {
     const int tilesX = tileCountX(s);
@@ -34,9 +35,16 @@ void renderTile(const RenderScene& scene, const Integrator& integrator, const Re
                 const float jx = sampler.get1D(), jy = sampler.get1D();
                 const SampledWavelengths w = SampledWavelengths::sampleVisible(sampler.get1D());
                 ts.tracking.setWavelengths(w);
-                if (scene.camera.motionBlur())
-                    ts.tracking.setTimeOffset(shutterTime(scene.camera, s.seed, pixel, uint64_t(i)));
-                const Ray ray = camera.generate(float(x) + jx, float(y) + jy);
+                float time = 0.f;
+                if (scene.camera.motionBlur()) {
+                    time = shutterTime(scene.camera, s.seed, pixel, uint64_t(i));
+                    ts.tracking.setTimeOffset(time);
+                }
+                const Ray ray =
+                    scene.camera.moves()
+                        ? PerspectiveCamera(scene.camera.poseAt(time), s.width, s.height)
+                              .generate(float(x) + jx, float(y) + jy)
+                        : camera.generate(float(x) + jx, float(y) + jy);
                 const RadianceSample rs = integrator.Li(scene, ray, w, sampler, ts);
                 film->addSample(x, y, rs.L, w, rs.alpha, rs.xyz);
             }

@@ -56,6 +56,7 @@ int runInfo(const InfoOptions& o) {
             printGrids(v.file);
         std::printf("  shader '%s' (%s), density_scale %g\n", v.shader.c_str(),
                     m.shader().source.c_str(), v.densityScale);
+        for (const std::string& n : v.notes) std::printf("    %s\n", n.c_str());
         for (size_t b = 0; b < v.bindings.size(); ++b) {
             const FloatGrid& g = m.grids()[b];
             std::printf("    slot '%s' ← grid '%s': %llu active voxels, NanoVDB %s, max %g\n",
@@ -83,6 +84,10 @@ int runInfo(const InfoOptions& o) {
                             "majorant dilated by it\n",
                             double(m.blurRadius()));
         }
+        if (m.transformMoves())
+            std::printf(
+                "    transform keyed: the volume moves rigidly within the shutter "
+                "(each path sees it where its time places it)\n");
         std::printf("    coefficients: %s\n",
                     m.greyPath() ? "grey path (every σ wavelength-independent, none fluoresces)"
                                  : "spectral path (σ evaluated at each path's 4 wavelengths)");
@@ -105,8 +110,13 @@ int runInfo(const InfoOptions& o) {
     const CameraDesc& c = scene.render.camera;
     std::printf("camera: position (%g, %g, %g), look_at (%g, %g, %g), fov %g°\n", c.position.x,
                 c.position.y, c.position.z, c.lookAt.x, c.lookAt.y, c.lookAt.z, c.fovDeg);
+    if (c.keys.size() > 1 || c.orbitDegreesPerSecond != 0.f)
+        std::printf("camera motion: %zu key(s)%s; %s\n", c.keys.size(),
+                    c.orbitDegreesPerSecond != 0.f ? ", turntable" : "",
+                    c.moves() ? "the camera moves within the shutter (camera motion blur)"
+                              : "still within the closed shutter");
     if (c.motionBlur())
-        std::printf("shutter: [%g, %g] frames at %g fps ([%g, %g] s): velocity motion blur\n",
+        std::printf("shutter: [%g, %g] frames at %g fps ([%g, %g] s): motion blur\n",
                     scene.shutter.open, scene.shutter.close, scene.output.fps,
                     double(c.shutterOpen), double(c.shutterClose));
     else

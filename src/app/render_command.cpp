@@ -33,11 +33,7 @@ std::vector<int> frameList(const RenderOptions& o) {
     if (o.turntable > 0) {
         for (int i = 1; i <= o.turntable; ++i) frames.push_back(i);
     } else if (!o.frames.empty()) {
-        int a = 0, b = 0;
-        char dash = 0;
-        if (std::sscanf(o.frames.c_str(), "%d%c%d", &a, &dash, &b) != 3 || dash != '-' || b < a)
-            throw MirageError("--frames '" + o.frames + "': expected A-B with A ≤ B, e.g. 1-24");
-        for (int f = a; f <= b; ++f) frames.push_back(f);
+        frames = parseFrameRange(o.frames);
     } else {
         frames.push_back(o.frame >= 0 ? o.frame : 1);
     }
@@ -140,9 +136,7 @@ std::optional<FrameJob> prepareFrame(RenderSession& rs, int frame) {
     if (!o.quality.empty())
         applyQualityPreset(scene, qualityPreset(o.quality), job.integratorName, o.overrides);
     applyFrameSettings(scene, o.input, FrameSettings{o.resolution, o.spp, o.seed, o.quiet});
-    if (o.turntable > 0)
-        scene.render.camera =
-            orbitCamera(scene.render.camera, 360.f * float(frame - 1) / float(o.turntable));
+    if (o.turntable > 0) setTurntable(&scene.render.camera, frame, o.turntable, scene.output.fps);
     checkOutputSettings(scene, rs.color);
     job.out = framePath(o.output.empty() ? scene.output.path : o.output, frame, rs.sequence);
     if (o.skipExisting && isCompleteFrame(job.out)) {
@@ -391,7 +385,11 @@ Command addRenderCommand(CLI::App& app) {
                                                 "sRGB, Standard); default: the scene's preview");
     render->add_option("--frame", o->frame, "Frame number for $F/#### patterns and turntables "
                                             "(default 1)");
-    render->add_option("--frames", o->frames, "Render frames A to B (inclusive), e.g. 1-24")->excludes("--frame");
+    render
+        ->add_option("--frames", o->frames,
+                     "Render frames A to B (inclusive), e.g. 1-24; A-BxS every S-th "
+                     "frame, e.g. 1-48x2")
+        ->excludes("--frame");
     render->add_option("--set", o->overrides, "Override scene values before loading: "
                                               "key.path=value …, e.g. film.spp=64 "
                                               "volume.0.density_scale=2 (a bare VDB: film.*, "
@@ -404,9 +402,12 @@ Command addRenderCommand(CLI::App& app) {
     render->add_option("--threads", o->threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 4096));
     render->add_option("--seed", o->seed, "Random seed (default: film.seed)")->check(CLI::Range(int64_t(0), INT64_MAX));
-    render->add_option("--turntable", o->turntable, "Render frames 1 to N, the camera orbiting "
-                                                    "about its up axis through look_at (a bare "
-                                                    "VDB: about the volume); output gets .####")
+    render
+        ->add_option("--turntable", o->turntable,
+                     "Render frames 1 to N, the camera orbiting "
+                     "about its up axis through look_at (a bare "
+                     "VDB: about the volume); output gets .####; "
+                     "with a shutter the orbit blurs")
         ->check(CLI::Range(1, 100000));
     render->add_option("--integrator", o->integrator,
                        joinList(integratorInfos(),
@@ -431,13 +432,14 @@ Command addRenderCommand(CLI::App& app) {
                      "Skip frames whose output EXR is complete (mirage:complete = true)");
     render
         ->add_option("--shutter", o->shutter,
-                     "Velocity motion blur: shutter open for WIDTH frames centred on the frame "
-                     "(0.5 is a 180° shutter, 0 none); overrides [camera] shutter, and works "
-                     "for a bare VDB with a vel/v/velocity grid")
+                     "Motion blur: shutter open for WIDTH frames centred on the frame (0.5 is "
+                     "a 180° shutter, 0 none); overrides [camera] shutter; volumes blur by "
+                     "their velocity grids (a bare VDB by its vel/v/velocity grid), keyed "
+                     "cameras, turntables and keyed volume transforms move within it")
         ->check(CLI::Range(0.0, 2.0));
     render
         ->add_flag("--motion-blur", o->motionBlur,
-                   "Velocity motion blur with a 180° shutter (--shutter 0.5)")
+                   "Motion blur with a 180° shutter (--shutter 0.5)")
         ->excludes("--shutter");
     render->add_option("--max-memory", o->maxMemory,
                        "Fail early when the frame's estimated memory exceeds SIZE (4G, 512M, "

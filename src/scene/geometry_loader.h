@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "core/keyed_transform.h"
 #include "core/transform.h"
 #include "geometry/geometry_scene.h"
 #include "scene/toml_reader.h"
@@ -23,5 +24,8 @@ std::unique_ptr<GeometryScene> readGeometry(
 
 // { scale, rotate, translate } as for volumes (scene_loader.cpp).
 Transform readTransform(const TableReader& t);
+// The parts of a `transform` table (scale, rotate, translate), those it leaves out from `def`;
+// its other keys are left unread.
+TransformParts readTransformParts(const TableReader& t, const TransformParts& def = {});
 
 }  // namespace mirage

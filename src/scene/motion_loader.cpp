@@ -6,6 +6,7 @@
 
 #include "core/grid_name.h"
 #include "medium/medium.h"
+#include "scene/geometry_loader.h"
 #include "scene/scene.h"
 #include "volume/vdb_file.h"
 
@@ -151,6 +152,31 @@ void applyVelocity(const Scene& scene, Medium* medium, VolumeRecord* rec) {
     auto& unused = rec->unusedGrids;
     for (const std::string& n : {v.grid, v.grid + ".x", v.grid + ".y", v.grid + ".z"})
         unused.erase(std::remove(unused.begin(), unused.end(), n), unused.end());
+}
+
+KeyedTransform readVolumeTransform(const TableReader& t, int frame, double fps) {
+    const TransformParts base = readTransformParts(t);
+    std::vector<TransformKey> keys;
+    for (const TableReader& k : t.tables("key")) {
+        if (!k.has("frame")) k.fail("frame", "a transform key needs the frame it holds at");
+        TransformKey key;
+        const double f = k.getNumber("frame", 0.0, -1e9, 1e9);
+        key.time = (f - double(frame)) / fps;
+        for (const TransformKey& o : keys)
+            if (o.time == key.time) k.fail("frame", "two transform keys at the same frame");
+        key.parts = readTransformParts(k, base);
+        k.finish();
+        keys.push_back(key);
+    }
+    t.finish();
+    if (keys.empty()) keys.push_back(TransformKey{0.0, base});
+    return KeyedTransform(std::move(keys));
+}
+
+void applyTransformMotion(const Scene& scene, const KeyedTransform& keys, Medium* medium) {
+    if (!keys.moves() || !scene.shutter.blurs()) return;
+    medium->setTransformMotion(keys, float(scene.shutter.open / scene.output.fps),
+                               float(scene.shutter.close / scene.output.fps));
 }
 
 // The camera's shutter in seconds from the frames the scene (or the command line) gives.

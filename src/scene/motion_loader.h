@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/keyed_transform.h"
 #include "scene/toml_reader.h"
 #include "volume/vector_grid.h"
 
@@ -53,6 +54,11 @@ VectorGrid loadVelocityGrid(const std::string& file, const std::string& grid);
 // One line describing the bound velocity (class, range of |v|), for reports.
 std::string describeVelocity(const VelocityRecord& v);
 
+// A volume's `transform` table and its `[[volume.transform.key]]` list: each key a `frame` and
+// the parts it sets (scale, rotate, translate; the others are the table's), at seconds
+// (key frame − frame) / fps. Without keys, one key at 0 holding the table's parts.
+KeyedTransform readVolumeTransform(const TableReader& transform, int frame, double fps);
+
 struct Scene;
 struct VolumeRecord;
 class Medium;
@@ -62,6 +68,9 @@ std::vector<std::string> fileGridNames(const std::string& file);
 // Moves `medium` with its record's velocity grid over the scene's shutter (Medium::setMotion)
 // and takes the grids it reads off the record's unused ones.
 void applyVelocity(const Scene& scene, Medium* medium, VolumeRecord* rec);
+// Moves `medium` along its keyed transform over the scene's shutter when the keys move it and
+// the shutter is open (Medium::setTransformMotion).
+void applyTransformMotion(const Scene& scene, const KeyedTransform& keys, Medium* medium);
 // The camera's shutter in seconds, from the frames the scene (or the command line) gives.
 void setShutterSeconds(Scene* scene);
 

@@ -46,6 +46,7 @@ struct VolumeRecord {
     std::vector<std::string> unusedGrids;
     float densityScale = 1;
     VelocityRecord velocity;  // motion blur: the velocity grid bound, or why there is none
+    std::vector<std::string> notes;  // a bare VDB: how its grids were bound, and why
 };
 
 struct PhysicsTerm {
@@ -97,6 +98,8 @@ bool isVolumeFile(const std::string& path);  // .vdb or .nvdb
 // "$F4" → frame zero-padded to 4 digits, "$F" → unpadded, a run of '#' → padded to its length.
 std::string expandFramePattern(const std::string& pattern, int frame);
 bool hasFramePattern(const std::string& pattern);
+// "A-B" → frames A to B; "A-BxS" → every S-th frame from A (1-48x2: 1, 3, …, 47).
+std::vector<int> parseFrameRange(const std::string& range);
 
 // A camera looking at the bounds from the front and slightly above, far enough that the
 // bounding sphere fills the vertical field of view.

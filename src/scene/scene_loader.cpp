@@ -3,16 +3,18 @@
 // errors naming the file, line and column.
 #include <algorithm>
 #include <cstdio>
-#include <functional>
 #include <filesystem>
+#include <functional>
 #include <sstream>
 
 #include "core/grid_name.h"
 #include "core/text.h"
 #include "film/color.h"
 #include "medium/ocean_components.h"
+#include "scene/camera_loader.h"
 #include "scene/geometry_loader.h"
 #include "scene/light_loader.h"
+#include "scene/pyro_binding.h"
 #include "scene/refraction_loader.h"
 #include "scene/scene.h"
 #include "scene/shader_loader.h"
@@ -22,48 +24,6 @@
 namespace mirage {
 
 namespace fs = std::filesystem;
-
-// A frame number pads to at most this many digits. An int frame has at most 10; a wider pad
-// is a typo (`$F888888888` would ask for a gigabyte of zeros), refused with a clear message.
-constexpr size_t kMaxFramePad = 32;
-
-std::string expandFramePattern(const std::string& pattern, int frame) {
-    auto tooWide = [&]() {
-        return MirageError("frame pattern in '" + boundedMessage(pattern, 120) +
-                           "' pads to more than " + std::to_string(kMaxFramePad) +
-                           " digits (expected $F, $F4 or #### for a 4-digit frame)");
-    };
-    std::string out;
-    for (size_t i = 0; i < pattern.size();) {
-        if (pattern[i] == '$' && i + 1 < pattern.size() && pattern[i + 1] == 'F') {
-            size_t j = i + 2;
-            size_t width = 0;
-            while (j < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[j]))) {
-                width = width * 10 + size_t(pattern[j++] - '0');
-                if (width > kMaxFramePad) throw tooWide();
-            }
-            std::string num = std::to_string(std::abs(frame));
-            if (num.size() < width) num.insert(0, width - num.size(), '0');
-            out += (frame < 0 ? "-" : "") + num;
-            i = j;
-        } else if (pattern[i] == '#') {
-            size_t j = i;
-            while (j < pattern.size() && pattern[j] == '#') ++j;
-            if (j - i > kMaxFramePad) throw tooWide();
-            std::string num = std::to_string(frame);
-            if (num.size() < j - i) num.insert(0, (j - i) - num.size(), '0');
-            out += num;
-            i = j;
-        } else {
-            out += pattern[i++];
-        }
-    }
-    return out;
-}
-
-bool hasFramePattern(const std::string& pattern) {
-    return pattern.find("$F") != std::string::npos || pattern.find('#') != std::string::npos;
-}
 
 bool isVolumeFile(const std::string& path) {
     auto ext = fs::path(path).extension().string();
@@ -86,8 +46,8 @@ CameraDesc frameBounds(const Bounds3& b, float fovDeg, float aspect) {
     return c;
 }
 
-Transform readTransform(const TableReader& t) {
-    Transform xf;
+TransformParts readTransformParts(const TableReader& t, const TransformParts& def) {
+    TransformParts parts = def;
     if (t.has("scale")) {
         const toml::node* n = t.node("scale");
         Vec3d s = n->is_number() ? Vec3d(t.getNumber("scale")) : Vec3d(t.getVec3("scale"));
@@ -101,15 +61,21 @@ Transform readTransform(const TableReader& t) {
                 t.fail("scale", std::string("expected each scale factor's magnitude from 1e-6 "
                                             "to 1e6, found ") + found);
             }
-        xf = Transform::scale(s) * xf;
+        parts.scale = s;
     }
     if (t.has("rotate")) {
         auto r = t.getNumbers("rotate", 4, 4);
         Vec3d axis(r[1], r[2], r[3]);
         if (!(length(axis) > 0)) t.fail("rotate", "expected [degrees, axis x, y, z] with a non-zero axis");
-        xf = Transform::rotate(r[0], axis) * xf;
+        parts.degrees = r[0];
+        parts.axis = normalize(axis);
     }
-    if (t.has("translate")) xf = Transform::translate(Vec3d(t.getVec3("translate"))) * xf;
+    if (t.has("translate")) parts.translate = Vec3d(t.getVec3("translate"));
+    return parts;
+}
+
+Transform readTransform(const TableReader& t) {
+    const Transform xf = readTransformParts(t).compose();
     t.finish();
     return xf;
 }
@@ -430,8 +396,11 @@ void readVolume(const TableReader& v, const Resolve& resolve, const std::string&
     readEmissionIntensity(v, &shader);
     const auto bind = readBindings(v, shader);
     readExpressions(v, shader, boxed, &rec);
-    Transform xf;
-    if (auto t = v.optionalTable("transform")) xf = readTransform(*t);
+    // The volume's transform at the frame, and its keys over the shutter.
+    KeyedTransform keys;
+    if (auto t = v.optionalTable("transform"))
+        keys = readVolumeTransform(*t, options.frame, scene->output.fps);
+    const Transform xf = keys.at(0.0);
     Bounds3 box;
     if (boxed) box = readVolumeBox(v, shader);
     // The velocity grid is read only when the shutter opens (it is read before the volumes).
@@ -440,6 +409,7 @@ void readVolume(const TableReader& v, const Resolve& resolve, const std::string&
     v.finish();
     if (boxed) {
         scene->render.media.push_back(std::make_unique<Medium>(shader, box, xf, rec.densityScale));
+        applyTransformMotion(*scene, keys, scene->render.media.back().get());
     } else {
         auto medium = buildMedium(shader, rec, bind, xf, scene->majorantResolution, where, *scene,
                                   options);
@@ -448,6 +418,7 @@ void readVolume(const TableReader& v, const Resolve& resolve, const std::string&
         } catch (const MirageError& e) {
             v.fail(v.has("velocity") ? "velocity" : "file", e.what());
         }
+        applyTransformMotion(*scene, keys, medium.get());
         scene->render.media.push_back(std::move(medium));
     }
     scene->volumes.push_back(std::move(rec));
@@ -469,36 +440,6 @@ void confineInteriorMedia(Scene* scene) {
                 scene->render.media[j]->excludeFrom(region);
         }
     }
-}
-
-// [camera], or a camera framing the scene's bounds when there is none.
-CameraDesc readCamera(const TableReader& top, int frame, const Scene& scene) {
-    float aspect = float(scene.settings.width) / float(scene.settings.height);
-    auto c = top.optionalTable("camera");
-    if (!c) {
-        if (!scene.render.media.empty() || scene.render.hasSurfaces())
-            return frameBounds(scene.render.bounds(), 40.f, aspect);
-        return scene.render.camera;
-    }
-    CameraDesc cam;
-    cam.position = c->getVec3("position");
-    cam.lookAt = c->getVec3("look_at");
-    cam.up = c->getVec3("up", Vec3(0, 1, 0));
-    cam.fovDeg = float(c->getNumber("fov", 40, 0.01, 179));
-    if (!(length(cam.lookAt - cam.position) > 0))
-        c->fail("look_at", "the camera looks at its own position");
-    if (!(length(cross(cam.lookAt - cam.position, cam.up)) > 0))
-        c->fail("up", "'up' is parallel to the viewing direction");
-    // A turntable: N frames per orbit about `up` through look_at, frame 1 where the camera
-    // stands, so `--frames 1-N` renders one full turn (and frame N + 1 is frame 1 again).
-    if (c->has("turntable")) {
-        const int frames = int(c->getInt("turntable", 1, 1, 1000000));
-        const int k = ((frame - 1) % frames + frames) % frames;
-        cam = orbitCamera(cam, 360.f * float(k) / float(frames));
-    }
-    readShutter(*c);  // read before the volumes (loadScene); here so that finish() knows it
-    c->finish();
-    return cam;
 }
 
 // [refraction]; a field with ∇n = 0 everywhere bends nothing: the scene renders as without it.
@@ -550,7 +491,6 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
     VolumeRecord rec;
     rec.file = expandFramePattern(path, options.frame);
     if (!fs::exists(rec.file)) throw MirageError("volume file not found: " + rec.file);
-    rec.shader = "smoke";
     if (!options.overrides.empty()) {
         // No scene file: --set reaches the settings tables only; anything else (a light, a
         // volume, a typo) is an unknown key rather than silently ignored.
@@ -560,16 +500,24 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
         readSettings(top, [](const std::string& p) { return p; }, color, &scene);
         top.finish();
     }
-    ShaderDesc shader = loadShader("smoke", "");
+    // Smoke, or a pyro cache's fire (scene/pyro_binding.h).
+    const std::vector<std::string> names = fileGridNames(rec.file);
+    const PyroBinding pyro = bindPyroCache(names, [&](const std::string& g) {
+        return loadFloatGrids(rec.file, {g}, {}).front().maxValue();
+    });
+    rec.shader = pyro.shader;
+    rec.notes = pyro.notes;
+    ShaderDesc shader = loadShader(pyro.shader, "");
+    if (pyro.shader == "fire") adaptFireShader(pyro, &shader);
     // A smoke.toml in $MIRAGE_SHADER_PATH may carry an expression of its own.
     addShaderExpression(shader, &rec);
     if (options.shutter) scene.shutter = *options.shutter;
-    auto medium = buildMedium(shader, rec, {}, Transform(), scene.majorantResolution,
+    auto medium = buildMedium(shader, rec, pyro.bind, Transform(), scene.majorantResolution,
                               FileLoc{rec.file, 0, 0}, scene, options);
     // Its still bounds frame the camera: the blur may reach beyond them.
     float aspect = float(scene.settings.width) / float(scene.settings.height);
     scene.render.camera = frameBounds(medium->worldBounds(), 40.f, aspect);
-    rec.velocity = findVelocity(rec.file, fileGridNames(rec.file), scene.shutter.blurs());
+    rec.velocity = findVelocity(rec.file, names, scene.shutter.blurs());
     try {
         applyVelocity(scene, medium.get(), &rec);
     } catch (const MirageError& e) {

@@ -534,7 +534,8 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
     else if (auto c = top.optionalTable("camera"))
         scene.shutter = readShutter(*c);
     for (const auto& v : top.tables("volume")) readVolume(v, resolve, dir, options, &scene);
-    for (const auto& l : top.tables("light")) scene.render.lights.push_back(readLight(l, color));
+    for (const auto& l : top.tables("light"))
+        scene.render.lights.push_back(readLight(l, color, resolve));
     scene.render.geometry = readGeometry(top, resolve, scene.render.media.size(), color);
     confineInteriorMedia(&scene);
     scene.render.camera = readCamera(top, options.frame, scene);

@@ -344,8 +344,14 @@ ShaderDesc readVolumeShader(const TableReader& v, const std::string& name,
                                "'; its components are: " +
                                joinList(comps, [](const MediumComponent& mc) { return mc.name; }));
             it->concentration = float(c->getNumber(k, 0.0, 0.0, 1e12));
+            it->covariesWith.clear();  // a stated a_y(440): Case-2 water
         }
         c->finish();
+    }
+    try {
+        applyCase1Cdom(&shader);
+    } catch (const MirageError& e) {
+        v.fail("shader", e.what());
     }
     return shader;
 }

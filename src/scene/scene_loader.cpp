@@ -252,6 +252,7 @@ static void readSettings(const TableReader& top,
         }
         scene.settings.tileSize = int(f->getInt("tile_size", 32, 1, 4096));
         scene.settings.spp = int(f->getInt("spp", 16, 1, 1 << 20));
+        if (f->has("spp")) scene.statedSpp = scene.settings.spp;
         scene.settings.seed = uint64_t(f->getInt("seed", 0, 0, INT64_MAX));
         f->finish();
     }
@@ -269,6 +270,7 @@ static void readSettings(const TableReader& top,
         scene.settings.sampler = sampler == "sobol" ? SamplerKind::Sobol : SamplerKind::Random;
         scene.majorantResolution = int(r->getInt("majorant_resolution", 64, 1, 1024));
         scene.photon.photons = uint64_t(r->getInt("photons", 100000, 0, int64_t(1) << 40));
+        if (r->has("photons")) scene.statedPhotons = scene.photon.photons;
         std::string estimate = r->getString("estimate", "beam");
         if (estimate != "beam" && estimate != "point")
             r->fail("estimate",

@@ -47,15 +47,16 @@ double spectralIntegral(const Spectrum& s) {
 }
 
 // The direction of image coordinates (u, v) ∈ [0, 1)² and back (the convention of
-// dome_light.h), for a dome turned by `rotation` radians about +y.
+// dome_light.h), for a dome turned by `rotation` radians about +y. Turning (−sinθ sinφ, cosθ,
+// sinθ cosφ) by a about +y (right-handed: −z towards −x) gives the same form at φ − a.
 Vec3 latLongDirection(float u, float v, float rotation) {
-    const float theta = kPi * v, phi = 2.f * kPi * u + rotation;
+    const float theta = kPi * v, phi = 2.f * kPi * u - rotation;
     const float sinT = std::sin(theta);
     return {-sinT * std::sin(phi), std::cos(theta), sinT * std::cos(phi)};
 }
 void latLongCoordinates(const Vec3& d, float rotation, float* u, float* v) {
     const float theta = std::acos(clamp(d.y, -1.f, 1.f));
-    float phi = std::atan2(-d.x, d.z) - rotation;
+    float phi = std::atan2(-d.x, d.z) + rotation;
     phi -= 2.f * kPi * std::floor(phi / (2.f * kPi));
     *u = std::min(phi / (2.f * kPi), 0x1.fffffep-1f);
     *v = std::min(theta / kPi, 0x1.fffffep-1f);

@@ -416,10 +416,12 @@ Command addRenderCommand(CLI::App& app) {
                                 },
                                 "; ") +
                            "; default: the scene's [render] integrator");
-    render->add_option("--quality", o->quality,
-                       "draft, preview or final: samples per pixel and, for photon, photons and "
-                       "k, measured on the speed-accuracy curves (docs/performance.md); --spp "
-                       "and --set film.spp/render.photons/render.k still win")
+    render
+        ->add_option("--quality", o->quality,
+                     "draft, preview or final: samples per pixel and, for photon, photons and "
+                     "k, measured on the speed-accuracy curves (docs/performance.md); a scene "
+                     "that states film.spp or render.photons gets them scaled by 1/4, 1 or 4; "
+                     "--spp and --set film.spp/render.photons/render.k still win")
         ->check(CLI::IsMember({"draft", "preview", "final"}));
     render->add_flag("--float", o->floatExr, "Write 32-bit float EXR instead of half (overrides "
                                              "[output] half)");

@@ -53,6 +53,15 @@ public:
     virtual bool emitPhoton(const Bounds3& sceneBounds, Sampler& sampler,
                             PhotonEmission* out) const = 0;
     virtual std::string describe() const = 0;
+    // Radiance seen along d by a ray that leaves the scene (W·m⁻²·sr⁻¹·nm⁻¹): 0 but for lights at
+    // infinity (the dome). cameraRay: the ray is the camera's own, before any bounce, which a
+    // light may hide from (a dome that lights the scene without being its background).
+    virtual SampledSpectrum escapedRadiance(const Vec3&, const SampledWavelengths&,
+                                            bool /*cameraRay*/) const {
+        return SampledSpectrum(0.f);
+    }
+    // True for lights at infinity, which escaped rays see (escapedRadiance).
+    virtual bool infinite() const { return false; }
 };
 
 // Normalises a colour spectrum so that ∫ S dλ = 1 over 360–830 nm.

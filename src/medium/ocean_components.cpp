@@ -1,7 +1,10 @@
 #include "medium/ocean_components.h"
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
+#include "core/error.h"
 #include "spectrum/ocean_spectra.h"
 
 namespace mirage {
@@ -34,6 +37,45 @@ void makeChlorophyll(MediumComponent* c, float g) {
     c->sigmaSExponent = ocean::kParticleScatteringExponent;
     c->phase = PhaseKind::HenyeyGreenstein;
     c->g = g;
+}
+
+float case1CdomAbsorption440(float chl) {
+    const float aw = ocean::waterAbsorption()(440.f);
+    const float ap = ocean::bricaudA()(440.f) * std::pow(chl, 1.f - ocean::bricaudB()(440.f));
+    return kCase1CdomFraction * (aw + ap);
+}
+
+void applyCase1Cdom(ShaderDesc* shader) {
+    auto& comps = shader->components;
+    for (size_t i = 0; i < comps.size(); ++i) {
+        if (comps[i].kind != ComponentKind::Cdom || comps[i].covariesWith.empty()) continue;
+        const std::string chlName = comps[i].covariesWith;
+        const auto chl = std::find_if(comps.begin(), comps.end(), [&](const MediumComponent& c) {
+            return c.name == chlName && c.kind == ComponentKind::Chlorophyll;
+        });
+        if (chl == comps.end())
+            throw MirageError(shader->source + ": shader '" + shader->name + "': cdom component '" +
+                              comps[i].name + "' covaries with '" + chlName +
+                              "', which is not a chlorophyll component of the shader");
+        // The particle term: a power law of the chlorophyll's own concentration field.
+        MediumComponent particle = comps[i];
+        particle.name = comps[i].name + "_chl";
+        particle.kind = ComponentKind::Chlorophyll;
+        particle.grid = chl->grid;
+        particle.concentration = chl->concentration;
+        particle.sigmaA = comps[i].sigmaA.scaled(kCase1CdomFraction * ocean::bricaudA()(440.f));
+        particle.sigmaAExponent = Spectrum(1.f - ocean::bricaudB()(440.f));
+        particle.sigmaS = Spectrum(0.f);
+        particle.sigmaSExponent = 1.f;
+        particle.covariesWith.clear();
+        // The water term: constant.
+        MediumComponent& water = comps[i];
+        water.grid.clear();
+        water.concentration = kCase1CdomFraction * ocean::waterAbsorption()(440.f);
+        water.covariesWith.clear();
+        comps.insert(comps.begin() + ptrdiff_t(i) + 1, std::move(particle));
+        ++i;
+    }
 }
 
 const char* componentKindName(ComponentKind kind) {

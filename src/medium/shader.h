@@ -42,6 +42,9 @@ struct MediumComponent {
     // largest C of a cell.
     Spectrum sigmaAExponent{1.f};
     float sigmaSExponent = 1;
+    // Cdom only: the chlorophyll component whose concentration sets a_y(440), Case-1 water
+    // (medium/ocean_components.h, applyCase1Cdom); "" = a_y(440) is `concentration` (Case 2).
+    std::string covariesWith;
 
     // Fluorescence (Gutierrez et al. 2005): a photon absorbed by this component is re-emitted
     // with probability Γ (a quantum yield: photons out per photon absorbed), isotropically, at a

@@ -60,4 +60,12 @@ SampledSpectrum directLightSurface(const RenderScene& scene, const SurfaceHit& h
     return L;
 }
 
+SampledSpectrum escapedRadiance(const RenderScene& scene, const Vec3& d,
+                                const SampledWavelengths& w, bool cameraRay) {
+    SampledSpectrum L(0.f);
+    for (const auto& light : scene.lights)
+        if (light->infinite()) L += light->escapedRadiance(d, w, cameraRay);
+    return L;
+}
+
 }  // namespace mirage

@@ -20,4 +20,10 @@ SampledSpectrum directLightSurface(const RenderScene& scene, const SurfaceHit& h
                                    const Material& material, const Vec3& wo, Sampler& sampler,
                                    ThreadState& ts);
 
+// Σ_lights of the radiance along d of a ray that leaves the scene (lights at infinity: the dome).
+// Integrators add it only where no next-event estimate has counted that light already: on the
+// camera ray (cameraRay true) and after mirrors and glass, which shadow rays cannot cross.
+SampledSpectrum escapedRadiance(const RenderScene& scene, const Vec3& d,
+                                const SampledWavelengths& w, bool cameraRay);
+
 }  // namespace mirage

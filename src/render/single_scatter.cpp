@@ -15,7 +15,9 @@
 // emission and its direct light (NEE through the media, blocked by surfaces) and ends the path:
 // one bounce, as a medium event. A mirror or glass surface is followed (continueAtSurface, up
 // to kMaxSpecularBounces), so the first diffuse or medium event may be seen through glass. A
-// dispersive dielectric keeps the hero wavelength only, as in volpath.cpp.
+// dispersive dielectric keeps the hero wavelength only, as in volpath.cpp. A ray that leaves the
+// scene sees the lights at infinity (the dome), which no next-event estimate has counted on it.
+#include <cmath>
 #include <optional>
 
 #include "render/direct_light.h"
@@ -52,6 +54,9 @@ public:
             path.beta *= walk.T;
             if (bounce == 0)
                 out.alpha = escaped && !hit ? clamp(1.f - walk.T.average(), 0.f, 1.f) : 1.f;
+            // Leaving the scene: the dome, seen through the media (camera ray or after glass).
+            if (escaped && !hit && std::isinf(ray.tMax))
+                out.L += path.beta * escapedRadiance(scene, ray.d, w, bounce == 0);
             if (!escaped || !hit || bounce >= kMaxSpecularBounces) break;
 
             // The surface: emission and direct light where it is diffuse, else follow the mirror

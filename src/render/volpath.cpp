@@ -13,6 +13,9 @@
 // A path ends by absorption (probability P_a), by leaving every medium, by roulette, or at the
 // depth cap (counted in the summary: a capped path is a bias, however rare).
 //
+// Lights at infinity (the dome) are sampled by NEE like the others, so a path that leaves the
+// scene scores them only where no NEE has: on the camera ray and after mirrors and glass.
+//
 // Surfaces: each free flight ends at the nearest surface (tracking over (0, t_hit)). There the
 // path scores the surface's emission (Lambertian emitters are found by rays only, never by
 // NEE), then, on a diffuse surface, NEE to the lights, and continues along a BSDF sample
@@ -31,6 +34,7 @@
 // and next-event estimation through the isotropic lobe (render/inelastic_light.h). Not chosen:
 // the ordinary events, their weights divided by 1 − P_f; absorption then ends the path.
 #include <atomic>
+#include <cmath>
 
 #include "render/direct_light.h"
 #include "render/inelastic_light.h"
@@ -54,6 +58,7 @@ public:
         Ray ray = cameraRay;
         const GeometryScene* geometry = scene.hasSurfaces() ? scene.geometry.get() : nullptr;
         bool fluoresced = false;
+        bool specularChain = true;  // every vertex so far a mirror or glass: escapes see the dome
         for (int depth = 0;; ++depth) {
             Ray next;
             std::optional<SurfaceHit> hit;
@@ -87,9 +92,15 @@ public:
                 out.L += path.beta * directLightIsotropic(scene, next.o, sampler, ts);
                 fluoresced = true;
             }
-            if (!scattered && escaped && hit)
+            if (!scattered && escaped && !hit && specularChain && std::isinf(ray.tMax))
+                out.L += path.beta *
+                         escapedRadiance(scene, ray.d, ts.tracking.wavelengths(), depth == 0);
+            if (scattered) specularChain = false;  // a medium event: NEE counted the dome
+            if (!scattered && escaped && hit) {
+                specularChain = specularChain && scene.geometry->materialAt(*hit).specular();
                 scattered = scatterAtSurface(scene, *hit, ray, ts.tracking.wavelengths(), sampler,
                                              ts, &path, &out.L, &next);
+            }
             if (!scattered) break;
             if (depth + 1 >= mMaxDepth) {
                 mCapped.fetch_add(1, std::memory_order_relaxed);

@@ -1,8 +1,10 @@
-// [[light]] tables → lights: point, spot, distant/sun and quad, coloured by RGB in the working
-// space or by a blackbody temperature (docs/scene-file.md, "Lights").
+// [[light]] tables → lights: point, spot, distant/sun, quad and dome, coloured by RGB in the
+// working space or by a blackbody temperature (docs/scene-file.md, "Lights").
 #include "scene/light_loader.h"
 
+#include "core/error.h"
 #include "film/color.h"
+#include "light/dome_light.h"
 #include "scene/scene.h"
 #include "spectrum/spectrum.h"
 
@@ -23,9 +25,30 @@ Spectrum lightColour(const TableReader& t, const ColorPipeline& color) {
     return rgbIlluminantSpectrum(rgb, color.xyzToWorking());
 }
 
+// A dome: a constant colour (color or temperature) times `intensity`, or an image `map` times
+// `intensity`; `rotation` in degrees about +y; `camera_visible` (light/dome_light.h).
+std::unique_ptr<Light> readDome(const TableReader& t, const ColorPipeline& color,
+                                const std::function<std::string(const std::string&)>& resolve) {
+    DomeSettings s;
+    s.rotationDeg = float(t.getNumber("rotation", 0, -360, 360));
+    s.cameraVisible = t.getBool("camera_visible", true);
+    const float intensity = float(t.getNumber("intensity", 1, 0, 1e15));
+    if (!t.has("map")) return makeDomeLight(lightColour(t, color).scaled(intensity), s);
+    if (t.has("color") || t.has("temperature"))
+        t.fail("map", "a dome takes either an image 'map' or a 'color'/'temperature', not both");
+    const std::string file = resolve(t.getString("map"));
+    try {
+        return makeDomeLight(readLatLongImage(file), intensity, color.xyzToWorking(), s, file);
+    } catch (const MirageError& e) {
+        t.fail("map", e.what());
+    }
+    return nullptr;
+}
+
 }  // namespace
 
-std::unique_ptr<Light> readLight(const TableReader& t, const ColorPipeline& color) {
+std::unique_ptr<Light> readLight(const TableReader& t, const ColorPipeline& color,
+                                 const std::function<std::string(const std::string&)>& resolve) {
     std::string type = t.getString("type");
     std::unique_ptr<Light> light;
     if (type == "point") {
@@ -47,8 +70,11 @@ std::unique_ptr<Light> readLight(const TableReader& t, const ColorPipeline& colo
     } else if (type == "quad") {
         light = makeQuadLight(t.getVec3("corner"), t.getVec3("edge_u"), t.getVec3("edge_v"),
                               float(t.getNumber("power", 100, 0, 1e15)), lightColour(t, color));
+    } else if (type == "dome") {
+        light = readDome(t, color, resolve);
     } else {
-        t.fail("type", "unknown light type '" + type + "'; expected point, spot, distant, sun or quad");
+        t.fail("type", "unknown light type '" + type +
+                           "'; expected point, spot, distant, sun, quad or dome");
     }
     t.finish();
     return light;

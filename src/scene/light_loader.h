@@ -1,7 +1,9 @@
 // [[light]] tables of a scene file (docs/scene-file.md, "Lights").
 #pragma once
 
+#include <functional>
 #include <memory>
+#include <string>
 
 #include "light/light.h"
 #include "scene/toml_reader.h"
@@ -10,7 +12,9 @@ namespace mirage {
 
 class ColorPipeline;
 
-// One [[light]]; errors name the file, line and key.
-std::unique_ptr<Light> readLight(const TableReader& t, const ColorPipeline& color);
+// One [[light]]; errors name the file, line and key. `resolve` turns a path written in the scene
+// (a dome's `map`) into one relative to the working directory.
+std::unique_ptr<Light> readLight(const TableReader& t, const ColorPipeline& color,
+                                 const std::function<std::string(const std::string&)>& resolve);
 
 }  // namespace mirage

@@ -1,6 +1,7 @@
 #include "scene/render_frame.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "core/error.h"
@@ -38,12 +39,14 @@ void applyFrameSettings(Scene& scene, const std::string& input, const FrameSetti
 
 // Measured on assets/scenes/fog_sphere.toml (docs/performance.md): the fastest measured
 // setting within 2.5× of relMSE 1e-1 (draft), 1e-2 (preview), 1e-3 (final); the photon preview
-// and final are the best measured (relMSE 0.036 and 0.011). {name, spp, photons, k, path spp}.
+// and final are the best measured (relMSE 0.036 and 0.011). These hold for a scene that states
+// no samples; one that does has them scaled by the last column (render_frame.h).
+// {name, spp, photons, k, path spp, scene scale}.
 const std::vector<QualityPreset>& qualityPresets() {
     static const std::vector<QualityPreset> presets = {
-        {"draft", 16, 100000, 16, 64},
-        {"preview", 64, 1000000, 16, 256},
-        {"final", 256, 4000000, 16, 4096},
+        {"draft", 16, 100000, 16, 64, 0.25},
+        {"preview", 64, 1000000, 16, 256, 1.0},
+        {"final", 256, 4000000, 16, 4096, 4.0},
     };
     return presets;
 }
@@ -63,8 +66,16 @@ void applyQualityPreset(Scene& scene, const QualityPreset& preset, const std::st
         });
     };
     const bool photon = integratorInfo(integrator).photonPass;
-    if (!overridden("film.spp")) scene.settings.spp = photon ? preset.spp : preset.pathSpp;
-    if (photon && !overridden("render.photons")) scene.photon.photons = preset.photons;
+    auto scaled = [&](double stated) {
+        return std::max(1.0, std::round(stated * preset.sceneScale));
+    };
+    if (!overridden("film.spp"))
+        scene.settings.spp = scene.statedSpp > 0 ? int(scaled(scene.statedSpp))
+                                                 : (photon ? preset.spp : preset.pathSpp);
+    if (photon && !overridden("render.photons"))
+        scene.photon.photons = scene.statedPhotons > 0
+                                   ? uint64_t(scaled(double(scene.statedPhotons)))
+                                   : preset.photons;
     if (photon && !overridden("render.k")) scene.photon.k = preset.k;
 }
 

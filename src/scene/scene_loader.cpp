@@ -218,6 +218,7 @@ static void readSettings(const TableReader& top,
         }
         scene.settings.tileSize = int(f->getInt("tile_size", 32, 1, 4096));
         scene.settings.spp = int(f->getInt("spp", 16, 1, 1 << 20));
+        if (f->has("spp")) scene.statedSpp = scene.settings.spp;
         scene.settings.seed = uint64_t(f->getInt("seed", 0, 0, INT64_MAX));
         f->finish();
     }
@@ -235,6 +236,7 @@ static void readSettings(const TableReader& top,
         scene.settings.sampler = sampler == "sobol" ? SamplerKind::Sobol : SamplerKind::Random;
         scene.majorantResolution = int(r->getInt("majorant_resolution", 64, 1, 1024));
         scene.photon.photons = uint64_t(r->getInt("photons", 100000, 0, int64_t(1) << 40));
+        if (r->has("photons")) scene.statedPhotons = scene.photon.photons;
         std::string estimate = r->getString("estimate", "beam");
         if (estimate != "beam" && estimate != "point")
             r->fail("estimate",
@@ -310,8 +312,14 @@ ShaderDesc readVolumeShader(const TableReader& v, const std::string& name,
                                "'; its components are: " +
                                joinList(comps, [](const MediumComponent& mc) { return mc.name; }));
             it->concentration = float(c->getNumber(k, 0.0, 0.0, 1e12));
+            it->covariesWith.clear();  // a stated a_y(440): Case-2 water
         }
         c->finish();
+    }
+    try {
+        applyCase1Cdom(&shader);
+    } catch (const MirageError& e) {
+        v.fail("shader", e.what());
     }
     return shader;
 }
@@ -475,7 +483,8 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
     else if (auto c = top.optionalTable("camera"))
         scene.shutter = readShutter(*c);
     for (const auto& v : top.tables("volume")) readVolume(v, resolve, dir, options, &scene);
-    for (const auto& l : top.tables("light")) scene.render.lights.push_back(readLight(l, color));
+    for (const auto& l : top.tables("light"))
+        scene.render.lights.push_back(readLight(l, color, resolve));
     scene.render.geometry = readGeometry(top, resolve, scene.render.media.size(), color);
     confineInteriorMedia(&scene);
     scene.render.camera = readCamera(top, options.frame, scene);

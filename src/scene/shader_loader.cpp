@@ -103,6 +103,11 @@ MediumComponent readComponent(const TableReader& c, size_t index) {
         makeWater(&mc);
     } else if (kind == "cdom") {
         makeCdom(&mc, float(c.getNumber("slope", ocean::kCdomSlope, 0.0, 0.1)));
+        mc.covariesWith = c.getString("covaries_with", "");
+        if (!mc.covariesWith.empty() && c.has("concentration"))
+            c.fail("covaries_with",
+                   "a cdom component takes a_y(440) either from its chlorophyll "
+                   "(covaries_with, Case-1 water) or from 'concentration', not both");
     } else if (kind == "chlorophyll") {
         makeChlorophyll(&mc, float(c.getNumber("g", kParticleG, -1.0, 1.0)));
     } else {

@@ -173,7 +173,7 @@ Spectrum rgbReflectanceSpectrum(const Vec3& rgb) {
 // (xyzToWorking · A) c = rgb. Colours outside the gamut the three windows can make (very
 // saturated ones) need a negative coefficient; an emitter cannot emit negative power, so those
 // are clamped to 0 and the colour comes out desaturated.
-Spectrum rgbIlluminantSpectrum(const Vec3& rgb, const Mat3& xyzToWorking) {
+Mat3 rgbIlluminantCoefficients(const Mat3& xyzToWorking) {
     Mat3 a;
     a.m.fill(0.0);
     for (int i = 0; i < Spectrum::kDenseSamples; ++i) {
@@ -185,9 +185,18 @@ Spectrum rgbIlluminantSpectrum(const Vec3& rgb, const Mat3& xyzToWorking) {
     for (double& v : a.m) v /= double(kCieYIntegral);
     Mat3 system = xyzToWorking * a;
     MIRAGE_CHECK(std::abs(system.determinant()) > 1e-12);
-    Vec3d c = system.inverse().apply(Vec3d(rgb));
-    c = vmax(c, Vec3d(0.0));
+    return system.inverse();
+}
 
+Spectrum rgbBasisSpectrum(int k) {
+    MIRAGE_CHECK(k >= 0 && k < 3);
+    std::vector<float> dense(Spectrum::kDenseSamples);
+    for (int i = 0; i < Spectrum::kDenseSamples; ++i) dense[i] = float(basis(denseLambda(i))[k]);
+    return Spectrum::fromDense(std::move(dense));
+}
+
+Spectrum rgbIlluminantSpectrum(const Vec3& rgb, const Mat3& xyzToWorking) {
+    const Vec3d c = vmax(rgbIlluminantCoefficients(xyzToWorking).apply(Vec3d(rgb)), Vec3d(0.0));
     std::vector<float> dense(Spectrum::kDenseSamples);
     for (int i = 0; i < Spectrum::kDenseSamples; ++i)
         dense[i] = float(dot(c, basis(denseLambda(i))));

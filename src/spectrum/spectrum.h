@@ -47,6 +47,11 @@ Spectrum blackbodyNormalized(float temperatureK);
 //    saturated colours are clamped to 0).
 Spectrum rgbReflectanceSpectrum(const Vec3& rgb);
 Spectrum rgbIlluminantSpectrum(const Vec3& rgb, const Mat3& xyzToWorking);
+// The pieces of rgbIlluminantSpectrum, for an image of many colours (the dome light's map):
+// the matrix taking working-space RGB to the coefficients (c_r, c_g, c_b) of the three basis
+// windows (clamp them at 0 before use), and the windows B_r, B_g, B_b as spectra (k = 0, 1, 2).
+Mat3 rgbIlluminantCoefficients(const Mat3& xyzToWorking);
+Spectrum rgbBasisSpectrum(int k);
 
 // CIE XYZ of a whole spectrum: Σ S(λ) cmf(λ) Δλ / ∫ȳ over 360–830 nm at Δλ = 1 nm, so a constant
 // spectrum 1 has Y ≈ 1 (the same normalisation as the per-sample `spectrumToXyz` in cie.h, whose

@@ -67,6 +67,7 @@
 #include "core/text.h"
 #include "core/thread_limit.h"
 #include "geometry/material.h"
+#include "medium/ocean_components.h"
 #include "photon/photon_blocks.h"
 #include "photon/photon_walk.h"
 #include "scene/shader_loader.h"
@@ -268,6 +269,7 @@ ShaderDesc slabShader(const SlabOptions& o) {
                               ")");
         if (field == "concentration") {
             c->concentration = float(v);
+            c->covariesWith.clear();  // a stated a_y(440): Case-2 water
         } else if (field == "quantum_efficiency" && v <= 1.0) {
             c->quantumEfficiency = float(v);
         } else {
@@ -276,6 +278,7 @@ ShaderDesc slabShader(const SlabOptions& o) {
                               "NAME.quantum_efficiency=Γ (0 to 1)");
         }
     }
+    applyCase1Cdom(&shader);
     return shader;
 }
 

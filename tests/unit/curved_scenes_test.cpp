@@ -32,6 +32,7 @@ TEST(CurvedScenes, EachRendersWithoutSharedData) {
     };
     for (const Case& c :
          {Case{"inferior_mirage.toml", "", ""}, Case{"superior_mirage.toml", "", ""},
+          Case{"fata_morgana.toml", "", ""},
           Case{"heat_haze.toml", "fire", "fire_haze.vdb"},
           Case{"flattened_sun.toml", "fog-sphere", "fog_sphere.vdb"}}) {
         const std::string scene = sceneCopy(c.scene, c.asset, c.file);

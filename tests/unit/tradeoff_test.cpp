@@ -168,8 +168,8 @@ TEST(Tradeoff, PhotonCountAndEstimateSweepWithThePhotonIntegrator) {
     }
 }
 
-// `render --quality`: the presets raise the samples from draft to final; an explicit --spp or
-// --set film.spp wins over the preset.
+// `render --quality`: the presets raise the samples from draft to final, scaling what the scene
+// states; an explicit --spp or --set film.spp wins over the preset.
 TEST(Tradeoff, QualityPresetsSetSamplesUnlessOverridden) {
     const std::string dir = test::tempDir();
     const std::string scene = writeScene(dir);
@@ -189,6 +189,10 @@ TEST(Tradeoff, QualityPresetsSetSamplesUnlessOverridden) {
               finalSpp = sppOf("--quality final");
     EXPECT_LT(draft, preview);
     EXPECT_LT(preview, finalSpp);
+    // The scene states spp = 4, what it needs: the presets scale it by 1/4, 1 and 4.
+    EXPECT_EQ(draft, 1);
+    EXPECT_EQ(preview, 4);
+    EXPECT_EQ(finalSpp, 16);
     EXPECT_EQ(sppOf("--quality final --spp 3"), 3);
     EXPECT_EQ(sppOf("--quality final --set film.spp=5"), 5);
     // With the photon integrator the presets set the photon count too (the EXR records the

@@ -1,0 +1,242 @@
+// The dome light (light/dome_light.h): the image's directions follow its luminance × sin θ (χ²),
+// the next-event estimate is unbiased (its mean is ∫ L dω), rotation turns the image, photons
+// carry the power that crosses the scene's bounding disc, an HDR file reads back, and a white
+// furnace: an albedo-1 medium under a white dome shows the dome's radiance whatever its density.
+#include "light/dome_light.h"
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "chi_square.h"
+#include "render/integrator.h"
+#include "test_support.h"
+
+using namespace mirage;
+
+namespace {
+
+// Working space = XYZ: the sampling tests need a colour pipeline, not a particular one.
+const Mat3 kXyz;
+
+// A small map with a dark ground, a graded sky and a "sun" of one bright pixel.
+LatLongImage skyImage(int w = 16, int h = 8) {
+    LatLongImage img;
+    img.width = w;
+    img.height = h;
+    img.rgb.resize(size_t(w) * h * 3);
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i) {
+            float* p = &img.rgb[3 * (size_t(j) * w + i)];
+            const bool sky = j < h / 2;
+            p[0] = sky ? 0.3f + 0.05f * i : 0.05f;
+            p[1] = sky ? 0.5f + 0.02f * j : 0.04f;
+            p[2] = sky ? 1.0f : 0.02f;
+        }
+    float* sun = &img.rgb[3 * (size_t(1) * w + 5)];
+    sun[0] = sun[1] = sun[2] = 200.f;
+    return img;
+}
+
+// The pixel an image direction falls in, by the convention of dome_light.h (no rotation).
+int pixelOf(const Vec3& d, int w, int h) {
+    const float theta = std::acos(std::max(-1.f, std::min(1.f, d.y)));
+    float phi = std::atan2(-d.x, d.z);
+    if (phi < 0) phi += 2 * kPi;
+    const int i = std::min(w - 1, int(phi / (2 * kPi) * w));
+    const int j = std::min(h - 1, int(theta / kPi * h));
+    return j * w + i;
+}
+
+// Y of a pixel as the light sees it: its spectrum's luminance.
+double pixelLuminance(const LatLongImage& img, int p) {
+    const Vec3 rgb(img.rgb[3 * p], img.rgb[3 * p + 1], img.rgb[3 * p + 2]);
+    return spectrumToXyz(rgbIlluminantSpectrum(rgb, kXyz)).y;
+}
+
+SampledWavelengths fixedWavelengths() {
+    SampledWavelengths w;
+    w.lambda = {420.f, 510.f, 580.f, 650.f};
+    w.pdf = {1.f, 1.f, 1.f, 1.f};
+    return w;
+}
+
+}  // namespace
+
+TEST(DomeLight, ImageDirectionsFollowLuminanceTimesSinTheta) {
+    const LatLongImage img = skyImage();
+    auto dome = makeDomeLight(img, 1.f, kXyz, {});
+    const int n = img.width * img.height, samples = 400000;
+    std::vector<double> observed(n, 0.0), expected(n, 0.0);
+    double total = 0.0;
+    for (int p = 0; p < n; ++p) {
+        const int j = p / img.width;
+        expected[p] = pixelLuminance(img, p) * std::sin(kPi * (j + 0.5) / img.height);
+        total += expected[p];
+    }
+    for (double& e : expected) e *= samples / total;
+    Sampler s(3, 0, 0);
+    const SampledWavelengths w = fixedWavelengths();
+    for (int k = 0; k < samples; ++k) {
+        float u1 = s.get1D(), u2 = s.get1D();
+        LightSample ls;
+        ASSERT_TRUE(dome->sampleLi(Vec3(0.f), u1, u2, w, &ls));
+        ASSERT_TRUE(std::isinf(ls.distance));
+        ASSERT_NEAR(length(ls.wi), 1.f, 1e-5f);
+        observed[pixelOf(ls.wi, img.width, img.height)] += 1;
+    }
+    const test::ChiSquare c = test::chiSquare(observed, expected);
+    EXPECT_LT(c.statistic, test::chiSquareCritical(c.dof)) << "dof " << c.dof;
+}
+
+TEST(DomeLight, NextEventEstimateIsUnbiased) {
+    // E[Li] = ∫ L(ω) dω, which for a map constant over each pixel is Σ L_p ΔΩ_p exactly,
+    // ΔΩ_p = 2π/W (cos θ0 − cos θ1).
+    const LatLongImage img = skyImage();
+    auto dome = makeDomeLight(img, 1.f, kXyz, {});
+    const SampledWavelengths w = fixedWavelengths();
+    SampledSpectrum reference(0.f);
+    for (int j = 0; j < img.height; ++j)
+        for (int i = 0; i < img.width; ++i) {
+            const double t0 = kPi * j / img.height, t1 = kPi * (j + 1) / img.height;
+            const float dOmega = float(2 * kPi / img.width * (std::cos(t0) - std::cos(t1)));
+            const float theta = float(kPi * (j + 0.5) / img.height);
+            const float phi = float(2 * kPi * (i + 0.5) / img.width);
+            const Vec3 d(-std::sin(theta) * std::sin(phi), std::cos(theta),
+                         std::sin(theta) * std::cos(phi));
+            reference += dome->escapedRadiance(d, w, false) * dOmega;
+        }
+    const int n = 200000;
+    std::vector<double> sum(4, 0.0), sum2(4, 0.0);
+    Sampler s(5, 0, 0);
+    for (int k = 0; k < n; ++k) {
+        float u1 = s.get1D(), u2 = s.get1D();
+        LightSample ls;
+        if (!dome->sampleLi(Vec3(0.f), u1, u2, w, &ls)) continue;
+        for (int c = 0; c < 4; ++c) {
+            sum[c] += ls.Li[c];
+            sum2[c] += double(ls.Li[c]) * ls.Li[c];
+        }
+    }
+    for (int c = 0; c < 4; ++c) {
+        const double mean = sum[c] / n, se = std::sqrt((sum2[c] / n - mean * mean) / n);
+        EXPECT_NEAR(mean, reference[c], 4 * se + 1e-4 * reference[c]) << "λ " << w.lambda[c];
+    }
+}
+
+TEST(DomeLight, ShowsItsPixelsBackAndRotates) {
+    LatLongImage img = skyImage();
+    auto dome = makeDomeLight(img, 2.f, kXyz, {});
+    DomeSettings turned;
+    turned.rotationDeg = 90.f;
+    auto rotated = makeDomeLight(img, 2.f, kXyz, turned);
+    const SampledWavelengths w = fixedWavelengths();
+    // The image centre looks along −z; the sun pixel (5, 1) lies at φ = 2π·5.5/16.
+    const float theta = kPi * 1.5f / 8, phi = 2 * kPi * 5.5f / 16;
+    const Vec3 sun(-std::sin(theta) * std::sin(phi), std::cos(theta),
+                   std::sin(theta) * std::cos(phi));
+    const SampledSpectrum expected =
+        rgbIlluminantSpectrum(Vec3(400.f), kXyz).sample(w);  // 200 × intensity 2
+    const SampledSpectrum seen = dome->escapedRadiance(sun, w, true);
+    for (int c = 0; c < 4; ++c) EXPECT_NEAR(seen[c], expected[c], 1e-3f * expected[c]);
+    // Turned by +90° about +y (counter-clockwise from above: −z goes to −x).
+    const float c90 = 0.f, s90 = 1.f;
+    const Vec3 sunTurned(sun.x * c90 + sun.z * s90, sun.y, -sun.x * s90 + sun.z * c90);
+    const SampledSpectrum seenTurned = rotated->escapedRadiance(sunTurned, w, true);
+    for (int c = 0; c < 4; ++c) EXPECT_NEAR(seenTurned[c], expected[c], 1e-3f * expected[c]);
+    // Hidden from the camera, still seen after a bounce.
+    DomeSettings hidden;
+    hidden.cameraVisible = false;
+    auto hiddenDome = makeDomeLight(img, 2.f, kXyz, hidden);
+    EXPECT_TRUE(hiddenDome->escapedRadiance(sun, w, true).isZero());
+    EXPECT_FALSE(hiddenDome->escapedRadiance(sun, w, false).isZero());
+}
+
+TEST(DomeLight, PhotonsCarryThePowerThroughTheBoundingDisc) {
+    Bounds3 b;
+    b.lo = Vec3(-1.f, 0.f, -2.f);
+    b.hi = Vec3(1.f, 2.f, 0.f);
+    const float r = 0.5f * length(b.diagonal());
+    // Constant white dome L = 1 per nm: Φ = π r² 4π × 470 nm, each photon of weight 1.
+    auto white = makeDomeLight(Spectrum(1.f), {});
+    EXPECT_NEAR(white->emittedPower(b), kPi * r * r * 4 * kPi * 470.f,
+                1e-3 * kPi * r * r * 4 * kPi * 470.f);
+    // The image dome: weights of mean 1, photons aimed through the bounding sphere.
+    auto dome = makeDomeLight(skyImage(), 1.f, kXyz, {});
+    Sampler s(11, 0, 0);
+    double sum = 0, sum2 = 0;
+    const int n = 200000;
+    for (int k = 0; k < n; ++k) {
+        PhotonEmission e;
+        ASSERT_TRUE(dome->emitPhoton(b, s, &e));
+        ASSERT_GE(e.lambda, kLambdaMin);
+        ASSERT_LE(e.lambda, kLambdaMax);
+        // The photon's line passes within r of the centre and starts outside the sphere.
+        const Vec3 oc = b.center() - e.origin;
+        const Vec3 closest = oc - e.direction * dot(oc, e.direction);
+        ASSERT_LE(length(closest), r * 1.0001f);
+        ASSERT_GE(length(oc), r);
+        sum += e.weight;
+        sum2 += double(e.weight) * e.weight;
+    }
+    const double mean = sum / n, se = std::sqrt((sum2 / n - mean * mean) / n);
+    EXPECT_NEAR(mean, 1.0, 4 * se + 1e-3);
+}
+
+TEST(DomeLight, ReadsAnHdrFile) {
+    const std::string path = test::tempDir() + "/dome.hdr";
+    const LatLongImage img = skyImage(8, 4);
+    auto out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(path, OIIO::ImageSpec(img.width, img.height, 3, OIIO::TypeFloat)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeFloat, img.rgb.data()));
+    out->close();
+    const LatLongImage back = readLatLongImage(path);
+    ASSERT_EQ(back.width, 8);
+    ASSERT_EQ(back.height, 4);
+    // RGBE: an 8-bit mantissa per channel over the pixel's largest channel's exponent.
+    for (size_t k = 0; k < img.rgb.size(); ++k) {
+        const size_t p = k / 3;
+        const float largest = std::max({img.rgb[3 * p], img.rgb[3 * p + 1], img.rgb[3 * p + 2]});
+        EXPECT_NEAR(back.rgb[k], img.rgb[k], 0.01f * largest) << k;
+    }
+    EXPECT_THROW(readLatLongImage(test::tempDir() + "/missing.hdr"), MirageError);
+    LatLongImage bad = img;
+    bad.rgb[4] = std::nanf("");
+    EXPECT_THROW(makeDomeLight(bad, 1.f, kXyz, {}), MirageError);
+}
+
+TEST(DomeLight, WhiteFurnace) {
+    // An albedo-1 medium under a white dome (L = 1 at every λ): in equilibrium with its
+    // surroundings, it shows exactly the dome's radiance whatever its optical thickness
+    // (dL/ds = −σt L + σs ∫ p L dω = 0 when L = 1 everywhere). Rays cross a 2 m cube.
+    for (float sigmaS : {0.5f, 8.f}) {
+        RenderScene scene;
+        scene.lights.push_back(makeDomeLight(Spectrum(1.f), {}));
+        scene.media.push_back(test::gridMedium([](int, int, int) { return 1.f; }, 0, 15, 0.125, 0.f,
+                                               sigmaS, 0.6f, Transform::translate(Vec3d(-1.0))));
+        auto volpath = makeVolPathIntegrator();
+        ThreadState ts(scene);
+        double sum = 0, sum2 = 0;
+        const int n = 20000;
+        for (int i = 0; i < n; ++i) {
+            Sampler s(21, uint64_t(i), 0);
+            const SampledWavelengths w = SampledWavelengths::sampleVisible(s.get1D());
+            ts.tracking.setWavelengths(w);
+            const float u1 = s.get1D(), u2 = s.get1D();
+            const Vec3 target(0.8f * (2 * u1 - 1), 0.8f * (2 * u2 - 1), 0.f);
+            const Vec3 o(0.f, 0.f, 4.f);
+            const RadianceSample r =
+                volpath->Li(scene, Ray{o, normalize(target - o), kInfinity}, w, s, ts);
+            const double v = r.L.average();
+            sum += v;
+            sum2 += v * v;
+        }
+        const double mean = sum / n, se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+        EXPECT_NEAR(mean, 1.0, 4 * se + 2e-3) << "σs " << sigmaS << " ± " << se;
+        EXPECT_EQ(volpath->stats().cappedPaths, 0u);
+    }
+}

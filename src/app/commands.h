@@ -30,6 +30,9 @@ struct RenderOptions {
     std::string maxMemory;         // --max-memory SIZE (4G, 512M); "" = no budget
     double shutter = -1;           // --shutter WIDTH in frames, centred; < 0 = the scene's
     bool motionBlur = false;       // --motion-blur: --shutter 0.5
+    int passes = 0;                // --passes N: a render in passes, at most N
+    double timeLimit = 0;          // --time-limit SECONDS; 0 = none
+    double noiseThreshold = 0;     // --noise-threshold E; 0 = none
 };
 int runRender(const RenderOptions& o);
 Command addRenderCommand(CLI::App& app);

@@ -127,6 +127,9 @@ int runInfo(const InfoOptions& o) {
                 scene.integrator.c_str(), integratorInfo(scene.integrator).description.c_str(),
                 color.workingSpace().c_str(),
                 color.configDescription().c_str());
+    std::printf("integrator: %s\n", scene.integratorWhy.empty()
+                                        ? "named by [render] integrator or --set"
+                                        : scene.integratorWhy.c_str());
     std::printf("physics:\n");
     for (const auto& t : scene.physics())
         std::printf("  [%s] %-22s %s\n", t.active ? "on " : "off", t.name.c_str(), t.why.c_str());

@@ -73,6 +73,13 @@ FrameFingerprint frameFingerprint(const Scene& scene, const std::string& input,
     m["seed"] = std::to_string(s.seed);
     m["spp"] = std::to_string(s.spp);
     m["tile_size"] = std::to_string(s.tileSize);
+    // A render in passes resumes pass by pass; the samples per pass and the noise threshold
+    // (which pixels each pass samples) decide its pixels, the pass cap and time limit do not.
+    char passes[96] = "off";
+    if (scene.passes.enabled())
+        std::snprintf(passes, sizeof passes, "pass_spp %d, noise_threshold %.9g",
+                      scene.passes.sppPerPass, scene.passes.noiseThreshold);
+    m["passes"] = passes;
     m["version"] = MIRAGE_VERSION;
     std::string sets;
     for (const auto& o : overrides) sets += (sets.empty() ? "" : " ") + o;
@@ -144,6 +151,11 @@ bool isCompleteFrame(const std::string& exrPath) {
 
 int64_t testStopAfterTiles() {
     const char* v = std::getenv("MIRAGE_TEST_STOP_AFTER_TILES");
+    return v && *v ? std::atoll(v) : -1;
+}
+
+int64_t testStopAfterPasses() {
+    const char* v = std::getenv("MIRAGE_TEST_STOP_AFTER_PASSES");
     return v && *v ? std::atoll(v) : -1;
 }
 

@@ -37,6 +37,7 @@ bool isCompleteFrame(const std::string& exrPath);
 // N tiles; -1 when unset) and MIRAGE_PARTIAL_INTERVAL (least seconds between partial writes;
 // 2 when unset).
 int64_t testStopAfterTiles();
+int64_t testStopAfterPasses();  // MIRAGE_TEST_STOP_AFTER_PASSES: the same after N passes
 double partialWriteInterval();
 
 }  // namespace mirage

@@ -115,6 +115,16 @@ LoadOptions frameLoadOptions(const RenderSession& rs, int frame) {
     return load;
 }
 
+// --passes, --time-limit, --noise-threshold: a render in passes (render/passes.h). An explicit
+// --spp then caps the samples per pixel (whole passes: the count rounds up to a pass).
+void applyPassOptions(const RenderOptions& o, PassSettings* passes) {
+    passes->maxPasses = o.passes;
+    passes->timeLimit = o.timeLimit;
+    passes->noiseThreshold = o.noiseThreshold;
+    if (passes->enabled() && o.passes == 0 && o.spp > 0)
+        passes->maxPasses = (o.spp + passes->sppPerPass - 1) / passes->sppPerPass;
+}
+
 // Loads the frame and applies the command line to it; nothing when --skip-existing finds its
 // output complete.
 std::optional<FrameJob> prepareFrame(RenderSession& rs, int frame) {
@@ -132,10 +142,16 @@ std::optional<FrameJob> prepareFrame(RenderSession& rs, int frame) {
     job.frame = frame;
     job.scene = loadScene(o.input, frameLoadOptions(rs, frame), rs.color);
     Scene& scene = job.scene;
-    job.integratorName = o.integrator.empty() ? scene.integrator : o.integrator;
+    if (!o.integrator.empty()) {
+        scene.integrator = o.integrator;
+        scene.integratorWhy.clear();
+        resolveAutoIntegrator(&scene);
+    }
+    job.integratorName = scene.integrator;
     if (!o.quality.empty())
         applyQualityPreset(scene, qualityPreset(o.quality), job.integratorName, o.overrides);
     applyFrameSettings(scene, o.input, FrameSettings{o.resolution, o.spp, o.seed, o.quiet});
+    applyPassOptions(o, &scene.passes);
     if (o.turntable > 0) setTurntable(&scene.render.camera, frame, o.turntable, scene.output.fps);
     checkOutputSettings(scene, rs.color);
     job.out = framePath(o.output.empty() ? scene.output.path : o.output, frame, rs.sequence);
@@ -165,6 +181,7 @@ struct FrameCheckpoint {
     std::string path;
     PartialFilm resumed;
     TileCheckpoint tiles;
+    PassCheckpoint passes;  // a render in passes checkpoints whole passes instead of tiles
     PartialFilmWriter partial;
     bool failed = false;  // a checkpoint could not be written: off for this frame
 
@@ -182,7 +199,16 @@ private:
         if (resumed.film) {
             tiles.initial = resumed.film.get();
             tiles.done = resumed.done;
+            passes.initial = resumed.film.get();
+            passes.passesDone = std::atoi(resumed.metadata["passes_done"].c_str());
+            passes.secondsDone = std::atof(resumed.metadata["pass_seconds"].c_str());
         }
+        passes.passFinished = [this](const Film& film, int passesDone, double seconds) {
+            partial.setMetadata("passes_done", std::to_string(passesDone));
+            partial.setMetadata("pass_seconds", std::to_string(seconds));
+            tiles.tileFinished(film, std::vector<uint8_t>(tiles.done.size(), 1));
+        };
+        passes.stopAfterPasses = testStopAfterPasses();
         tiles.tileFinished = [this](const Film& film, const std::vector<uint8_t>& done) {
             if (failed) return;
             try {
@@ -195,6 +221,7 @@ private:
             }
         };
         tiles.stopAfterTiles = testStopAfterTiles();
+        tiles.done.resize(size_t(tileCount(job.scene.settings)), 0);
     }
 
     // The partial file to continue from, with --resume; empty otherwise.
@@ -213,9 +240,30 @@ private:
     }
 };
 
+// An interrupted render in passes: flush the whole passes it holds. Returns the exit code.
+int stopInterruptedPasses(FrameCheckpoint& cp, const RenderedFrame& rendered, int frame) {
+    const PassReport& r = *rendered.passes;
+    if (r.passes > cp.passes.passesDone && !cp.failed) {
+        try {
+            cp.partial.setMetadata("passes_done", std::to_string(r.passes));
+            cp.partial.setMetadata("pass_seconds", std::to_string(r.seconds));
+            cp.partial.write(*rendered.film, std::vector<uint8_t>(cp.tiles.done.size(), 1));
+        } catch (const MirageError& e) {
+            std::fprintf(stderr, "mirage: warning: %s\n", e.what());
+        }
+    }
+    std::fprintf(stderr,
+                 "mirage: interrupted (%s): frame %d has %d whole passes, saved in %s; continue "
+                 "with --resume\n",
+                 interruptSignal() == SIGTERM ? "SIGTERM" : "SIGINT", frame, r.passes,
+                 cp.path.c_str());
+    return interruptExitCode();
+}
+
 // An interrupted frame: flush what is finished (the final EXR is not touched) and say how to
 // continue. Returns the exit code.
 int stopInterrupted(FrameCheckpoint& cp, const RenderedFrame& rendered, int frame) {
+    if (rendered.passes) return stopInterruptedPasses(cp, rendered, frame);
     const RenderStats& stats = rendered.stats;
     if (stats.tilesDone > stats.tilesResumed && !cp.failed) {
         try {
@@ -233,6 +281,11 @@ int stopInterrupted(FrameCheckpoint& cp, const RenderedFrame& rendered, int fram
     return interruptExitCode();
 }
 
+// The samples per pixel of the frame: film.spp, or in a render in passes the most a pixel took.
+int framePixelSamples(const Scene& scene, const RenderedFrame& rendered) {
+    return rendered.passes ? rendered.passes->passes * scene.passes.sppPerPass : scene.settings.spp;
+}
+
 // Every sample or photon the guards dropped, and every path a cap cut, both passes.
 struct DroppedWork {
     uint64_t nonFinitePhotons = 0, cappedPaths = 0;
@@ -241,6 +294,24 @@ struct DroppedWork {
 DroppedWork droppedWork(const RenderedFrame& rendered) {
     const IntegratorStats s = rendered.integrator->stats();
     return {s.nonFinitePhotons, s.cappedPaths + rendered.stats.cappedFlights + s.cappedPhotonPaths};
+}
+
+// A render in passes: how far it went and why it stopped. Re-rendering with --passes <passes>
+// (and the same pass_spp and noise threshold) reproduces the image bit for bit.
+void addPassMetadata(const PassSettings& settings, const PassReport& r,
+                     std::map<std::string, std::string>* metadata) {
+    auto num = [](double v) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.6g", v);
+        return std::string(buf);
+    };
+    (*metadata)["passes"] = std::to_string(r.passes);
+    (*metadata)["pass_spp"] = std::to_string(settings.sppPerPass);
+    (*metadata)["samples"] = std::to_string(r.samples);
+    (*metadata)["estimated_error"] = num(r.estimatedError);
+    (*metadata)["stopped_by"] = r.stop;
+    if (settings.timeLimit > 0) (*metadata)["time_limit"] = num(settings.timeLimit);
+    if (settings.noiseThreshold > 0) (*metadata)["noise_threshold"] = num(settings.noiseThreshold);
 }
 
 // Converts the image into the scene's output colour space (if it names one) and fills the EXR
@@ -262,7 +333,7 @@ ExrOptions outputExr(RenderSession& rs, const FrameJob& job, RenderedFrame& rend
     }
     exr.metadata = {{"scene", scene.source},
                     {"seed", std::to_string(s.seed)},
-                    {"spp", std::to_string(s.spp)},
+                    {"spp", std::to_string(framePixelSamples(scene, rendered))},
                     {"frame", std::to_string(job.frame)},
                     {"integrator", integrator->name()},
                     {"render_seconds", std::to_string(stats.seconds)},
@@ -279,6 +350,8 @@ ExrOptions outputExr(RenderSession& rs, const FrameJob& job, RenderedFrame& rend
         exr.metadata["fps"] = std::to_string(scene.output.fps);
         exr.metadata["above_majorant"] = std::to_string(stats.aboveMajorant);
     }
+    if (!scene.integratorWhy.empty()) exr.metadata["integrator_choice"] = scene.integratorWhy;
+    if (rendered.passes) addPassMetadata(scene.passes, *rendered.passes, &exr.metadata);
     if (stats.tilesResumed > 0) exr.metadata["resumed_tiles"] = std::to_string(stats.tilesResumed);
     for (const auto& [key, value] : integrator->stats().metadata) exr.metadata[key] = value;
     return exr;
@@ -290,14 +363,14 @@ void printFrameSummary(const FrameJob& job, const RenderedFrame& rendered,
     const RenderStats& stats = rendered.stats;
     const DroppedWork dropped = droppedWork(rendered);
     const int frame = job.frame;
+    const int spp = framePixelSamples(job.scene, rendered);
     double mlps = stats.seconds > 0 ? stats.mediumLookups / stats.seconds / 1e6 : 0;
     std::fprintf(stderr,
                  "frame %d: %dx%d, %d spp, %llu samples | load %.2fs, render %.2fs, "
                  "write %.2fs | %.1f M medium lookups/s | non-finite dropped: %llu "
                  "samples, %llu photons | capped paths %llu | peak memory %s\n",
-                 frame, s.width, s.height, s.spp, (unsigned long long)stats.samples,
-                 job.loadSeconds, stats.seconds, writeSeconds, mlps,
-                 (unsigned long long)stats.nonFiniteSamples,
+                 frame, s.width, s.height, spp, (unsigned long long)stats.samples, job.loadSeconds,
+                 stats.seconds, writeSeconds, mlps, (unsigned long long)stats.nonFiniteSamples,
                  (unsigned long long)dropped.nonFinitePhotons,
                  (unsigned long long)dropped.cappedPaths, formatBytes(peakMemoryBytes()).c_str());
     if (cp.partial.writes() > 0)
@@ -311,6 +384,18 @@ void printFrameSummary(const FrameJob& job, const RenderedFrame& rendered,
                      "their majorant %llu\n",
                      frame, scene.shutter.open, scene.shutter.close, scene.output.fps,
                      (unsigned long long)stats.aboveMajorant);
+    if (rendered.passes) {
+        const PassReport& r = *rendered.passes;
+        std::fprintf(
+            stderr,
+            "frame %d: %d passes of %d spp (stopped by %s), %llu samples (%.1f per "
+            "pixel), estimated relative error %.4g, last pass %zu pixels\n",
+            frame, r.passes, scene.passes.sppPerPass, r.stop.c_str(), (unsigned long long)r.samples,
+            double(r.samples) / (double(s.width) * s.height), r.estimatedError, r.lastPassPixels);
+    }
+    std::fprintf(stderr, "frame %d: integrator %s%s\n", frame, rendered.integrator->name().c_str(),
+                 scene.integratorWhy.empty() ? " (as the scene or --integrator names it)"
+                                             : (" (" + scene.integratorWhy + ")").c_str());
     const std::string extra = rendered.integrator->stats().summary;
     if (!extra.empty()) std::fprintf(stderr, "frame %d: %s\n", frame, extra.c_str());
 }
@@ -322,7 +407,8 @@ std::optional<int> renderFrameFiles(RenderSession& rs, int frame) {
     if (!job) return std::nullopt;
     const Scene& scene = job->scene;
     FrameCheckpoint cp(rs, *job);
-    RenderedFrame rendered = renderFrame(scene, job->integratorName, rs.color, &cp.tiles);
+    RenderedFrame rendered =
+        renderFrame(scene, job->integratorName, rs.color, &cp.tiles, &cp.passes);
     if (rendered.stats.interrupted) return stopInterrupted(cp, rendered, frame);
 
     auto tWrite = std::chrono::steady_clock::now();
@@ -409,13 +495,14 @@ Command addRenderCommand(CLI::App& app) {
                      "VDB: about the volume); output gets .####; "
                      "with a shutter the orbit blurs")
         ->check(CLI::Range(1, 100000));
-    render->add_option("--integrator", o->integrator,
-                       joinList(integratorInfos(),
-                                [](const IntegratorInfo& i) {
-                                    return i.name + " (" + i.description + ")";
-                                },
-                                "; ") +
-                           "; default: the scene's [render] integrator");
+    render->add_option(
+        "--integrator", o->integrator,
+        joinList(
+            integratorInfos(),
+            [](const IntegratorInfo& i) { return i.name + " (" + i.description + ")"; }, "; ") +
+            "; auto (the fastest-converging method that renders all the light, "
+            "chosen per scene; `mirage info` says which and why); default: the "
+            "scene's [render] integrator, itself auto by default");
     render
         ->add_option("--quality", o->quality,
                      "draft, preview or final: samples per pixel and, for photon, photons and "
@@ -443,6 +530,24 @@ Command addRenderCommand(CLI::App& app) {
         ->add_flag("--motion-blur", o->motionBlur,
                    "Motion blur with a 180° shutter (--shutter 0.5)")
         ->excludes("--shutter");
+    render
+        ->add_option("--passes", o->passes,
+                     "Render in passes of [render] pass_spp samples (default 4) and stop after "
+                     "N; with the count a --time-limit render reached (mirage:passes), the same "
+                     "image bit for bit")
+        ->check(CLI::Range(1, kMaxSamplesPerPixel));
+    render
+        ->add_option("--time-limit", o->timeLimit,
+                     "Render in passes until SECONDS are spent (set-up and photon passes "
+                     "included): no pass starts that the last one's time says would overrun; "
+                     "the image is always whole passes")
+        ->check(CLI::Range(1e-3, 1e9));
+    render
+        ->add_option("--noise-threshold", o->noiseThreshold,
+                     "Render in passes until the estimated relative error of the image (the "
+                     "race's relMSE from per-pixel variance, square-rooted; docs/cli.md) is at "
+                     "most E; adaptive: passes after the second sample only pixels above E")
+        ->check(CLI::Range(1e-6, 10.0));
     render->add_option("--max-memory", o->maxMemory,
                        "Fail early when the frame's estimated memory exceeds SIZE (4G, 512M, "
                        "1.5G, 64k or bytes; binary multiples)");

@@ -42,7 +42,10 @@ void Film::addSample(int x, int y, const SampledSpectrum& L, const SampledWavele
         ++p.nonFinite;
         return;
     }
-    for (int c = 0; c < 3; ++c) p.xyz[c] += xyz[c];
+    for (int c = 0; c < 3; ++c) {
+        p.xyz[c] += xyz[c];
+        p.xyzSq[c] += double(xyz[c]) * double(xyz[c]);
+    }
     p.alpha += alpha;
     ++p.samples;
 }

@@ -46,6 +46,9 @@ public:
     struct Pixel {
         double xyz[3] = {0, 0, 0};
         double alpha = 0;
+        // Σ of each sample's squared X, Y, Z: with xyz and samples, the per-pixel variance
+        // (film_error.h: the estimated error of a render in passes, a variance AOV).
+        double xyzSq[3] = {0, 0, 0};
         uint32_t samples = 0;
         uint32_t nonFinite = 0;
     };

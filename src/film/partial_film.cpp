@@ -14,12 +14,20 @@ namespace mirage {
 
 namespace {
 
-// The accumulator channels, in the order of PixelRecord::acc.
-const char* const kAccChannels[] = {"acc.Xhi", "acc.Xlo", "acc.Yhi", "acc.Ylo", "acc.Zhi",
-                                    "acc.Zlo", "acc.Ahi", "acc.Alo", "acc.N",   "acc.bad"};
-constexpr int kAcc = 10;
+// The accumulator channels, in the order of PixelRecord::acc: the pixel's doubles (pixelDouble)
+// as high and low words, then its two counts.
+const char* const kAccChannels[] = {
+    "acc.Xhi",  "acc.Xlo",  "acc.Yhi",  "acc.Ylo",  "acc.Zhi",  "acc.Zlo",  "acc.Ahi", "acc.Alo",
+    "acc.XXhi", "acc.XXlo", "acc.YYhi", "acc.YYlo", "acc.ZZhi", "acc.ZZlo", "acc.N",   "acc.bad"};
+constexpr int kAccDoubles = 7;
+constexpr int kAcc = 2 * kAccDoubles + 2;
 
-// One pixel in the file's native layout: 4 float channels, then 10 uint32 channels.
+// The pixel's i-th double: X, Y, Z sums, alpha, then the X², Y², Z² sums.
+double* pixelDouble(Film::Pixel& p, int i) {
+    return i < 3 ? &p.xyz[i] : i == 3 ? &p.alpha : &p.xyzSq[i - 4];
+}
+
+// One pixel in the file's native layout: 4 float channels, then kAcc uint32 channels.
 struct PixelRecord {
     float rgba[4];
     uint32_t acc[kAcc];
@@ -84,12 +92,12 @@ void writePartialFilm(const std::string& path, const Film& film, int tileSize,
         int x0 = int(t % tilesX) * tileSize, y0 = int(t / tilesX) * tileSize;
         for (int y = y0; y < std::min(y0 + tileSize, h); ++y)
             for (int x = x0; x < std::min(x0 + tileSize, w); ++x) {
-                const Film::Pixel& p = film.pixel(x, y);
+                Film::Pixel p = film.pixel(x, y);
                 PixelRecord& r = pixels[size_t(y) * w + x];
-                for (int c = 0; c < 3; ++c) splitDouble(p.xyz[c], &r.acc[2 * c], &r.acc[2 * c + 1]);
-                splitDouble(p.alpha, &r.acc[6], &r.acc[7]);
-                r.acc[8] = p.samples;
-                r.acc[9] = p.nonFinite;
+                for (int i = 0; i < kAccDoubles; ++i)
+                    splitDouble(*pixelDouble(p, i), &r.acc[2 * i], &r.acc[2 * i + 1]);
+                r.acc[2 * kAccDoubles] = p.samples;
+                r.acc[2 * kAccDoubles + 1] = p.nonFinite;
                 if (p.samples == 0) continue;
                 double inv = 1.0 / double(p.samples);
                 Vec3d rgb = toWorking.apply(Vec3d(p.xyz[0] * inv, p.xyz[1] * inv, p.xyz[2] * inv));
@@ -171,14 +179,14 @@ PartialFilm readPartialFilm(const std::string& path) {
                 Film::Pixel& p = result.film->pixel(x, y);
                 uint32_t v = channel[size_t(y) * w + x];
                 // Even channels hold a double's high word, odd ones its low word.
-                if (c < 8) {
+                if (c < 2 * kAccDoubles) {
                     uint64_t bits;
-                    double* slot = c < 6 ? &p.xyz[c / 2] : &p.alpha;
+                    double* slot = pixelDouble(p, c / 2);
                     std::memcpy(&bits, slot, 8);
                     bits = (c % 2 == 0) ? (bits & 0xffffffffull) | (uint64_t(v) << 32)
                                         : (bits & ~0xffffffffull) | v;
                     std::memcpy(slot, &bits, 8);
-                } else if (c == 8) {
+                } else if (c == 2 * kAccDoubles) {
                     p.samples = v;
                 } else {
                     p.nonFinite = v;

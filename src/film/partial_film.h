@@ -5,11 +5,12 @@
 // Channels: R, G, B, A (float) are the finished tiles developed to the working space, for a
 // look at how far a render got (unfinished tiles are transparent black); the `acc.*` channels
 // (32-bit unsigned) are the film's running sums bit for bit — each double split into its high
-// and low words (acc.Xhi, acc.Xlo, … for X, Y, Z and alpha), the valid sample count acc.N and
+// and low words (acc.Xhi, acc.Xlo, … for X, Y, Z, alpha and the squared sums acc.XXhi … of the
+// variance estimate, film/film_error.h), the valid sample count acc.N and
 // the dropped non-finite count acc.bad — because a developed half or float pixel cannot be
 // summed on from. Metadata: mirage:partial = "true", mirage:tile_size, mirage:tiles_done (one
 // hex digit per 4 tiles, bit t%4 of digit t/4) and whatever the caller adds (the scene
-// fingerprint the resume check compares).
+// fingerprint the resume check compares; a render in passes, the passes done and their time).
 //
 // The file is written to a temporary name and renamed, like every output: a render killed
 // while writing it keeps the previous partial file.
@@ -60,6 +61,8 @@ public:
     void tileFinished(const Film& film, const std::vector<uint8_t>& done);
     // Writes now (an interrupted render flushes what it finished).
     void write(const Film& film, const std::vector<uint8_t>& done);
+    // Sets a metadata key ("mirage:" added) for the writes that follow.
+    void setMetadata(const std::string& key, const std::string& value) { mMetadata[key] = value; }
 
     int writes() const { return mWrites; }
     double writeSeconds() const { return mWriteSeconds; }  // total time spent writing

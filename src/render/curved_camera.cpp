@@ -40,6 +40,7 @@ public:
                                            });
         }
     }
+    void beginPass(const RenderScene& scene, int pass) override { mInner->beginPass(scene, pass); }
     // The wrapped integrator's figures (its photon pass among them), and the camera rays whose
     // curved path reached the ODE step cap (CurvedPathSettings::maxSteps) and went on straight
     // from there: a bias, counted beside the wrapped integrator's caps.

@@ -81,6 +81,11 @@ public:
     virtual std::string name() const { return info().name; }
     // Called once before rendering (a photon mapper traces its photons here).
     virtual void preprocess(const RenderScene&) {}
+    // A render in passes (render/passes.h) calls this before pass p = 0, 1, …, after
+    // preprocess. What an integrator does here must depend on p alone (not on earlier passes
+    // or the time), so that N passes give the same bits however they were reached; the
+    // progressive photon mapper traces pass p's photon map with pass p's radii here.
+    virtual void beginPass(const RenderScene&, int /*pass*/) {}
     virtual RadianceSample Li(const RenderScene& scene, const Ray& ray,
                               const SampledWavelengths& w, Sampler& sampler,
                               ThreadState& ts) const = 0;

@@ -22,6 +22,18 @@
 // paths (photon_pass.h), the maps hold every interaction, the first included, and light that
 // reaches a diffuse surface straight from a light; the single-scatter part keeps only emission.
 //
+// Progressive photon mapping (Knaus & Zwicker 2011; for beams, Jarosz et al. 2011): in a render
+// in passes (render/passes.h) every pass p traces a photon map of its own (seed derived from the
+// render seed and p) and the beam estimate's k-nearest disc radii shrink by the alpha rule,
+// r²_{i+1} = r²_i (i + α)/(i + 1) for the 2-D kernel of a disc, i = p + 1, so the radii of pass p
+// are those of one map times radiusScale(p). The film averages the passes (each adds the same
+// samples per pixel), which is Knaus & Zwicker's estimator: the average of independent
+// estimates whose bias (∝ r²) falls as N^-(1-α) while the variance of the average falls as
+// N^-α; α = 2/3 balances the two, and the mean squared error falls as N^(-2/3) in the passes N.
+// Pass 0 is the one-map render, so a render that is not in passes is unchanged. The point
+// estimate and the surface maps are averaged over passes too but keep their k-nearest radii:
+// their noise falls with the passes, their blur does not.
+//
 // Transmittance from the camera to each photon is the deterministic march of
 // transport/ray_optical_depth.h at the photon's wavelength, done once per camera ray.
 //
@@ -45,6 +57,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 
@@ -63,6 +76,28 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Progressive photon mapping's α (see the top of the file).
+constexpr double kProgressiveAlpha = 2.0 / 3.0;
+
+// Pass p's disc radii over pass 0's: ∏_{i=1..p} ((i + α)/(i + 1))^(1/2).
+float radiusScale(int pass) {
+    double r2 = 1.0;
+    for (int i = 1; i <= pass; ++i) r2 *= (double(i) + kProgressiveAlpha) / double(i + 1);
+    return float(std::sqrt(r2));
+}
+
+void addPassStats(const PhotonPassStats& pass, PhotonPassStats* sum) {
+    sum->emitted += pass.emitted;
+    sum->stored += pass.stored;
+    sum->cappedPaths += pass.cappedPaths;
+    sum->nonFinite += pass.nonFinite;
+    sum->fromMedia += pass.fromMedia;
+    sum->mediumPower = pass.mediumPower;
+    sum->emittedPower += pass.emittedPower;
+    sum->seconds += pass.seconds;
+    sum->interrupted = sum->interrupted || pass.interrupted;
 }
 
 // Scratch of one render thread, reused for every camera sample.
@@ -84,82 +119,23 @@ public:
     const IntegratorInfo& info() const override { return integratorInfo("photon"); }
 
     void preprocess(const RenderScene& scene) override {
-        std::vector<const Light*> lights;
-        for (const auto& l : scene.lights) lights.push_back(l.get());
         mMedia = scene.mediaPointers();
-
-        // Photon pass. Its seed is derived from the render seed so that photon i and pixel i
-        // (both keyed (seed, index, 0) in the counter-based sampler) do not share numbers.
-        PhotonPassSettings pass;
-        pass.photons = mSettings.photons;
-        pass.seed = hashCombine(mSettings.seed, 0x70686f746f6eull);  // "photon"
-        pass.maxBounces = mSettings.maxBounces;
-        pass.storeFirstInteraction = false;
+        mCurved = photonsCurve(mSettings.field.get(), scene.bounds());
         // Curved light: where paths curve there are no (straight) shadow rays, so the maps hold
         // the first interaction and the light arriving straight at diffuse surfaces too, and the
         // single-scatter part keeps only emission (Gutierrez et al. 2005). Nothing is counted
         // twice: each scattering of light is in exactly one of the two parts.
-        if (photonsCurve(mSettings.field.get(), scene.bounds())) {
-            pass.field = mSettings.field.get();
-            pass.curvedPath = mSettings.curvedPath;
-            // A photon's flight needs no more path than a few crossings of the scene: an
-            // escaping photon otherwise walks the whole max_distance in chords.
-            const Vec3 diag = scene.bounds().diagonal();
-            pass.curvedMaxArc = std::min(mSettings.curvedMaxArc, 2.f * length(diag));
-            pass.storeFirstInteraction = true;
-            mSingle = makeSingleScatterIntegrator(false);
-            mCurved = true;
-        }
-        pass.progress = mSettings.progress;
-        pass.shutterOpen = scene.camera.shutterOpen;  // photons sample times too (motion blur)
-        pass.shutterClose = scene.camera.shutterClose;
-        PhotonMapLists lists = tracePhotonMaps(
-            lights, mMedia, scene.hasSurfaces() ? scene.geometry.get() : nullptr, pass,
-            &mPassStats);
-        PhotonList list = std::move(lists.volume);
-
-        // The maps (kd-trees, per-photon XYZ and phase), then the estimate's own structures;
-        // each step timed for the summary and the EXR header.
-        auto t0 = Clock::now();
-        mGlobal = std::make_unique<SurfacePhotons>(std::move(lists.surfaceGlobal));
-        mCaustic = std::make_unique<SurfacePhotons>(std::move(lists.surfaceCaustic));
-        mPhotons = std::make_unique<VolumePhotons>(std::move(list), mMedia);
-        mStats.photonMapBuildSeconds = secondsSince(t0);
+        if (mCurved) mSingle = makeSingleScatterIntegrator(false);
         Vec3 diag = scene.bounds().empty() ? Vec3(1.f) : scene.bounds().diagonal();
         mMaxRadius = mSettings.maxRadius > 0.f ? mSettings.maxRadius : 0.1f * length(diag);
-        // Coincident photons must not get a zero disc (PhotonMap::photonRadii).
-        const float minRadius = 1e-4f * mMaxRadius;
-        const int k = mSettings.kOrDefault();
-        if (mSettings.estimate == PhotonEstimate::Beam) {
-            t0 = Clock::now();
-            std::vector<float> radii = mPhotons->map().photonRadii(k, minRadius, mMaxRadius);
-            mStats.photonRadiiSeconds = secondsSince(t0);
-            t0 = Clock::now();
-            mBeam = std::make_unique<BeamEstimator>(*mPhotons, std::move(radii));
-            mStats.discBvhBuildSeconds = secondsSince(t0);
-        } else {
-            mStep = mSettings.marchStep;
-            if (!(mStep > 0.f)) {
-                // Half the typical search radius: the estimate is a blur of that radius, so
-                // steps of half of it sample it without aliasing (jittered per camera sample).
-                t0 = Clock::now();
-                std::vector<float> r = mPhotons->map().photonRadii(k, minRadius, mMaxRadius);
-                mStats.photonRadiiSeconds = secondsSince(t0);
-                if (r.empty()) {
-                    mStep = mMaxRadius;
-                } else {
-                    std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
-                    mStep = 0.5f * r[r.size() / 2];
-                }
-            }
-        }
-        mStats.photonsTraced = mPassStats.emitted;
-        mStats.photonsStored = mPassStats.stored;
-        mStats.photonPassSeconds = mPassStats.seconds;
-        mStats.photonsPerSecond =
-            mPassStats.seconds > 0 ? double(mPassStats.emitted) / mPassStats.seconds : 0.0;
         mThreads = std::make_unique<tbb::enumerable_thread_specific<PhotonThreadState>>(
             [this] { return PhotonThreadState(mMedia); });
+        buildPass(scene, 0);
+    }
+
+    // Pass p of a render in passes: its own photon map and radii (see the top of the file).
+    void beginPass(const RenderScene& scene, int pass) override {
+        if (pass != mPass) buildPass(scene, pass);
     }
 
     RadianceSample Li(const RenderScene& scene, const Ray& ray, const SampledWavelengths& w,
@@ -202,6 +178,82 @@ public:
     }
 
 private:
+    // Traces pass p's photons and builds its maps and the estimate's structures, each step
+    // timed (summed over passes) for the summary and the EXR header.
+    void buildPass(const RenderScene& scene, int p) {
+        std::vector<const Light*> lights;
+        for (const auto& l : scene.lights) lights.push_back(l.get());
+        // Its seed is derived from the render seed so that photon i and pixel i (both keyed
+        // (seed, index, 0) in the counter-based sampler) do not share numbers; pass p > 0
+        // derives its own from that.
+        PhotonPassSettings pass;
+        pass.photons = mSettings.photons;
+        pass.seed = hashCombine(mSettings.seed, 0x70686f746f6eull);  // "photon"
+        if (p > 0) pass.seed = hashCombine(pass.seed, uint64_t(p));
+        pass.maxBounces = mSettings.maxBounces;
+        pass.storeFirstInteraction = false;
+        if (mCurved) {
+            pass.field = mSettings.field.get();
+            pass.curvedPath = mSettings.curvedPath;
+            // A photon's flight needs no more path than a few crossings of the scene: an
+            // escaping photon otherwise walks the whole max_distance in chords.
+            const Vec3 diag = scene.bounds().diagonal();
+            pass.curvedMaxArc = std::min(mSettings.curvedMaxArc, 2.f * length(diag));
+            pass.storeFirstInteraction = true;
+        }
+        // One progress bar, the first pass's: a render in passes reports each pass instead.
+        pass.progress = p == 0 ? mSettings.progress : Progress::Mode::Quiet;
+        pass.shutterOpen = scene.camera.shutterOpen;  // photons sample times too (motion blur)
+        pass.shutterClose = scene.camera.shutterClose;
+        PhotonPassStats passStats;
+        PhotonMapLists lists = tracePhotonMaps(
+            lights, mMedia, scene.hasSurfaces() ? scene.geometry.get() : nullptr, pass, &passStats);
+        addPassStats(passStats, &mPassStats);
+        mPass = p;
+        mRadiusScale = radiusScale(p);
+
+        // The maps (kd-trees, per-photon XYZ and phase), then the estimate's own structures
+        // (the beam estimator reads the volume map: dropped first).
+        mBeam.reset();
+        auto t0 = Clock::now();
+        mGlobal = std::make_unique<SurfacePhotons>(std::move(lists.surfaceGlobal));
+        mCaustic = std::make_unique<SurfacePhotons>(std::move(lists.surfaceCaustic));
+        mPhotons = std::make_unique<VolumePhotons>(std::move(lists.volume), mMedia);
+        mStats.photonMapBuildSeconds += secondsSince(t0);
+        // Coincident photons must not get a zero disc (PhotonMap::photonRadii).
+        const float minRadius = 1e-4f * mMaxRadius;
+        const int k = mSettings.kOrDefault();
+        if (mSettings.estimate == PhotonEstimate::Beam) {
+            t0 = Clock::now();
+            std::vector<float> radii = mPhotons->map().photonRadii(k, minRadius, mMaxRadius);
+            for (float& r : radii) r *= mRadiusScale;
+            mStats.photonRadiiSeconds += secondsSince(t0);
+            t0 = Clock::now();
+            mBeam = std::make_unique<BeamEstimator>(*mPhotons, std::move(radii));
+            mStats.discBvhBuildSeconds += secondsSince(t0);
+        } else {
+            mStep = mSettings.marchStep;
+            if (!(mStep > 0.f)) {
+                // Half the typical search radius: the estimate is a blur of that radius, so
+                // steps of half of it sample it without aliasing (jittered per camera sample).
+                t0 = Clock::now();
+                std::vector<float> r = mPhotons->map().photonRadii(k, minRadius, mMaxRadius);
+                mStats.photonRadiiSeconds += secondsSince(t0);
+                if (r.empty()) {
+                    mStep = mMaxRadius;
+                } else {
+                    std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
+                    mStep = 0.5f * r[r.size() / 2];
+                }
+            }
+        }
+        mStats.photonsTraced = mPassStats.emitted;
+        mStats.photonsStored = mPassStats.stored;
+        mStats.photonPassSeconds = mPassStats.seconds;
+        mStats.photonsPerSecond =
+            mPassStats.seconds > 0 ? double(mPassStats.emitted) / mPassStats.seconds : 0.0;
+    }
+
     std::string summaryLine(const PhotonStats& p, uint64_t estimates) const {
         char buf[640];
         std::snprintf(buf, sizeof buf,
@@ -219,6 +271,13 @@ private:
                       (unsigned long long)mPassStats.fromMedia, mPassStats.mediumPower);
         std::string line = buf;
         if (mCurved) line += " | photons on curved paths (direct light from the photon maps)";
+        if (mPass > 0) {
+            char progressive[160];
+            std::snprintf(progressive, sizeof progressive,
+                          " | progressive: %d photon maps, last disc radii × %.3g (alpha %.3g)",
+                          mPass + 1, double(mRadiusScale), kProgressiveAlpha);
+            line += progressive;
+        }
         if (mGlobal && mCaustic && (mGlobal->size() + mCaustic->size()) > 0)
             line += " | surface photons: " + std::to_string(mGlobal->size()) + " global, " +
                     std::to_string(mCaustic->size()) + " caustic";
@@ -307,8 +366,10 @@ private:
     PhotonIntegratorSettings mSettings;
     std::unique_ptr<Integrator> mSingle;
     bool mCurved = false;  // photons on curved paths, direct light from the maps
+    int mPass = 0;         // the pass whose maps are built
+    float mRadiusScale = 1.f;  // its disc radii over pass 0's
     std::vector<const Medium*> mMedia;
-    PhotonPassStats mPassStats;
+    PhotonPassStats mPassStats;  // summed over passes
     std::unique_ptr<VolumePhotons> mPhotons;
     std::unique_ptr<BeamEstimator> mBeam;
     std::unique_ptr<SurfacePhotons> mGlobal, mCaustic;  // surface photon maps

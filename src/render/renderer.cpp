@@ -21,16 +21,21 @@ namespace {
 // one pixel). A sample's numbers come from its own (seed, pixel, sample): pixel jitter, its
 // wavelengths, then the integrator's; its time in the shutter from a stream of its own, so
 // that a closed shutter leaves every other number where it was. A camera that moves within the
-// shutter is placed at that time (CameraDesc::poseAt) for the sample's ray.
-void renderTile(const RenderScene& scene, const Integrator& integrator, const RenderSettings& s,
-                const PerspectiveCamera& camera, int tile, ThreadState& ts, Film* film) {
+// shutter is placed at that time (CameraDesc::poseAt) for the sample's ray. Returns the samples
+// taken.
+uint64_t renderTile(const RenderScene& scene, const Integrator& integrator, const RenderSettings& s,
+                    const PassSamples& pass, const PerspectiveCamera& camera, int tile,
+                    ThreadState& ts, Film* film) {
     const int tilesX = tileCountX(s);
     const int x0 = (tile % tilesX) * s.tileSize, y0 = (tile / tilesX) * s.tileSize;
     const int x1 = std::min(x0 + s.tileSize, s.width), y1 = std::min(y0 + s.tileSize, s.height);
+    uint64_t taken = 0;
     for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x) {
             const uint64_t pixel = uint64_t(y) * uint64_t(s.width) + uint64_t(x);
-            for (int i = 0; i < s.spp; ++i) {
+            if (pass.pixels && !(*pass.pixels)[pixel]) continue;
+            taken += uint64_t(s.spp);
+            for (int i = pass.first; i < pass.first + s.spp; ++i) {
                 Sampler sampler(s.sampler, s.seed, pixel, uint64_t(i));
                 const float jx = sampler.get1D(), jy = sampler.get1D();
                 const SampledWavelengths w = SampledWavelengths::sampleVisible(sampler.get1D());
@@ -49,16 +54,18 @@ void renderTile(const RenderScene& scene, const Integrator& integrator, const Re
                 film->addSample(x, y, rs.L, w, rs.alpha, rs.xyz);
             }
         }
+    return taken;
 }
 
 }  // namespace
 
 Film render(const RenderScene& scene, Integrator& integrator, const RenderSettings& s,
-            RenderStats* stats, TileCheckpoint* checkpoint) {
+            RenderStats* stats, TileCheckpoint* checkpoint, const PassSamples& pass) {
     const int tilesX = tileCountX(s);
     const int tiles = tileCount(s);
     Film film = checkpoint && checkpoint->initial ? *checkpoint->initial : Film(s.width, s.height);
     MIRAGE_CHECK(film.width() == s.width && film.height() == s.height);
+    MIRAGE_CHECK(!pass.pixels || pass.pixels->size() == size_t(s.width) * size_t(s.height));
     PerspectiveCamera camera(scene.camera, s.width, s.height);
 
     // Which tiles are finished. A tile's pixels are written before its flag is stored (release)
@@ -78,7 +85,7 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
 
     Progress progress("render", uint64_t(tiles), "tiles", s.progress);
     if (resumed > 0) progress.advance(uint64_t(resumed));
-    std::atomic<uint64_t> lookups{0}, cappedFlights{0}, aboveMajorant{0};
+    std::atomic<uint64_t> lookups{0}, cappedFlights{0}, aboveMajorant{0}, samples{0};
     std::atomic<int64_t> finishedNow{0};
     std::mutex checkpointMutex;
     tbb::enumerable_thread_specific<ThreadState> states([&] { return ThreadState(scene); });
@@ -93,7 +100,7 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
             uint64_t aboveBefore = ts.tracking.aboveMajorant;
             for (int tile = r.begin(); tile < r.end(); ++tile) {
                 if (done[tile].load(std::memory_order_relaxed) || interruptRequested()) continue;
-                renderTile(scene, integrator, s, camera, tile, ts, &film);
+                samples += renderTile(scene, integrator, s, pass, camera, tile, ts, &film);
                 done[tile].store(1, std::memory_order_release);
                 progress.advance();
                 int64_t n = ++finishedNow;
@@ -126,7 +133,8 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
     if (checkpoint) checkpoint->done = finalDone;
     if (stats) {
         stats->seconds = progress.elapsedSeconds();
-        stats->samples = pixelsDone * uint64_t(s.spp);
+        // With a pixel mask, the samples this pass took; else those the finished tiles hold.
+        stats->samples = pass.pixels ? samples.load() : pixelsDone * uint64_t(s.spp);
         stats->mediumLookups = lookups.load();
         stats->nonFiniteSamples = film.nonFiniteSamples();
         stats->tiles = tiles;

@@ -58,10 +58,17 @@ struct TileCheckpoint {
     int64_t stopAfterTiles = -1;
 };
 
+// One pass of a render in passes (render/passes.h): the samples of each pixel it adds, and which
+// pixels. The default is the whole render: samples [0, spp) of every pixel.
+struct PassSamples {
+    int first = 0;  // sample indices [first, first + settings.spp), summed in that order
+    const std::vector<uint8_t>* pixels = nullptr;  // row-major, 1 = sample; null = every pixel
+};
+
 // Renders every tile not already done, stopping early when interruptRequested() (tiles in
 // flight finish; the rest are left undone, and stats->interrupted is set). On return,
 // checkpoint->done (if given) says which tiles the film holds.
 Film render(const RenderScene& scene, Integrator& integrator, const RenderSettings& settings,
-            RenderStats* stats, TileCheckpoint* checkpoint = nullptr);
+            RenderStats* stats, TileCheckpoint* checkpoint = nullptr, const PassSamples& pass = {});
 
 }  // namespace mirage

@@ -80,7 +80,8 @@ void applyQualityPreset(Scene& scene, const QualityPreset& preset, const std::st
 }
 
 RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
-                          const ColorPipeline& color, TileCheckpoint* checkpoint) {
+                          const ColorPipeline& color, TileCheckpoint* checkpoint,
+                          PassCheckpoint* passCheckpoint) {
     auto t0 = std::chrono::steady_clock::now();
     RenderedFrame frame;
     const RenderSettings& s = scene.settings;
@@ -93,13 +94,21 @@ RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
         photon.curvedPath = scene.refraction->path;
         photon.curvedMaxArc = scene.refraction->maxArc;
     }
-    frame.integrator =
-        makeIntegrator(integrator.empty() ? scene.integrator : integrator, scene.maxDepth, photon);
+    std::string name = integrator.empty() ? scene.integrator : integrator;
+    if (name == "auto") name = chooseIntegrator(scene).name;
+    frame.integrator = makeIntegrator(name, scene.maxDepth, photon);
     if (scene.refraction)
         frame.integrator = makeCurvedCameraIntegrator(std::move(frame.integrator), scene.refraction);
     frame.integrator->preprocess(scene.render);
-    frame.film = std::make_unique<Film>(
-        render(scene.render, *frame.integrator, s, &frame.stats, checkpoint));
+    if (scene.passes.enabled()) {
+        frame.passes.emplace();
+        frame.film =
+            std::make_unique<Film>(renderPasses(scene.render, *frame.integrator, s, scene.passes,
+                                                t0, &frame.stats, &*frame.passes, passCheckpoint));
+    } else {
+        frame.film = std::make_unique<Film>(
+            render(scene.render, *frame.integrator, s, &frame.stats, checkpoint));
+    }
     frame.image = frame.film->develop(color);
     frame.seconds = secondsSince(t0);
     return frame;

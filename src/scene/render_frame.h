@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -58,12 +59,16 @@ struct RenderedFrame {
     std::unique_ptr<Film> film;               // the sums behind `image` (partial files)
     std::unique_ptr<Integrator> integrator;   // for its name, summary and capped paths
     double seconds = 0;                       // wall: integrator set-up, photon pass, render, develop
+    std::optional<PassReport> passes;         // a render in passes (scene.passes.enabled())
 };
 
-// Renders `scene` with `integrator` ("" = the scene's own) and develops it through `color`.
-// `checkpoint` (optional) resumes from and checkpoints to a partial file (renderer.h).
+// Renders `scene` with `integrator` ("" = the scene's own, "auto" = chooseIntegrator's) and
+// develops it through `color`: one render of film.spp samples, or, when scene.passes asks, a
+// render in passes (render/passes.h). `checkpoint` / `passCheckpoint` (optional) resume from
+// and checkpoint to a partial file, tile by tile (renderer.h) or pass by pass (passes.h).
 RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
-                          const ColorPipeline& color, TileCheckpoint* checkpoint = nullptr);
+                          const ColorPipeline& color, TileCheckpoint* checkpoint = nullptr,
+                          PassCheckpoint* passCheckpoint = nullptr);
 
 double secondsSince(std::chrono::steady_clock::time_point t0);
 

@@ -9,9 +9,10 @@
 #include <utility>
 #include <vector>
 
+#include "render/curved_camera.h"
+#include "render/passes.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
-#include "render/curved_camera.h"
 #include "scene/motion_loader.h"
 #include "volume/grid_expression.h"
 
@@ -60,8 +61,13 @@ struct Scene {
     RenderScene render;
     RenderSettings settings;
     OutputSettings output;
-    std::string integrator = "single";  // [render] integrator: single | volpath | photon
+    // [render] integrator: single | volpath | photon, or auto (the default), which the loader
+    // resolves to one of them (chooseIntegrator) and explains in integratorWhy.
+    std::string integrator = "auto";
+    std::string integratorWhy;           // "" when the scene or --set named the integrator
     int maxDepth = 10000;                // [render] max_depth: scattering events per path
+    // A render in passes: [render] pass_spp, and --passes, --time-limit, --noise-threshold.
+    PassSettings passes;
     // [render] photons, estimate (beam | point), k, max_radius: the photon integrator's
     // settings (its seed and progress mode come from the render settings).
     PhotonIntegratorSettings photon;
@@ -92,6 +98,16 @@ struct LoadOptions {
     // --shutter / --motion-blur: replaces the scene's [camera] shutter (and gives a bare VDB one).
     std::optional<ShutterFrames> shutter = std::nullopt;
 };
+
+// The default integrator: the method that renders all of this scene's light and converges
+// fastest (integrator_choice.cpp), and why, for `mirage info` and the render summary.
+struct IntegratorChoice {
+    std::string name;
+    std::string why;
+};
+IntegratorChoice chooseIntegrator(const Scene& scene);
+// Replaces integrator "auto" by chooseIntegrator's choice and records why; any other name stays.
+void resolveAutoIntegrator(Scene* scene);
 
 Scene loadScene(const std::string& path, const LoadOptions& options, const ColorPipeline& color);
 // A bare VDB: automatic camera framing its bounds, a key light, the built-in smoke shader

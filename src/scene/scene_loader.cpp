@@ -223,13 +223,14 @@ static void readSettings(const TableReader& top,
         f->finish();
     }
     if (auto r = top.optionalTable("render")) {
-        scene.integrator = r->getString("integrator", "single");
+        scene.integrator = r->getString("integrator", "auto");
         try {
-            integratorInfo(scene.integrator);
+            if (scene.integrator != "auto") integratorInfo(scene.integrator);
         } catch (const MirageError& e) {
-            r->fail("integrator", e.what());
+            r->fail("integrator", std::string(e.what()) + ", or auto (the default)");
         }
         scene.maxDepth = int(r->getInt("max_depth", 10000, 1, 1 << 30));
+        scene.passes.sppPerPass = int(r->getInt("pass_spp", 4, 1, kMaxSamplesPerPixel));
         const std::string sampler = r->getString("sampler", "sobol");
         if (sampler != "sobol" && sampler != "random")
             r->fail("sampler", "unknown sampler '" + sampler + "'; expected sobol or random");
@@ -491,6 +492,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
     setShutterSeconds(&scene);
     readSceneRefraction(top, &scene);
     top.finish();
+    resolveAutoIntegrator(&scene);
     return scene;
 }
 
@@ -543,6 +545,7 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
     bool pathSet = std::any_of(options.overrides.begin(), options.overrides.end(),
                                [](const std::string& o) { return o.rfind("output.path=", 0) == 0; });
     if (!pathSet) scene.output.path = (fs::path(rec.file).stem().string() + ".exr");
+    resolveAutoIntegrator(&scene);
     return scene;
 }
 

@@ -69,8 +69,8 @@ PhysicsTerm singleScatteringTerm(const RenderScene& render, const MediaPhysics& 
 
 // Emissive media light the scene too: their light scatters like a light's (photons from the
 // medium in the photon pass, emission at every collision in volpath).
-PhysicsTerm multipleScatteringTerm(const Scene& scene, const MediaPhysics& m) {
-    const std::string& integrator = scene.integrator;
+PhysicsTerm multipleScatteringTerm(const Scene& scene, const std::string& integrator,
+                                   const MediaPhysics& m) {
     const bool follows = integratorInfo(integrator).multipleScattering;
     bool multiple = follows && m.scatter && (!scene.render.lights.empty() || m.emission);
     return {"multiple scattering", multiple,
@@ -107,11 +107,10 @@ PhysicsTerm expressionsTerm(const std::vector<VolumeRecord>& volumes) {
 
 // Which paths bend: camera rays always; photons when the photon integrator runs and the field
 // curves within the scene's bounds (photonsCurve), which then drops shadow rays.
-PhysicsTerm curvedPathsTerm(const Scene& scene) {
+PhysicsTerm curvedPathsTerm(const Scene& scene, const std::string& integrator) {
     if (!scene.refraction)
         return {"curved paths", false, "no refractive-index field: straight-line tracking"};
     const Refraction& refraction = *scene.refraction;
-    const std::string& integrator = scene.integrator;
     const Bounds3 b = scene.render.bounds();
     char bound[96] = "";
     if (!b.empty())
@@ -135,12 +134,15 @@ PhysicsTerm curvedPathsTerm(const Scene& scene) {
 
 std::vector<PhysicsTerm> Scene::physics() const {
     const MediaPhysics m = mediaPhysics(render);
+    // A scene built in code may still say "auto"; a loaded one has been resolved.
+    const std::string integrator =
+        this->integrator == "auto" ? chooseIntegrator(*this).name : this->integrator;
     std::vector<PhysicsTerm> terms;
     terms.push_back({"absorption", !render.media.empty(),
                      render.media.empty() ? "no volumes"
                                           : std::to_string(render.media.size()) + " volume(s)"});
     terms.push_back(singleScatteringTerm(render, m));
-    terms.push_back(multipleScatteringTerm(*this, m));
+    terms.push_back(multipleScatteringTerm(*this, integrator, m));
     terms.push_back({"emission", m.emission,
                      m.emission ? m.emitWhy + (integratorInfo(integrator).photonPass
                                                    ? "; the photon pass emits from it ∝ 4π σa·Le"
@@ -157,7 +159,7 @@ std::vector<PhysicsTerm> Scene::physics() const {
                      m.fluorescenceWhy.empty() ? "no shader declares a quantum efficiency"
                                                : m.fluorescenceWhy});
     terms.push_back(expressionsTerm(volumes));
-    terms.push_back(curvedPathsTerm(*this));
+    terms.push_back(curvedPathsTerm(*this, integrator));
     return terms;
 }
 

@@ -26,7 +26,8 @@ bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 bool samePixel(const Film::Pixel& a, const Film::Pixel& b) {
     return sameBits(a.xyz[0], b.xyz[0]) && sameBits(a.xyz[1], b.xyz[1]) &&
            sameBits(a.xyz[2], b.xyz[2]) && sameBits(a.alpha, b.alpha) && a.samples == b.samples &&
-           a.nonFinite == b.nonFinite;
+           a.nonFinite == b.nonFinite && sameBits(a.xyzSq[0], b.xyzSq[0]) &&
+           sameBits(a.xyzSq[1], b.xyzSq[1]) && sameBits(a.xyzSq[2], b.xyzSq[2]);
 }
 
 // A 1 m box of heterogeneous smoke under a sun: every pixel's value depends on its samples.

@@ -1,0 +1,143 @@
+// A render in passes: see passes.h for the stopping rules and why they keep the render exact.
+#include "render/passes.h"
+
+#include <algorithm>
+#include <csignal>
+#include <cstdio>
+
+#include "core/error.h"
+#include "core/interrupt.h"
+#include "film/film_error.h"
+
+namespace mirage {
+
+namespace {
+
+double secondsFrom(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// One pass's render statistics into the running sums.
+void addPassStats(const RenderStats& pass, RenderStats* sum) {
+    sum->seconds += pass.seconds;
+    sum->samples += pass.samples;
+    sum->mediumLookups += pass.mediumLookups;
+    sum->cappedFlights += pass.cappedFlights;
+    sum->aboveMajorant += pass.aboveMajorant;
+    sum->tiles = pass.tiles;
+}
+
+// The state between passes: the film so far, its estimated error and which pixels the next
+// pass samples.
+struct PassState {
+    explicit PassState(Film f) : film(std::move(f)) {}
+    Film film;
+    int passes = 0;
+    FilmError error;
+    std::vector<uint8_t> pixels;  // empty: every pixel
+};
+
+// After `state.passes` passes: the error estimate and, with a noise threshold, the next mask.
+void assess(const PassSettings& settings, PassState* state) {
+    state->error = estimateFilmError(state->film);
+    if (settings.noiseThreshold > 0 && state->passes >= kMinAdaptivePasses)
+        state->pixels = noisyPixels(state->film, state->error, settings.noiseThreshold);
+}
+
+// Why the render stops before the next pass, or "" to go on.
+std::string stopBefore(const PassSettings& settings, const PassState& state, double elapsed,
+                       double lastPass) {
+    if (state.passes >= settings.passCap()) return "passes";
+    if (state.passes == 0) return "";
+    if (settings.noiseThreshold > 0) {
+        if (state.error.relError() <= settings.noiseThreshold) return "noise threshold";
+        if (!state.pixels.empty() &&
+            std::none_of(state.pixels.begin(), state.pixels.end(), [](uint8_t a) { return a; }))
+            return "noise threshold (every pixel)";
+    }
+    if (settings.timeLimit > 0 && elapsed + lastPass > settings.timeLimit) return "time limit";
+    return "";
+}
+
+}  // namespace
+
+int PassSettings::passCap() const {
+    const int bySamples = kMaxSamplesPerPixel / std::max(sppPerPass, 1);
+    return maxPasses > 0 ? std::min(maxPasses, bySamples) : bySamples;
+}
+
+Film renderPasses(const RenderScene& scene, Integrator& integrator, const RenderSettings& s,
+                  const PassSettings& settings, std::chrono::steady_clock::time_point frameStart,
+                  RenderStats* stats, PassReport* report, PassCheckpoint* checkpoint) {
+    MIRAGE_CHECK(settings.sppPerPass >= 1);
+    const bool resumed = checkpoint && checkpoint->initial;
+    PassState state(resumed ? *checkpoint->initial : Film(s.width, s.height));
+    const double before = resumed ? checkpoint->secondsDone : 0.0;
+    if (resumed) {
+        state.passes = checkpoint->passesDone;
+        assess(settings, &state);
+    }
+    RenderSettings passSettings = s;
+    passSettings.spp = settings.sppPerPass;
+    passSettings.progress = Progress::Mode::Quiet;  // one line per pass instead
+    RenderStats sum;
+    sum.tiles = tileCount(s);
+    double lastPass = 0;
+    size_t lastPixels = 0;
+    int passesNow = 0;
+    std::string stop;
+    for (;;) {
+        stop = stopBefore(settings, state, before + secondsFrom(frameStart), lastPass);
+        if (!stop.empty()) break;
+        if (interruptRequested()) {
+            stop = "interrupted";
+            break;
+        }
+        const auto t0 = std::chrono::steady_clock::now();
+        integrator.beginPass(scene, state.passes);
+        TileCheckpoint from;
+        from.initial = &state.film;
+        const PassSamples samples{state.passes * settings.sppPerPass,
+                                  state.pixels.empty() ? nullptr : &state.pixels};
+        RenderStats pass;
+        Film next = render(scene, integrator, passSettings, &pass, &from, samples);
+        if (pass.interrupted) {  // a pass cut short is dropped: the film keeps whole passes
+            stop = "interrupted";
+            break;
+        }
+        addPassStats(pass, &sum);
+        state.film = std::move(next);
+        ++state.passes;
+        ++passesNow;
+        lastPass = secondsFrom(t0);
+        lastPixels = state.pixels.empty()
+                         ? size_t(s.width) * size_t(s.height)
+                         : size_t(std::count(state.pixels.begin(), state.pixels.end(), uint8_t(1)));
+        assess(settings, &state);
+        if (s.progress != Progress::Mode::Quiet)
+            std::fprintf(stderr, "pass %d: %zu pixels, %.2fs, estimated error %.4g\n", state.passes,
+                         lastPixels, lastPass, state.error.relError());
+        if (checkpoint && checkpoint->passFinished)
+            checkpoint->passFinished(state.film, state.passes, before + secondsFrom(frameStart));
+        if (checkpoint && checkpoint->stopAfterPasses >= 0 &&
+            passesNow >= checkpoint->stopAfterPasses)
+            requestInterrupt(SIGINT);
+    }
+    sum.nonFiniteSamples = state.film.nonFiniteSamples();
+    sum.interrupted = stop == "interrupted";
+    sum.tilesDone = sum.interrupted ? 0 : sum.tiles;
+    if (stats) *stats = sum;
+    if (report) {
+        report->passes = state.passes;
+        report->samples = 0;
+        for (int y = 0; y < s.height; ++y)
+            for (int x = 0; x < s.width; ++x) report->samples += state.film.pixel(x, y).samples;
+        report->estimatedError = state.error.relError();
+        report->seconds = before + secondsFrom(frameStart);
+        report->lastPassPixels = lastPixels;
+        report->stop = stop;
+    }
+    return std::move(state.film);
+}
+
+}  // namespace mirage

@@ -65,6 +65,31 @@ double secondsSince(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+// The photon pass of the integrator's settings. Its seed is derived from the render seed so
+// that photon i and pixel i (both keyed (seed, index, 0) in the counter-based sampler) do not
+// share numbers. Where paths curve (photonsCurve) photons follow Fermat paths and every
+// interaction is stored, the first included (see preprocess()).
+PhotonPassSettings passSettings(const PhotonIntegratorSettings& s, const RenderScene& scene) {
+    PhotonPassSettings pass;
+    pass.photons = s.photons;
+    pass.seed = hashCombine(s.seed, 0x70686f746f6eull);  // "photon"
+    pass.maxBounces = s.maxBounces;
+    pass.storeFirstInteraction = false;
+    if (photonsCurve(s.field.get(), scene.bounds())) {
+        pass.field = s.field.get();
+        pass.curvedPath = s.curvedPath;
+        // A photon's flight needs no more path than a few crossings of the scene: an
+        // escaping photon otherwise walks the whole max_distance in chords.
+        const Vec3 diag = scene.bounds().diagonal();
+        pass.curvedMaxArc = std::min(s.curvedMaxArc, 2.f * length(diag));
+        pass.storeFirstInteraction = true;
+    }
+    pass.progress = s.progress;
+    pass.shutterOpen = scene.camera.shutterOpen;  // photons sample times too (motion blur)
+    pass.shutterClose = scene.camera.shutterClose;
+    return pass;
+}
+
 // Scratch of one render thread, reused for every camera sample.
 struct PhotonThreadState {
     explicit PhotonThreadState(const std::vector<const Medium*>& media)
@@ -84,38 +109,19 @@ public:
     const IntegratorInfo& info() const override { return integratorInfo("photon"); }
 
     void preprocess(const RenderScene& scene) override {
-        std::vector<const Light*> lights;
-        for (const auto& l : scene.lights) lights.push_back(l.get());
         mMedia = scene.mediaPointers();
-
-        // Photon pass. Its seed is derived from the render seed so that photon i and pixel i
-        // (both keyed (seed, index, 0) in the counter-based sampler) do not share numbers.
-        PhotonPassSettings pass;
-        pass.photons = mSettings.photons;
-        pass.seed = hashCombine(mSettings.seed, 0x70686f746f6eull);  // "photon"
-        pass.maxBounces = mSettings.maxBounces;
-        pass.storeFirstInteraction = false;
         // Curved light: where paths curve there are no (straight) shadow rays, so the maps hold
-        // the first interaction and the light arriving straight at diffuse surfaces too, and the
-        // single-scatter part keeps only emission (Gutierrez et al. 2005). Nothing is counted
-        // twice: each scattering of light is in exactly one of the two parts.
+        // the first interaction and the light arriving straight at diffuse surfaces too
+        // (passSettings), and the single-scatter part keeps only emission (Gutierrez et al.
+        // 2005). Nothing is counted twice: each scattering of light is in exactly one part.
         if (photonsCurve(mSettings.field.get(), scene.bounds())) {
-            pass.field = mSettings.field.get();
-            pass.curvedPath = mSettings.curvedPath;
-            // A photon's flight needs no more path than a few crossings of the scene: an
-            // escaping photon otherwise walks the whole max_distance in chords.
-            const Vec3 diag = scene.bounds().diagonal();
-            pass.curvedMaxArc = std::min(mSettings.curvedMaxArc, 2.f * length(diag));
-            pass.storeFirstInteraction = true;
             mSingle = makeSingleScatterIntegrator(false);
             mCurved = true;
         }
-        pass.progress = mSettings.progress;
-        pass.shutterOpen = scene.camera.shutterOpen;  // photons sample times too (motion blur)
-        pass.shutterClose = scene.camera.shutterClose;
-        PhotonMapLists lists = tracePhotonMaps(
-            lights, mMedia, scene.hasSurfaces() ? scene.geometry.get() : nullptr, pass,
-            &mPassStats);
+        PhotonPassResult pass = mSettings.savedPass ? *mSettings.savedPass
+                                                    : tracePhotonIntegratorPass(scene, mSettings);
+        mPassStats = pass.stats;
+        PhotonMapLists& lists = pass.maps;
         PhotonList list = std::move(lists.volume);
 
         // The maps (kd-trees, per-photon XYZ and phase), then the estimate's own structures;
@@ -318,6 +324,17 @@ private:
 };
 
 }  // namespace
+
+PhotonPassResult tracePhotonIntegratorPass(const RenderScene& scene,
+                                           const PhotonIntegratorSettings& settings) {
+    std::vector<const Light*> lights;
+    for (const auto& l : scene.lights) lights.push_back(l.get());
+    PhotonPassResult result;
+    result.maps = tracePhotonMaps(lights, scene.mediaPointers(),
+                                  scene.hasSurfaces() ? scene.geometry.get() : nullptr,
+                                  passSettings(settings, scene), &result.stats);
+    return result;
+}
 
 std::unique_ptr<Integrator> makePhotonIntegrator(const PhotonIntegratorSettings& settings) {
     // The scene loader refuses k = 1 with its location; callers of the library get the same

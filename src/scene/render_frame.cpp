@@ -68,20 +68,26 @@ void applyQualityPreset(Scene& scene, const QualityPreset& preset, const std::st
     if (photon && !overridden("render.k")) scene.photon.k = preset.k;
 }
 
-RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
-                          const ColorPipeline& color, TileCheckpoint* checkpoint) {
-    auto t0 = std::chrono::steady_clock::now();
-    RenderedFrame frame;
-    const RenderSettings& s = scene.settings;
+PhotonIntegratorSettings photonSettingsFor(const Scene& scene) {
     // The photon pass takes the render's seed and progress mode.
     PhotonIntegratorSettings photon = scene.photon;
-    photon.seed = s.seed;
-    photon.progress = s.progress;
+    photon.seed = scene.settings.seed;
+    photon.progress = scene.settings.progress;
+    photon.maxBounces = scene.maxDepth;  // as makeIntegrator sets it
     if (scene.refraction) {
         photon.field = scene.refraction->field;
         photon.curvedPath = scene.refraction->path;
         photon.curvedMaxArc = scene.refraction->maxArc;
     }
+    return photon;
+}
+
+RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
+                          const ColorPipeline& color, TileCheckpoint* checkpoint) {
+    auto t0 = std::chrono::steady_clock::now();
+    RenderedFrame frame;
+    const RenderSettings& s = scene.settings;
+    const PhotonIntegratorSettings photon = photonSettingsFor(scene);
     frame.integrator =
         makeIntegrator(integrator.empty() ? scene.integrator : integrator, scene.maxDepth, photon);
     if (scene.refraction)

@@ -55,6 +55,10 @@ struct RenderedFrame {
     double seconds = 0;                       // wall: integrator set-up, photon pass, render, develop
 };
 
+// The photon integrator's settings for `scene`: its [render] photon keys, the render's seed and
+// progress mode, and its [refraction] field (the photon pass of `render` and `mirage photons`).
+PhotonIntegratorSettings photonSettingsFor(const Scene& scene);
+
 // Renders `scene` with `integrator` ("" = the scene's own) and develops it through `color`.
 // `checkpoint` (optional) resumes from and checkpoints to a partial file (renderer.h).
 RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,

@@ -1,6 +1,5 @@
 // `mirage render`: load → render → develop → write, per frame, with a summary at the end.
 #include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <csignal>
@@ -10,6 +9,8 @@
 #include <optional>
 
 #include "app/commands.h"
+#include "app/frame_photons.h"
+#include "app/frame_regions.h"
 #include "app/render_checkpoint.h"
 #include "core/error.h"
 #include "core/interrupt.h"
@@ -33,11 +34,7 @@ std::vector<int> frameList(const RenderOptions& o) {
     if (o.turntable > 0) {
         for (int i = 1; i <= o.turntable; ++i) frames.push_back(i);
     } else if (!o.frames.empty()) {
-        int a = 0, b = 0;
-        char dash = 0;
-        if (std::sscanf(o.frames.c_str(), "%d%c%d", &a, &dash, &b) != 3 || dash != '-' || b < a)
-            throw MirageError("--frames '" + o.frames + "': expected A-B with A ≤ B, e.g. 1-24");
-        for (int f = a; f <= b; ++f) frames.push_back(f);
+        frames = parseFrameRange(o.frames);
     } else {
         frames.push_back(o.frame >= 0 ? o.frame : 1);
     }
@@ -119,6 +116,11 @@ LoadOptions frameLoadOptions(const RenderSession& rs, int frame) {
     return load;
 }
 
+// A complete output: a finished frame, or for `mirage photons` an intact photon file.
+bool outputComplete(const RenderOptions& o, const std::string& out) {
+    return o.photonsOnly ? isCompletePhotonFile(out) : isCompleteFrame(out);
+}
+
 // Loads the frame and applies the command line to it; nothing when --skip-existing finds its
 // output complete.
 std::optional<FrameJob> prepareFrame(RenderSession& rs, int frame) {
@@ -126,7 +128,7 @@ std::optional<FrameJob> prepareFrame(RenderSession& rs, int frame) {
     // With -o the output is known before loading: a complete frame costs no load at all.
     if (o.skipExisting && !o.output.empty()) {
         std::string out = framePath(o.output, frame, rs.sequence);
-        if (isCompleteFrame(out)) {
+        if (outputComplete(o, out)) {
             rs.skip(frame, out);
             return std::nullopt;
         }
@@ -140,12 +142,15 @@ std::optional<FrameJob> prepareFrame(RenderSession& rs, int frame) {
     if (!o.quality.empty())
         applyQualityPreset(scene, qualityPreset(o.quality), job.integratorName, o.overrides);
     applyFrameSettings(scene, o.input, FrameSettings{o.resolution, o.spp, o.seed, o.quiet});
+    if (!o.region.empty())
+        scene.settings.region =
+            parsePixelWindow(o.region, scene.settings.width, scene.settings.height);
     if (o.turntable > 0)
         scene.render.camera =
             orbitCamera(scene.render.camera, 360.f * float(frame - 1) / float(o.turntable));
     checkOutputSettings(scene, rs.color);
     job.out = framePath(o.output.empty() ? scene.output.path : o.output, frame, rs.sequence);
-    if (o.skipExisting && isCompleteFrame(job.out)) {
+    if (o.skipExisting && outputComplete(o, job.out)) {
         rs.skip(frame, job.out);
         return std::nullopt;
     }
@@ -208,7 +213,8 @@ private:
                                      const std::string& path, const FrameFingerprint& fingerprint) {
         const RenderSettings& s = job.scene.settings;
         if (o.resume && fs::exists(path))
-            return loadPartialForResume(path, fingerprint, s.width, s.height, s.tileSize);
+            return loadPartialForResume(path, fingerprint, renderWindow(s).width(),
+                                        renderWindow(s).height(), s.tileSize);
         if (o.resume && !o.quiet)
             std::fprintf(stderr, "frame %d: no %s to resume from; rendering the whole frame\n",
                          job.frame, path.c_str());
@@ -286,6 +292,18 @@ ExrOptions outputExr(RenderSession& rs, const FrameJob& job, RenderedFrame& rend
         exr.metadata["above_majorant"] = std::to_string(stats.aboveMajorant);
     }
     if (stats.tilesResumed > 0) exr.metadata["resumed_tiles"] = std::to_string(stats.tilesResumed);
+    // Which frame this is, whatever region of it: `mirage assemble` joins only regions that
+    // agree on it. A region is the EXR's data window, the display window the whole frame.
+    exr.metadata["fingerprint"] =
+        frameFingerprint(scene, rs.o.input, job.integratorName, job.frame, rs.o.overrides, false)
+            .hash;
+    if (!s.region.empty()) {
+        exr.metadata["region"] = formatPixelWindow(s.region);
+        exr.dataX = s.region.x0;
+        exr.dataY = s.region.y0;
+        exr.fullWidth = s.width;
+        exr.fullHeight = s.height;
+    }
     for (const auto& [key, value] : integrator->stats().metadata) exr.metadata[key] = value;
     return exr;
 }
@@ -321,11 +339,35 @@ void printFrameSummary(const FrameJob& job, const RenderedFrame& rendered,
     if (!extra.empty()) std::fprintf(stderr, "frame %d: %s\n", frame, extra.c_str());
 }
 
+// `mirage photons`: the frame's photon pass alone, to its photon file.
+std::optional<int> writePhotonsOnly(const RenderSession& rs, const FrameJob& job) {
+    const PhotonFrameKey key{job.scene, rs.o.input, job.frame, rs.o.overrides};
+    if (!writeFramePhotons(key, job.integratorName, job.out, rs.o.quiet)) {
+        std::fprintf(stderr, "mirage: interrupted: frame %d's photon pass, nothing written\n",
+                     job.frame);
+        return interruptExitCode();
+    }
+    std::printf("%s\n", job.out.c_str());
+    return std::nullopt;
+}
+
+// --photons-file: the frame's saved photon pass instead of tracing it again.
+void attachSavedPhotons(const RenderSession& rs, FrameJob& job) {
+    if (!integratorInfo(job.integratorName).photonPass)
+        throw MirageError("--photons-file: the integrator '" + job.integratorName +
+                          "' traces no photons");
+    const std::string path = framePath(rs.o.photonsFile, job.frame, false);
+    job.scene.photon.savedPass =
+        readFramePhotons(PhotonFrameKey{job.scene, rs.o.input, job.frame, rs.o.overrides}, path);
+}
+
 // Renders one frame and writes its preview and EXR; the exit code when the command must stop
 // (interrupted), nothing to go on.
 std::optional<int> renderFrameFiles(RenderSession& rs, int frame) {
     std::optional<FrameJob> job = prepareFrame(rs, frame);
     if (!job) return std::nullopt;
+    if (rs.o.photonsOnly) return writePhotonsOnly(rs, *job);
+    if (!rs.o.photonsFile.empty()) attachSavedPhotons(rs, *job);
     const Scene& scene = job->scene;
     FrameCheckpoint cp(rs, *job);
     RenderedFrame rendered = renderFrame(scene, job->integratorName, rs.color, &cp.tiles);
@@ -439,6 +481,15 @@ Command addRenderCommand(CLI::App& app) {
         ->add_flag("--motion-blur", o->motionBlur,
                    "Velocity motion blur with a 180° shutter (--shutter 0.5)")
         ->excludes("--shutter");
+    render->add_option("--region", o->region,
+                       "Render only pixels X0,Y0,X1,Y1 of the frame (X1, Y1 exclusive): the EXR's "
+                       "data window is the region, its display window the frame, and the pixels "
+                       "are the same bits as in a whole-frame render (mirage assemble joins "
+                       "regions)");
+    render->add_option("--photons-file", o->photonsFile,
+                       "Render with the photon pass saved by mirage photons for this frame "
+                       "($F4, $F or #### take the frame) instead of tracing it; refused when "
+                       "made from another scene, frame or settings");
     render->add_option("--max-memory", o->maxMemory,
                        "Fail early when the frame's estimated memory exceeds SIZE (4G, 512M, "
                        "1.5G, 64k or bytes; binary multiples)");

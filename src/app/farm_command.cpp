@@ -186,8 +186,7 @@ Command addFarmCommand(CLI::App& app) {
     cmd->add_option("--cpus", o->cpus, "CPUs per task (--cpus-per-task and mirage --threads)")
         ->check(CLI::Range(1, 4096));
     cmd->add_flag("--dry-run", o->dryRun,
-                  "Print the scripts and their dependencies; submit "
-                  "nothing, write nothing");
+                  "Print the scripts and their dependencies; submit nothing, write nothing");
     cmd->add_flag("--skip-existing", o->skipExisting,
                   "Leave out frames already complete; tasks skip regions and photon files "
                   "already complete (a resubmitted shot renders only what is missing)");

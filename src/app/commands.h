@@ -1,6 +1,6 @@
-// The mirage command's own subcommands, `render` and `info`; the tools built on the renderer
-// (make-asset, slab, tradeoff, raypath) are in tools/tools.h. main.cpp registers every
-// subcommand on one command line (CLI11) and catches MirageError once.
+// The mirage command's own subcommands (render, info, photons, assemble, farm); the tools built
+// on the renderer (make-asset, slab, tradeoff, raypath) are in tools/tools.h. main.cpp registers
+// every subcommand on one command line (CLI11) and catches MirageError once.
 #pragma once
 
 #include <cstdint>
@@ -33,9 +33,21 @@ struct RenderOptions {
     int passes = 0;                // --passes N: a render in passes, at most N
     double timeLimit = 0;          // --time-limit SECONDS; 0 = none
     double noiseThreshold = 0;     // --noise-threshold E; 0 = none
+    std::string region;            // --region X0,Y0,X1,Y1; "" = the whole frame
+    std::string photonsFile;       // --photons-file: a saved photon pass ($F patterns expand)
+    bool photonsOnly = false;      // `mirage photons`: the photon pass alone, -o a .photons file
 };
 int runRender(const RenderOptions& o);
 Command addRenderCommand(CLI::App& app);
+
+// `mirage photons SCENE --frame N -o N.photons`: runRender with photonsOnly (photons_command.cpp).
+Command addPhotonsCommand(CLI::App& app);
+
+// `mirage assemble TILE.exr… -o FRAME.exr` (assemble_command.cpp).
+Command addAssembleCommand(CLI::App& app);
+
+// `mirage farm SCENE --frames A-B …`: Slurm batch scripts, submitted (farm_command.cpp).
+Command addFarmCommand(CLI::App& app);
 
 struct InfoOptions {
     std::string input;

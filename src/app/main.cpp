@@ -37,7 +37,8 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", MIRAGE_VERSION);
     // In this order in --help.
     const std::vector<Command> commands = {
-        addRenderCommand(app),   addInfoCommand(app),     addMakeAssetCommand(app),
+        addRenderCommand(app),   addInfoCommand(app),     addPhotonsCommand(app),
+        addAssembleCommand(app), addFarmCommand(app),     addMakeAssetCommand(app),
         addSlabCommand(app),     addTradeoffCommand(app), addRaypathCommand(app)};
 
     // Command-line syntax errors exit 2 (docs/hostile-input.md, "Input rules"); CLI11's own codes (105 for a

@@ -9,7 +9,9 @@
 #include <iterator>
 #include <sstream>
 
+#include "app/frame_regions.h"
 #include "core/error.h"
+#include "core/fnv1a.h"
 #include "core/text.h"
 #include "scene/scene.h"
 
@@ -18,15 +20,6 @@ namespace mirage {
 namespace fs = std::filesystem;
 
 namespace {
-
-// FNV-1a, 64-bit (Fowler, Noll, Vo): enough to tell scenes apart, not a security hash.
-struct Fnv1a {
-    uint64_t h = 0xcbf29ce484222325ull;
-    void add(const std::string& s) {
-        for (unsigned char c : s) h = (h ^ c) * 0x100000001b3ull;
-        h = (h ^ 0xff) * 0x100000001b3ull;  // separator: "ab"+"c" differs from "a"+"bc"
-    }
-};
 
 std::string fileStamp(const std::string& path) {
     std::error_code ec;
@@ -49,9 +42,49 @@ std::map<std::string, std::string> parseLines(const std::string& text) {
 
 }  // namespace
 
+namespace {
+
+// The settings lines, then the scene's own text (a bare VDB: its size and time) and every grid
+// file it read.
+FrameFingerprint fingerprintOf(const std::map<std::string, std::string>& settings,
+                               const Scene& scene, const std::string& input) {
+    FrameFingerprint fp;
+    for (const auto& [k, v] : settings) fp.settings += k + "=" + v + "\n";
+    Fnv1a h;
+    h.add(fp.settings);
+    if (isVolumeFile(input)) {
+        h.add(fileStamp(input));
+    } else {
+        std::ifstream f(input, std::ios::binary);
+        h.add(std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()));
+    }
+    for (const VolumeRecord& v : scene.volumes) h.add(fileStamp(v.file));
+    fp.hash = h.hex();
+    return fp;
+}
+
+std::string joinOverrides(const std::vector<std::string>& overrides, bool photonPassOnly) {
+    std::string sets;
+    for (const auto& o : overrides) {
+        // The photon pass reads no film or output key (the seed is a line of its own).
+        if (photonPassOnly && (o.rfind("film.", 0) == 0 || o.rfind("output.", 0) == 0)) continue;
+        sets += (sets.empty() ? "" : " ") + o;
+    }
+    return sets;
+}
+
+std::string shutterText(const Scene& scene) {
+    char b[64];
+    std::snprintf(b, sizeof b, "%.9g %.9g", scene.render.camera.shutterOpen,
+                  scene.render.camera.shutterClose);
+    return b;
+}
+
+}  // namespace
+
 FrameFingerprint frameFingerprint(const Scene& scene, const std::string& input,
                                   const std::string& integrator, int frame,
-                                  const std::vector<std::string>& overrides) {
+                                  const std::vector<std::string>& overrides, bool withRegion) {
     const RenderSettings& s = scene.settings;
     const CameraDesc& c = scene.render.camera;
     std::map<std::string, std::string> m;
@@ -70,6 +103,9 @@ FrameFingerprint frameFingerprint(const Scene& scene, const std::string& input,
     m["k"] = std::to_string(scene.photon.k);
     m["max_radius"] = std::to_string(scene.photon.maxRadius);
     m["resolution"] = std::to_string(s.width) + "x" + std::to_string(s.height);
+    // A partial file holds the sums of its region only; a region's EXR says which frame it is
+    // a part of (the fingerprint without the region), for `mirage assemble`.
+    if (withRegion && !s.region.empty()) m["region"] = formatPixelWindow(s.region);
     m["seed"] = std::to_string(s.seed);
     m["spp"] = std::to_string(s.spp);
     m["tile_size"] = std::to_string(s.tileSize);
@@ -81,26 +117,21 @@ FrameFingerprint frameFingerprint(const Scene& scene, const std::string& input,
                       scene.passes.sppPerPass, scene.passes.noiseThreshold);
     m["passes"] = passes;
     m["version"] = MIRAGE_VERSION;
-    std::string sets;
-    for (const auto& o : overrides) sets += (sets.empty() ? "" : " ") + o;
-    m["set"] = sets;
+    m["set"] = joinOverrides(overrides, false);
+    return fingerprintOf(m, scene, input);
+}
 
-    FrameFingerprint fp;
-    for (const auto& [k, v] : m) fp.settings += k + "=" + v + "\n";
-    Fnv1a h;
-    h.add(fp.settings);
-    // The scene's own text (a bare VDB: its size and time), then every grid file it read.
-    if (isVolumeFile(input)) {
-        h.add(fileStamp(input));
-    } else {
-        std::ifstream f(input, std::ios::binary);
-        h.add(std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()));
-    }
-    for (const VolumeRecord& v : scene.volumes) h.add(fileStamp(v.file));
-    char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)h.h);
-    fp.hash = hex;
-    return fp;
+FrameFingerprint photonFingerprint(const Scene& scene, const std::string& input, int frame,
+                                   const std::vector<std::string>& overrides) {
+    std::map<std::string, std::string> m;
+    m["frame"] = std::to_string(frame);
+    m["max_depth"] = std::to_string(scene.maxDepth);
+    m["photons"] = std::to_string(scene.photon.photons);
+    m["seed"] = std::to_string(scene.settings.seed);
+    m["shutter_seconds"] = shutterText(scene);
+    m["version"] = MIRAGE_VERSION;
+    m["set"] = joinOverrides(overrides, true);
+    return fingerprintOf(m, scene, input);
 }
 
 PartialFilm loadPartialForResume(const std::string& partialPath, const FrameFingerprint& expected,

@@ -1,6 +1,5 @@
 // `mirage render`: load → render → develop → write, per frame, with a summary at the end.
 #include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <csignal>
@@ -10,6 +9,8 @@
 #include <optional>
 
 #include "app/commands.h"
+#include "app/frame_photons.h"
+#include "app/frame_regions.h"
 #include "app/render_checkpoint.h"
 #include "core/error.h"
 #include "core/interrupt.h"
@@ -64,8 +65,9 @@ void checkOutputSettings(const Scene& scene, const ColorPipeline& color) {
     const OutputSettings& out = scene.output;
     auto miss = findUnknownOutputName(color, out.colorSpace, out.display, out.view);
     if (!miss) return;
-    const std::string what = miss->key == "view" ? "' is not a view of display '" + out.display + "'"
-                                                 : "' is not in the OCIO config";
+    const std::string what = miss->key == "view"
+                                 ? "' is not a view of display '" + out.display + "'"
+                                 : "' is not in the OCIO config";
     throw MirageError(scene.source + ": [output] " + miss->key + " '" + miss->value + what +
                       "; it has: " + joinList(miss->known));
 }
@@ -125,6 +127,11 @@ void applyPassOptions(const RenderOptions& o, PassSettings* passes) {
         passes->maxPasses = (o.spp + passes->sppPerPass - 1) / passes->sppPerPass;
 }
 
+// A complete output: a finished frame, or for `mirage photons` an intact photon file.
+bool outputComplete(const RenderOptions& o, const std::string& out) {
+    return o.photonsOnly ? isCompletePhotonFile(out) : isCompleteFrame(out);
+}
+
 // Loads the frame and applies the command line to it; nothing when --skip-existing finds its
 // output complete.
 std::optional<FrameJob> prepareFrame(RenderSession& rs, int frame) {
@@ -132,7 +139,7 @@ std::optional<FrameJob> prepareFrame(RenderSession& rs, int frame) {
     // With -o the output is known before loading: a complete frame costs no load at all.
     if (o.skipExisting && !o.output.empty()) {
         std::string out = framePath(o.output, frame, rs.sequence);
-        if (isCompleteFrame(out)) {
+        if (outputComplete(o, out)) {
             rs.skip(frame, out);
             return std::nullopt;
         }
@@ -152,10 +159,13 @@ std::optional<FrameJob> prepareFrame(RenderSession& rs, int frame) {
         applyQualityPreset(scene, qualityPreset(o.quality), job.integratorName, o.overrides);
     applyFrameSettings(scene, o.input, FrameSettings{o.resolution, o.spp, o.seed, o.quiet});
     applyPassOptions(o, &scene.passes);
+    if (!o.region.empty())
+        scene.settings.region =
+            parsePixelWindow(o.region, scene.settings.width, scene.settings.height);
     if (o.turntable > 0) setTurntable(&scene.render.camera, frame, o.turntable, scene.output.fps);
     checkOutputSettings(scene, rs.color);
     job.out = framePath(o.output.empty() ? scene.output.path : o.output, frame, rs.sequence);
-    if (o.skipExisting && isCompleteFrame(job.out)) {
+    if (o.skipExisting && outputComplete(o, job.out)) {
         rs.skip(frame, job.out);
         return std::nullopt;
     }
@@ -229,7 +239,8 @@ private:
                                      const std::string& path, const FrameFingerprint& fingerprint) {
         const RenderSettings& s = job.scene.settings;
         if (o.resume && fs::exists(path))
-            return loadPartialForResume(path, fingerprint, s.width, s.height, s.tileSize);
+            return loadPartialForResume(path, fingerprint, renderWindow(s).width(),
+                                        renderWindow(s).height(), s.tileSize);
         if (o.resume && !o.quiet)
             std::fprintf(stderr, "frame %d: no %s to resume from; rendering the whole frame\n",
                          job.frame, path.c_str());
@@ -353,6 +364,18 @@ ExrOptions outputExr(RenderSession& rs, const FrameJob& job, RenderedFrame& rend
     if (!scene.integratorWhy.empty()) exr.metadata["integrator_choice"] = scene.integratorWhy;
     if (rendered.passes) addPassMetadata(scene.passes, *rendered.passes, &exr.metadata);
     if (stats.tilesResumed > 0) exr.metadata["resumed_tiles"] = std::to_string(stats.tilesResumed);
+    // Which frame this is, whatever region of it: `mirage assemble` joins only regions that
+    // agree on it. A region is the EXR's data window, the display window the whole frame.
+    exr.metadata["fingerprint"] =
+        frameFingerprint(scene, rs.o.input, job.integratorName, job.frame, rs.o.overrides, false)
+            .hash;
+    if (!s.region.empty()) {
+        exr.metadata["region"] = formatPixelWindow(s.region);
+        exr.dataX = s.region.x0;
+        exr.dataY = s.region.y0;
+        exr.fullWidth = s.width;
+        exr.fullHeight = s.height;
+    }
     for (const auto& [key, value] : integrator->stats().metadata) exr.metadata[key] = value;
     return exr;
 }
@@ -400,11 +423,35 @@ void printFrameSummary(const FrameJob& job, const RenderedFrame& rendered,
     if (!extra.empty()) std::fprintf(stderr, "frame %d: %s\n", frame, extra.c_str());
 }
 
+// `mirage photons`: the frame's photon pass alone, to its photon file.
+std::optional<int> writePhotonsOnly(const RenderSession& rs, const FrameJob& job) {
+    const PhotonFrameKey key{job.scene, rs.o.input, job.frame, rs.o.overrides};
+    if (!writeFramePhotons(key, job.integratorName, job.out, rs.o.quiet)) {
+        std::fprintf(stderr, "mirage: interrupted: frame %d's photon pass, nothing written\n",
+                     job.frame);
+        return interruptExitCode();
+    }
+    std::printf("%s\n", job.out.c_str());
+    return std::nullopt;
+}
+
+// --photons-file: the frame's saved photon pass instead of tracing it again.
+void attachSavedPhotons(const RenderSession& rs, FrameJob& job) {
+    if (!integratorInfo(job.integratorName).photonPass)
+        throw MirageError("--photons-file: the integrator '" + job.integratorName +
+                          "' traces no photons");
+    const std::string path = framePath(rs.o.photonsFile, job.frame, false);
+    job.scene.photon.savedPass =
+        readFramePhotons(PhotonFrameKey{job.scene, rs.o.input, job.frame, rs.o.overrides}, path);
+}
+
 // Renders one frame and writes its preview and EXR; the exit code when the command must stop
 // (interrupted), nothing to go on.
 std::optional<int> renderFrameFiles(RenderSession& rs, int frame) {
     std::optional<FrameJob> job = prepareFrame(rs, frame);
     if (!job) return std::nullopt;
+    if (rs.o.photonsOnly) return writePhotonsOnly(rs, *job);
+    if (!rs.o.photonsFile.empty()) attachSavedPhotons(rs, *job);
     const Scene& scene = job->scene;
     FrameCheckpoint cp(rs, *job);
     RenderedFrame rendered =
@@ -466,28 +513,35 @@ Command addRenderCommand(CLI::App& app) {
     render->add_option("-o,--output", o->output,
                        "Output EXR; $F4, $F or #### take the frame (a sequence without a pattern "
                        "gets .#### before the extension); default: the scene's [output] path");
-    render->add_option("--preview", o->preview, "Also write a display preview (PNG/JPEG) through "
-                                                "the scene's [output] display/view (default "
-                                                "sRGB, Standard); default: the scene's preview");
-    render->add_option("--frame", o->frame, "Frame number for $F/#### patterns and turntables "
-                                            "(default 1)");
+    render->add_option("--preview", o->preview,
+                       "Also write a display preview (PNG/JPEG) through "
+                       "the scene's [output] display/view (default "
+                       "sRGB, Standard); default: the scene's preview");
+    render->add_option("--frame", o->frame,
+                       "Frame number for $F/#### patterns and turntables "
+                       "(default 1)");
     render
         ->add_option("--frames", o->frames,
                      "Render frames A to B (inclusive), e.g. 1-24; A-BxS every S-th "
                      "frame, e.g. 1-48x2")
         ->excludes("--frame");
-    render->add_option("--set", o->overrides, "Override scene values before loading: "
-                                              "key.path=value …, e.g. film.spp=64 "
-                                              "volume.0.density_scale=2 (a bare VDB: film.*, "
-                                              "render.*, output.* only)")
+    render
+        ->add_option("--set", o->overrides,
+                     "Override scene values before loading: "
+                     "key.path=value …, e.g. film.spp=64 "
+                     "volume.0.density_scale=2 (a bare VDB: film.*, "
+                     "render.*, output.* only)")
         ->take_all();
-    render->add_option("--resolution", o->resolution, "Image size WxH (overrides "
-                                                      "film.resolution; a bare VDB's camera "
-                                                      "reframes)");
-    render->add_option("--spp", o->spp, "Samples per pixel (overrides film.spp and --quality)")->check(CLI::Range(1, 1 << 20));
+    render->add_option("--resolution", o->resolution,
+                       "Image size WxH (overrides "
+                       "film.resolution; a bare VDB's camera "
+                       "reframes)");
+    render->add_option("--spp", o->spp, "Samples per pixel (overrides film.spp and --quality)")
+        ->check(CLI::Range(1, 1 << 20));
     render->add_option("--threads", o->threads, "Worker threads (default: all cores)")
         ->check(CLI::Range(1, 4096));
-    render->add_option("--seed", o->seed, "Random seed (default: film.seed)")->check(CLI::Range(int64_t(0), INT64_MAX));
+    render->add_option("--seed", o->seed, "Random seed (default: film.seed)")
+        ->check(CLI::Range(int64_t(0), INT64_MAX));
     render
         ->add_option("--turntable", o->turntable,
                      "Render frames 1 to N, the camera orbiting "
@@ -510,8 +564,9 @@ Command addRenderCommand(CLI::App& app) {
                      "that states film.spp or render.photons gets them scaled by 1/4, 1 or 4; "
                      "--spp and --set film.spp/render.photons/render.k still win")
         ->check(CLI::IsMember({"draft", "preview", "final"}));
-    render->add_flag("--float", o->floatExr, "Write 32-bit float EXR instead of half (overrides "
-                                             "[output] half)");
+    render->add_flag("--float", o->floatExr,
+                     "Write 32-bit float EXR instead of half (overrides "
+                     "[output] half)");
     render->add_flag("-q,--quiet", o->quiet, "No progress output");
     render->add_option("--ocio", o->ocioConfig, "OCIO config file (default: $OCIO, else built-in)");
     render->add_flag("--resume", o->resume,
@@ -548,6 +603,19 @@ Command addRenderCommand(CLI::App& app) {
                      "race's relMSE from per-pixel variance, square-rooted; docs/cli.md) is at "
                      "most E; adaptive: passes after the second sample only pixels above E")
         ->check(CLI::Range(1e-6, 10.0));
+    render
+        ->add_option("--region", o->region,
+                     "Render only pixels X0,Y0,X1,Y1 of the frame (X1, Y1 exclusive): the EXR's "
+                     "data window is the region, its display window the frame, and the pixels "
+                     "are the same bits as in a whole-frame render (mirage assemble joins "
+                     "regions); not with --time-limit or --noise-threshold, whose stop "
+                     "would depend on the region")
+        ->excludes("--time-limit")
+        ->excludes("--noise-threshold");
+    render->add_option("--photons-file", o->photonsFile,
+                       "Render with the photon pass saved by mirage photons for this frame "
+                       "($F4, $F or #### take the frame) instead of tracing it; refused when "
+                       "made from another scene, frame or settings");
     render->add_option("--max-memory", o->maxMemory,
                        "Fail early when the frame's estimated memory exceeds SIZE (4G, 512M, "
                        "1.5G, 64k or bytes; binary multiples)");

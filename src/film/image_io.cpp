@@ -17,6 +17,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "film/color.h"
+#include "film/oiio_file.h"
 
 namespace mirage {
 
@@ -45,11 +46,23 @@ void checkImage(const std::string& path, const Image& image) {
                        std::to_string(image.rgba.size()) + " floats)");
 }
 
-// Writes `spec` and the pixels (float, `xstride` bytes apart) through a temporary file next to
-// `path`, then renames it into place. On any failure the temporary file is removed and a
-// MirageError names `path`. The format follows the extension of `path`, not of the temporary.
+std::string lowerExtension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+}  // namespace
+
 void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec, const float* pixels,
                      OIIO::stride_t xstride) {
+    writeSubimagesAtomically(path, {spec}, {pixels}, xstride);
+}
+
+void writeSubimagesAtomically(const std::string& path, const std::vector<OIIO::ImageSpec>& specs,
+                              const std::vector<const float*>& pixels, OIIO::stride_t xstride) {
+    MIRAGE_CHECK(!specs.empty() && specs.size() == pixels.size());
     fs::path target(path);
     if (target.filename().empty() || target.filename() == "." || target.filename() == "..")
         fail(path, "not a file name");
@@ -65,23 +78,22 @@ void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec, const
         [&](const std::string& tmp) {
             std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(target.string());
             if (!out) fail(path, "no image writer for this file type: " + OIIO::geterror());
-            if (!out->open(tmp, spec))
+            const bool several = specs.size() > 1;
+            if (several && !out->supports("multiimage"))
+                fail(path, "this file type holds one image, not " + std::to_string(specs.size()));
+            if (!(several ? out->open(tmp, int(specs.size()), specs.data())
+                          : out->open(tmp, specs[0])))
                 fail(path, "cannot open '" + tmp + "' for writing: " + out->geterror());
-            bool ok = out->write_image(OIIO::TypeFloat, pixels, xstride);
+            bool ok = true;
+            for (size_t i = 0; i < specs.size() && ok; ++i) {
+                if (i > 0) ok = out->open(tmp, specs[i], OIIO::ImageOutput::AppendSubimage);
+                ok = ok && out->write_image(OIIO::TypeFloat, pixels[i], xstride);
+            }
             ok = out->close() && ok;
             if (!ok) fail(path, "cannot write: " + out->geterror());
         },
         "cannot move the finished file into place");
 }
-
-std::string lowerExtension(const std::string& path) {
-    std::string ext = fs::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return ext;
-}
-
-}  // namespace
 
 void writeExr(const std::string& path, const Image& image, const ExrOptions& options) {
     checkImage(path, image);
@@ -92,6 +104,16 @@ void writeExr(const std::string& path, const Image& image, const ExrOptions& opt
                          options.halfFloat ? OIIO::TypeHalf : OIIO::TypeFloat);
     spec.channelnames = {"R", "G", "B", "A"};
     spec.alpha_channel = 3;
+    if (options.fullWidth > 0) {
+        MIRAGE_CHECK(options.dataX >= 0 && options.dataY >= 0 &&
+                     options.dataX + image.width <= options.fullWidth &&
+                     options.dataY + image.height <= options.fullHeight);
+        spec.x = options.dataX;
+        spec.y = options.dataY;
+        spec.full_x = spec.full_y = 0;
+        spec.full_width = options.fullWidth;
+        spec.full_height = options.fullHeight;
+    }
     // ZIP (16 scanlines per block, lossless): the usual choice for final frames, read fast by
     // every compositor; rendered noise defeats the gain PIZ has on photographs.
     spec.attribute("compression", "zip");

@@ -16,6 +16,10 @@ struct ExrOptions {
     std::string colorSpace;  // tag written as oiio:ColorSpace; chromaticities follow it
     std::vector<float> chromaticities;  // 8 values, optional
     std::map<std::string, std::string> metadata;  // written as "mirage:<key>" string attributes
+    // A region of a larger frame (mirage render --region): the image is the data window, its
+    // pixel (0, 0) at (dataX, dataY) of a display window fullWidth × fullHeight from (0, 0).
+    // fullWidth = 0: the image is the whole frame.
+    int dataX = 0, dataY = 0, fullWidth = 0, fullHeight = 0;
 };
 
 void writeExr(const std::string& path, const Image& image, const ExrOptions& options);

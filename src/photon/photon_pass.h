@@ -77,6 +77,12 @@ struct PhotonMapLists {
     PhotonList surfaceCaustic;  // diffuse surfaces, after specular bounces only (L S+ D)
 };
 
+// A finished photon pass: its maps and figures (what a .photons file holds, photon_file.h).
+struct PhotonPassResult {
+    PhotonMapLists maps;
+    PhotonPassStats stats;
+};
+
 // The photon pass with surfaces (geometry may be null: then the same photons as tracePhotons).
 PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
                                const std::vector<const Medium*>& media,

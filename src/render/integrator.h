@@ -18,6 +18,8 @@
 
 namespace mirage {
 
+struct PhotonPassResult;
+
 // Per-thread state an integrator may use (allocated once per tile, reused per sample).
 struct ThreadState {
     explicit ThreadState(const RenderScene& scene) : tracking(scene.mediaPointers()) {}
@@ -119,6 +121,9 @@ struct PhotonIntegratorSettings {
     std::shared_ptr<const IndexField> field;
     CurvedPathSettings curvedPath;
     float curvedMaxArc = 1000.f;
+    // --photons-file: the maps of this frame's pass, saved by `mirage photons`; preprocess()
+    // builds its maps from them instead of tracing (the same photons, so the same bits).
+    std::shared_ptr<const PhotonPassResult> savedPass;
 
     int kOrDefault() const { return k > 0 ? k : (estimate == PhotonEstimate::Beam ? 16 : 32); }
 };
@@ -127,6 +132,12 @@ struct PhotonIntegratorSettings {
 // (Jarosz et al. 2008) or the ray-marched point estimate for multiple scattering; single
 // scattering and emission as the single-scatter integrator computes them.
 std::unique_ptr<Integrator> makePhotonIntegrator(const PhotonIntegratorSettings& settings);
+
+// The photon integrator's photon pass alone, exactly as its preprocess() traces it for `scene`
+// (`mirage photons`: pass 0; a render in passes traces pass p > 0 with a seed of its own);
+// settings.savedPass is ignored.
+PhotonPassResult tracePhotonIntegratorPass(const RenderScene& scene,
+                                           const PhotonIntegratorSettings& settings, int pass = 0);
 
 // Whether photons follow curved paths: a field whose |∇n| bound over the scene's bounds (grown
 // by a tenth of their diagonal) is not 0. Then shadow rays do not exist (they would be straight)

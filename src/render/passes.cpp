@@ -71,7 +71,13 @@ Film renderPasses(const RenderScene& scene, Integrator& integrator, const Render
                   RenderStats* stats, PassReport* report, PassCheckpoint* checkpoint) {
     MIRAGE_CHECK(settings.sppPerPass >= 1);
     const bool resumed = checkpoint && checkpoint->initial;
-    PassState state(resumed ? *checkpoint->initial : Film(s.width, s.height));
+    // A region's passes (--region with --passes) fill the region's film; an adaptive mask is
+    // indexed by whole-frame pixel, so a noise threshold needs the whole frame (the command
+    // refuses the pair).
+    const PixelWindow win = renderWindow(s);
+    MIRAGE_CHECK(settings.noiseThreshold <= 0 ||
+                 (win.width() == s.width && win.height() == s.height));
+    PassState state(resumed ? *checkpoint->initial : Film(win.width(), win.height()));
     const double before = resumed ? checkpoint->secondsDone : 0.0;
     if (resumed) {
         state.passes = checkpoint->passesDone;
@@ -111,7 +117,7 @@ Film renderPasses(const RenderScene& scene, Integrator& integrator, const Render
         ++passesNow;
         lastPass = secondsFrom(t0);
         lastPixels = state.pixels.empty()
-                         ? size_t(s.width) * size_t(s.height)
+                         ? size_t(win.width()) * size_t(win.height())
                          : size_t(std::count(state.pixels.begin(), state.pixels.end(), uint8_t(1)));
         assess(settings, &state);
         if (s.progress != Progress::Mode::Quiet)
@@ -130,8 +136,9 @@ Film renderPasses(const RenderScene& scene, Integrator& integrator, const Render
     if (report) {
         report->passes = state.passes;
         report->samples = 0;
-        for (int y = 0; y < s.height; ++y)
-            for (int x = 0; x < s.width; ++x) report->samples += state.film.pixel(x, y).samples;
+        for (int y = 0; y < state.film.height(); ++y)
+            for (int x = 0; x < state.film.width(); ++x)
+                report->samples += state.film.pixel(x, y).samples;
         report->estimatedError = state.error.relError();
         report->seconds = before + secondsFrom(frameStart);
         report->lastPassPixels = lastPixels;

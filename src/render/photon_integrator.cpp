@@ -100,6 +100,35 @@ void addPassStats(const PhotonPassStats& pass, PhotonPassStats* sum) {
     sum->interrupted = sum->interrupted || pass.interrupted;
 }
 
+// The photon pass p of a render in passes (p = 0: the one of a render not in passes). Its seed
+// is derived from the render seed so that photon i and pixel i (both keyed (seed, index, 0) in
+// the counter-based sampler) do not share numbers; pass p > 0 derives its own from that. Where
+// paths curve (photonsCurve) photons follow Fermat paths and every interaction is stored, the
+// first included (see preprocess()).
+PhotonPassSettings passSettings(const PhotonIntegratorSettings& s, const RenderScene& scene,
+                                int p) {
+    PhotonPassSettings pass;
+    pass.photons = s.photons;
+    pass.seed = hashCombine(s.seed, 0x70686f746f6eull);  // "photon"
+    if (p > 0) pass.seed = hashCombine(pass.seed, uint64_t(p));
+    pass.maxBounces = s.maxBounces;
+    pass.storeFirstInteraction = false;
+    if (photonsCurve(s.field.get(), scene.bounds())) {
+        pass.field = s.field.get();
+        pass.curvedPath = s.curvedPath;
+        // A photon's flight needs no more path than a few crossings of the scene: an
+        // escaping photon otherwise walks the whole max_distance in chords.
+        const Vec3 diag = scene.bounds().diagonal();
+        pass.curvedMaxArc = std::min(s.curvedMaxArc, 2.f * length(diag));
+        pass.storeFirstInteraction = true;
+    }
+    // One progress bar, the first pass's: a render in passes reports each pass instead.
+    pass.progress = p == 0 ? s.progress : Progress::Mode::Quiet;
+    pass.shutterOpen = scene.camera.shutterOpen;  // photons sample times too (motion blur)
+    pass.shutterClose = scene.camera.shutterClose;
+    return pass;
+}
+
 // Scratch of one render thread, reused for every camera sample.
 struct PhotonThreadState {
     explicit PhotonThreadState(const std::vector<const Medium*>& media)
@@ -181,33 +210,13 @@ private:
     // Traces pass p's photons and builds its maps and the estimate's structures, each step
     // timed (summed over passes) for the summary and the EXR header.
     void buildPass(const RenderScene& scene, int p) {
-        std::vector<const Light*> lights;
-        for (const auto& l : scene.lights) lights.push_back(l.get());
-        // Its seed is derived from the render seed so that photon i and pixel i (both keyed
-        // (seed, index, 0) in the counter-based sampler) do not share numbers; pass p > 0
-        // derives its own from that.
-        PhotonPassSettings pass;
-        pass.photons = mSettings.photons;
-        pass.seed = hashCombine(mSettings.seed, 0x70686f746f6eull);  // "photon"
-        if (p > 0) pass.seed = hashCombine(pass.seed, uint64_t(p));
-        pass.maxBounces = mSettings.maxBounces;
-        pass.storeFirstInteraction = false;
-        if (mCurved) {
-            pass.field = mSettings.field.get();
-            pass.curvedPath = mSettings.curvedPath;
-            // A photon's flight needs no more path than a few crossings of the scene: an
-            // escaping photon otherwise walks the whole max_distance in chords.
-            const Vec3 diag = scene.bounds().diagonal();
-            pass.curvedMaxArc = std::min(mSettings.curvedMaxArc, 2.f * length(diag));
-            pass.storeFirstInteraction = true;
-        }
-        // One progress bar, the first pass's: a render in passes reports each pass instead.
-        pass.progress = p == 0 ? mSettings.progress : Progress::Mode::Quiet;
-        pass.shutterOpen = scene.camera.shutterOpen;  // photons sample times too (motion blur)
-        pass.shutterClose = scene.camera.shutterClose;
-        PhotonPassStats passStats;
-        PhotonMapLists lists = tracePhotonMaps(
-            lights, mMedia, scene.hasSurfaces() ? scene.geometry.get() : nullptr, pass, &passStats);
+        // Pass 0 may come saved (--photons-file: the same photons, so the same bits); later
+        // passes of a render in passes always trace their own.
+        PhotonPassResult traced = p == 0 && mSettings.savedPass
+                                      ? *mSettings.savedPass
+                                      : tracePhotonIntegratorPass(scene, mSettings, p);
+        PhotonMapLists& lists = traced.maps;
+        const PhotonPassStats& passStats = traced.stats;
         addPassStats(passStats, &mPassStats);
         mPass = p;
         mRadiusScale = radiusScale(p);
@@ -256,19 +265,18 @@ private:
 
     std::string summaryLine(const PhotonStats& p, uint64_t estimates) const {
         char buf[640];
-        std::snprintf(buf, sizeof buf,
-                      "photons: %llu traced, %llu stored | photon pass %.2fs (%.2f M photons/s) "
-                      "| photon map build %.3fs, disc radii %.3fs, disc BVH build %.3fs | %s "
-                      "estimate %.2fs thread time (%.1f µs/ray, k %d, max radius %.3g m) | "
-                      "photon paths cut at max_depth %llu | from emissive media %llu (%.3g W)",
-                      (unsigned long long)p.photonsTraced, (unsigned long long)p.photonsStored,
-                      p.photonPassSeconds, p.photonsPerSecond / 1e6, p.photonMapBuildSeconds,
-                      p.photonRadiiSeconds, p.discBvhBuildSeconds, mBeam ? "beam" : "point",
-                      p.estimateSeconds,
-                      estimates ? p.estimateSeconds / double(estimates) * 1e6 : 0.0,
-                      mSettings.kOrDefault(), double(mMaxRadius),
-                      (unsigned long long)mPassStats.cappedPaths,
-                      (unsigned long long)mPassStats.fromMedia, mPassStats.mediumPower);
+        std::snprintf(
+            buf, sizeof buf,
+            "photons: %llu traced, %llu stored | photon pass %.2fs (%.2f M photons/s) "
+            "| photon map build %.3fs, disc radii %.3fs, disc BVH build %.3fs | %s "
+            "estimate %.2fs thread time (%.1f µs/ray, k %d, max radius %.3g m) | "
+            "photon paths cut at max_depth %llu | from emissive media %llu (%.3g W)",
+            (unsigned long long)p.photonsTraced, (unsigned long long)p.photonsStored,
+            p.photonPassSeconds, p.photonsPerSecond / 1e6, p.photonMapBuildSeconds,
+            p.photonRadiiSeconds, p.discBvhBuildSeconds, mBeam ? "beam" : "point",
+            p.estimateSeconds, estimates ? p.estimateSeconds / double(estimates) * 1e6 : 0.0,
+            mSettings.kOrDefault(), double(mMaxRadius), (unsigned long long)mPassStats.cappedPaths,
+            (unsigned long long)mPassStats.fromMedia, mPassStats.mediumPower);
         std::string line = buf;
         if (mCurved) line += " | photons on curved paths (direct light from the photon maps)";
         if (mPass > 0) {
@@ -365,8 +373,8 @@ private:
 
     PhotonIntegratorSettings mSettings;
     std::unique_ptr<Integrator> mSingle;
-    bool mCurved = false;  // photons on curved paths, direct light from the maps
-    int mPass = 0;         // the pass whose maps are built
+    bool mCurved = false;      // photons on curved paths, direct light from the maps
+    int mPass = 0;             // the pass whose maps are built
     float mRadiusScale = 1.f;  // its disc radii over pass 0's
     std::vector<const Medium*> mMedia;
     PhotonPassStats mPassStats;  // summed over passes
@@ -380,12 +388,24 @@ private:
 
 }  // namespace
 
+PhotonPassResult tracePhotonIntegratorPass(const RenderScene& scene,
+                                           const PhotonIntegratorSettings& settings, int pass) {
+    std::vector<const Light*> lights;
+    for (const auto& l : scene.lights) lights.push_back(l.get());
+    PhotonPassResult result;
+    result.maps = tracePhotonMaps(lights, scene.mediaPointers(),
+                                  scene.hasSurfaces() ? scene.geometry.get() : nullptr,
+                                  passSettings(settings, scene, pass), &result.stats);
+    return result;
+}
+
 std::unique_ptr<Integrator> makePhotonIntegrator(const PhotonIntegratorSettings& settings) {
     // The scene loader refuses k = 1 with its location; callers of the library get the same
     // message instead of the estimators' internal check.
     if (settings.k == 1)
-        throw MirageError("photon integrator: k = 1: expected 0 (the default for the estimate) "
-                          "or at least 2 photons per estimate");
+        throw MirageError(
+            "photon integrator: k = 1: expected 0 (the default for the estimate) "
+            "or at least 2 photons per estimate");
     return std::make_unique<PhotonMapIntegrator>(settings);
 }
 

@@ -18,17 +18,19 @@ namespace mirage {
 namespace {
 
 // Every sample of one tile's pixels into the film (tiles do not overlap: no two threads write
-// one pixel). A sample's numbers come from its own (seed, pixel, sample): pixel jitter, its
-// wavelengths, then the integrator's; its time in the shutter from a stream of its own, so
-// that a closed shutter leaves every other number where it was. A camera that moves within the
-// shutter is placed at that time (CameraDesc::poseAt) for the sample's ray. Returns the samples
-// taken.
+// one pixel). A sample's numbers come from its own (seed, pixel, sample), the pixel numbered in
+// the full frame whatever the region and the tile: pixel jitter, its wavelengths, then the
+// integrator's; its time in the shutter from a stream of its own, so that a closed shutter
+// leaves every other number where it was. A camera that moves within the shutter is placed at
+// that time (CameraDesc::poseAt) for the sample's ray. Returns the samples taken.
 uint64_t renderTile(const RenderScene& scene, const Integrator& integrator, const RenderSettings& s,
                     const PassSamples& pass, const PerspectiveCamera& camera, int tile,
                     ThreadState& ts, Film* film) {
+    const PixelWindow win = renderWindow(s);
     const int tilesX = tileCountX(s);
-    const int x0 = (tile % tilesX) * s.tileSize, y0 = (tile / tilesX) * s.tileSize;
-    const int x1 = std::min(x0 + s.tileSize, s.width), y1 = std::min(y0 + s.tileSize, s.height);
+    const int x0 = win.x0 + (tile % tilesX) * s.tileSize;
+    const int y0 = win.y0 + (tile / tilesX) * s.tileSize;
+    const int x1 = std::min(x0 + s.tileSize, win.x1), y1 = std::min(y0 + s.tileSize, win.y1);
     uint64_t taken = 0;
     for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x) {
@@ -51,7 +53,7 @@ uint64_t renderTile(const RenderScene& scene, const Integrator& integrator, cons
                               .generate(float(x) + jx, float(y) + jy)
                         : camera.generate(float(x) + jx, float(y) + jy);
                 const RadianceSample rs = integrator.Li(scene, ray, w, sampler, ts);
-                film->addSample(x, y, rs.L, w, rs.alpha, rs.xyz);
+                film->addSample(x - win.x0, y - win.y0, rs.L, w, rs.alpha, rs.xyz);
             }
         }
     return taken;
@@ -61,10 +63,13 @@ uint64_t renderTile(const RenderScene& scene, const Integrator& integrator, cons
 
 Film render(const RenderScene& scene, Integrator& integrator, const RenderSettings& s,
             RenderStats* stats, TileCheckpoint* checkpoint, const PassSamples& pass) {
+    const PixelWindow win = renderWindow(s);
+    MIRAGE_CHECK(win.x0 >= 0 && win.y0 >= 0 && win.x1 <= s.width && win.y1 <= s.height);
     const int tilesX = tileCountX(s);
     const int tiles = tileCount(s);
-    Film film = checkpoint && checkpoint->initial ? *checkpoint->initial : Film(s.width, s.height);
-    MIRAGE_CHECK(film.width() == s.width && film.height() == s.height);
+    Film film =
+        checkpoint && checkpoint->initial ? *checkpoint->initial : Film(win.width(), win.height());
+    MIRAGE_CHECK(film.width() == win.width() && film.height() == win.height());
     MIRAGE_CHECK(!pass.pixels || pass.pixels->size() == size_t(s.width) * size_t(s.height));
     PerspectiveCamera camera(scene.camera, s.width, s.height);
 
@@ -127,8 +132,8 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
         if (!finalDone[t]) continue;
         ++tilesDone;
         int x0 = (t % tilesX) * s.tileSize, y0 = (t / tilesX) * s.tileSize;
-        pixelsDone += uint64_t(std::min(s.tileSize, s.width - x0)) *
-                      uint64_t(std::min(s.tileSize, s.height - y0));
+        pixelsDone += uint64_t(std::min(s.tileSize, win.width() - x0)) *
+                      uint64_t(std::min(s.tileSize, win.height() - y0));
     }
     if (checkpoint) checkpoint->done = finalDone;
     if (stats) {

@@ -1,7 +1,8 @@
 // The render pass: tiles over the image, scheduled by TBB over all cores. Each pixel's samples
 // use the sampler keyed by (seed, pixel, sample), and each pixel is accumulated
 // by the one task that owns its tile, so the image is bit-identical for any thread count — and
-// for any order or subset of tiles, which is what lets a killed render resume exactly.
+// for any order or subset of tiles, which is what lets a killed render resume exactly, and a
+// region of the frame render the same bits as those pixels of the whole frame (a farm's tiles).
 #pragma once
 
 #include <cstdint>
@@ -14,8 +15,22 @@
 
 namespace mirage {
 
+// A rectangle of pixels [x0, x1) × [y0, y1) in the full frame; empty: the whole frame.
+struct PixelWindow {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    bool empty() const { return x1 <= x0 || y1 <= y0; }
+    int width() const { return x1 - x0; }
+    int height() const { return y1 - y0; }
+    bool operator==(const PixelWindow& o) const {
+        return x0 == o.x0 && y0 == o.y0 && x1 == o.x1 && y1 == o.y1;
+    }
+};
+
 struct RenderSettings {
-    int width = 640, height = 360;
+    int width = 640, height = 360;  // the full frame: the camera's image plane
+    // --region: only these pixels are rendered, into a film of the region's size whose pixel
+    // (0, 0) is the region's corner; empty: the whole frame.
+    PixelWindow region;
     int tileSize = 32;
     int spp = 16;
     uint64_t seed = 0;
@@ -37,11 +52,18 @@ struct RenderStats {
     bool interrupted = false;  // stopped by interruptRequested() before every tile was done
 };
 
-// Tiles are numbered row-major: tile t covers x from (t % tilesX)·tileSize, y from
-// (t / tilesX)·tileSize, clipped to the image.
-inline int tileCountX(const RenderSettings& s) { return (s.width + s.tileSize - 1) / s.tileSize; }
+// The pixels a render covers: the region, or the whole frame.
+inline PixelWindow renderWindow(const RenderSettings& s) {
+    return s.region.empty() ? PixelWindow{0, 0, s.width, s.height} : s.region;
+}
+
+// Tiles are numbered row-major over the render window: tile t covers x from
+// x0 + (t % tilesX)·tileSize, y from y0 + (t / tilesX)·tileSize, clipped to the window.
+inline int tileCountX(const RenderSettings& s) {
+    return (renderWindow(s).width() + s.tileSize - 1) / s.tileSize;
+}
 inline int tileCount(const RenderSettings& s) {
-    return tileCountX(s) * ((s.height + s.tileSize - 1) / s.tileSize);
+    return tileCountX(s) * ((renderWindow(s).height() + s.tileSize - 1) / s.tileSize);
 }
 
 // Checkpointing a render (killed renders, --resume). All fields are optional.

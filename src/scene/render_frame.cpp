@@ -27,7 +27,8 @@ void applyFrameSettings(Scene& scene, const std::string& input, const FrameSetti
         // Keep an automatic camera framed for the new aspect ratio.
         if (isVolumeFile(input)) {
             const CameraDesc old = scene.render.camera;
-            scene.render.camera = frameBounds(scene.render.bounds(), old.fovDeg, float(w) / float(h));
+            scene.render.camera =
+                frameBounds(scene.render.bounds(), old.fovDeg, float(w) / float(h));
             scene.render.camera.shutterOpen = old.shutterOpen;
             scene.render.camera.shutterClose = old.shutterClose;
         }
@@ -79,26 +80,33 @@ void applyQualityPreset(Scene& scene, const QualityPreset& preset, const std::st
     if (photon && !overridden("render.k")) scene.photon.k = preset.k;
 }
 
+PhotonIntegratorSettings photonSettingsFor(const Scene& scene) {
+    // The photon pass takes the render's seed and progress mode.
+    PhotonIntegratorSettings photon = scene.photon;
+    photon.seed = scene.settings.seed;
+    photon.progress = scene.settings.progress;
+    photon.maxBounces = scene.maxDepth;  // as makeIntegrator sets it
+    if (scene.refraction) {
+        photon.field = scene.refraction->field;
+        photon.curvedPath = scene.refraction->path;
+        photon.curvedMaxArc = scene.refraction->maxArc;
+    }
+    return photon;
+}
+
 RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
                           const ColorPipeline& color, TileCheckpoint* checkpoint,
                           PassCheckpoint* passCheckpoint) {
     auto t0 = std::chrono::steady_clock::now();
     RenderedFrame frame;
     const RenderSettings& s = scene.settings;
-    // The photon pass takes the render's seed and progress mode.
-    PhotonIntegratorSettings photon = scene.photon;
-    photon.seed = s.seed;
-    photon.progress = s.progress;
-    if (scene.refraction) {
-        photon.field = scene.refraction->field;
-        photon.curvedPath = scene.refraction->path;
-        photon.curvedMaxArc = scene.refraction->maxArc;
-    }
+    const PhotonIntegratorSettings photon = photonSettingsFor(scene);
     std::string name = integrator.empty() ? scene.integrator : integrator;
     if (name == "auto") name = chooseIntegrator(scene).name;
     frame.integrator = makeIntegrator(name, scene.maxDepth, photon);
     if (scene.refraction)
-        frame.integrator = makeCurvedCameraIntegrator(std::move(frame.integrator), scene.refraction);
+        frame.integrator =
+            makeCurvedCameraIntegrator(std::move(frame.integrator), scene.refraction);
     frame.integrator->preprocess(scene.render);
     if (scene.passes.enabled()) {
         frame.passes.emplace();

@@ -54,13 +54,17 @@ void applyQualityPreset(Scene& scene, const QualityPreset& preset, const std::st
                         const std::vector<std::string>& overrides);
 
 struct RenderedFrame {
-    Image image;                              // developed, in the working space
+    Image image;  // developed, in the working space
     RenderStats stats;
-    std::unique_ptr<Film> film;               // the sums behind `image` (partial files)
-    std::unique_ptr<Integrator> integrator;   // for its name, summary and capped paths
-    double seconds = 0;                       // wall: integrator set-up, photon pass, render, develop
-    std::optional<PassReport> passes;         // a render in passes (scene.passes.enabled())
+    std::unique_ptr<Film> film;              // the sums behind `image` (partial files)
+    std::unique_ptr<Integrator> integrator;  // for its name, summary and capped paths
+    double seconds = 0;                // wall: integrator set-up, photon pass, render, develop
+    std::optional<PassReport> passes;  // a render in passes (scene.passes.enabled())
 };
+
+// The photon integrator's settings for `scene`: its [render] photon keys, the render's seed and
+// progress mode, and its [refraction] field (the photon pass of `render` and `mirage photons`).
+PhotonIntegratorSettings photonSettingsFor(const Scene& scene);
 
 // Renders `scene` with `integrator` ("" = the scene's own, "auto" = chooseIntegrator's) and
 // develops it through `color`: one render of film.spp samples, or, when scene.passes asks, a

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 
 namespace mirage::test {
 
@@ -37,6 +38,19 @@ std::string makeFogSphere(const std::string& dir, int resolution) {
               0)
         << log;
     return dir + "/fog.vdb";
+}
+
+std::string writeFogSphereScene(const std::string& dir, const std::string& film,
+                                const std::string& render) {
+    makeFogSphere(dir);
+    std::ofstream f(dir + "/scene.toml");
+    f << "[film]\n"
+      << film << "\n[render]\n"
+      << render << "\n"
+      << "[camera]\nposition = [0, 1, 4]\nlook_at = [0, 1, 0]\nfov = 35\n"
+         "[[volume]]\nfile = \"fog.vdb\"\nshader = \"smoke\"\ndensity_scale = 3\n"
+         "[[light]]\ntype = \"sun\"\ndirection = [0.6, -0.7, -0.4]\nirradiance = 1476\n";
+    return dir + "/scene.toml";
 }
 
 std::string shippedScene(const std::string& name) {

@@ -24,6 +24,12 @@ std::string sourceDir();
 // Writes the procedural fog sphere (`mirage make-asset fog-sphere --resolution R`) to
 // DIR/fog.vdb and returns that path; a failure is a test failure.
 std::string makeFogSphere(const std::string& dir, int resolution = 16);
+// DIR/scene.toml: the fog sphere of makeFogSphere(dir) with the smoke shader (density_scale 3)
+// under a sun, seen from (0, 1, 4); `film` and `render` are the bodies of its [film] and
+// [render] tables (TOML lines). Returns the scene's path.
+std::string writeFogSphereScene(const std::string& dir, const std::string& film,
+                                const std::string& render);
+
 // A scene shipped in assets/scenes/ of the source tree.
 std::string shippedScene(const std::string& name);
 // Copies that scene into `dir` and, where it names a procedural cache, writes the cache beside

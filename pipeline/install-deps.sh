@@ -11,7 +11,7 @@ PACKAGES=(
   libopenvdb-dev libnanovdb-dev libboost-iostreams-dev libblosc-dev libopenvdb-tools
   libopenvdb-ax-dev
   libembree-dev libtinyobjloader-dev
-  libopenimageio-dev openimageio-tools
+  libopenimageio-dev openimageio-tools fonts-dejavu-core
   libopencolorio-dev opencolorio-tools
   libopenexr-dev libimath-dev openexr
   libtbb-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev

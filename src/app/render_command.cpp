@@ -321,6 +321,7 @@ void addPassMetadata(const PassSettings& settings, const PassReport& r,
     (*metadata)["samples"] = std::to_string(r.samples);
     (*metadata)["estimated_error"] = num(r.estimatedError);
     (*metadata)["stopped_by"] = r.stop;
+    (*metadata)["time_spent"] = num(r.seconds);  // what --time-limit is compared with
     if (settings.timeLimit > 0) (*metadata)["time_limit"] = num(settings.timeLimit);
     if (settings.noiseThreshold > 0) (*metadata)["noise_threshold"] = num(settings.noiseThreshold);
 }

@@ -19,7 +19,6 @@ double secondsFrom(std::chrono::steady_clock::time_point t0) {
 
 // One pass's render statistics into the running sums.
 void addPassStats(const RenderStats& pass, RenderStats* sum) {
-    sum->seconds += pass.seconds;
     sum->samples += pass.samples;
     sum->mediumLookups += pass.mediumLookups;
     sum->cappedFlights += pass.cappedFlights;
@@ -88,6 +87,7 @@ Film renderPasses(const RenderScene& scene, Integrator& integrator, const Render
     passSettings.progress = Progress::Mode::Quiet;  // one line per pass instead
     RenderStats sum;
     sum.tiles = tileCount(s);
+    const auto passesStart = std::chrono::steady_clock::now();
     double lastPass = 0;
     size_t lastPixels = 0;
     int passesNow = 0;
@@ -129,6 +129,7 @@ Film renderPasses(const RenderScene& scene, Integrator& integrator, const Render
             passesNow >= checkpoint->stopAfterPasses)
             requestInterrupt(SIGINT);
     }
+    sum.seconds = secondsFrom(passesStart);  // the later passes' photon maps included
     sum.nonFiniteSamples = state.film.nonFiniteSamples();
     sum.interrupted = stop == "interrupted";
     sum.tilesDone = sum.interrupted ? 0 : sum.tiles;

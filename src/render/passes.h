@@ -64,7 +64,8 @@ struct PassReport {
 };
 
 // Renders passes of `passes.sppPerPass` samples until a stop (above); `frameStart` is when the
-// frame began (its time limit counts from there). `stats` sums the passes' render statistics
+// frame began (its time limit counts from there). `stats` sums the passes' render statistics,
+// its seconds the wall time of all passes, photon maps of passes after the first included
 // (stats->interrupted: an interrupt stopped it; the film holds the passes finished before).
 Film renderPasses(const RenderScene& scene, Integrator& integrator, const RenderSettings& settings,
                   const PassSettings& passes, std::chrono::steady_clock::time_point frameStart,

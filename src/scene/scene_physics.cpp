@@ -135,16 +135,15 @@ PhysicsTerm curvedPathsTerm(const Scene& scene, const std::string& integrator) {
 std::vector<PhysicsTerm> Scene::physics() const {
     const MediaPhysics m = mediaPhysics(render);
     // A scene built in code may still say "auto"; a loaded one has been resolved.
-    const std::string integrator =
-        this->integrator == "auto" ? chooseIntegrator(*this).name : this->integrator;
+    const std::string name = integrator == "auto" ? chooseIntegrator(*this).name : integrator;
     std::vector<PhysicsTerm> terms;
     terms.push_back({"absorption", !render.media.empty(),
                      render.media.empty() ? "no volumes"
                                           : std::to_string(render.media.size()) + " volume(s)"});
     terms.push_back(singleScatteringTerm(render, m));
-    terms.push_back(multipleScatteringTerm(*this, integrator, m));
+    terms.push_back(multipleScatteringTerm(*this, name, m));
     terms.push_back({"emission", m.emission,
-                     m.emission ? m.emitWhy + (integratorInfo(integrator).photonPass
+                     m.emission ? m.emitWhy + (integratorInfo(name).photonPass
                                                    ? "; the photon pass emits from it ∝ 4π σa·Le"
                                                    : "")
                                 : "no shader has an [emission] table"});
@@ -159,7 +158,7 @@ std::vector<PhysicsTerm> Scene::physics() const {
                      m.fluorescenceWhy.empty() ? "no shader declares a quantum efficiency"
                                                : m.fluorescenceWhy});
     terms.push_back(expressionsTerm(volumes));
-    terms.push_back(curvedPathsTerm(*this, integrator));
+    terms.push_back(curvedPathsTerm(*this, name));
     return terms;
 }
 

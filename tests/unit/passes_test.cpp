@@ -4,17 +4,20 @@
 // time-limited render reproduced bit for bit by its pass count, for a path integrator and for
 // the progressive photon mapper, with one thread or two; the noise threshold met, with the
 // later passes sampling only the noisy pixels; a render in passes interrupted and resumed equal
-// to one rendered in one go.
+// to one rendered in one go; and the command's EXR records its passes, which reproduce it.
 #include "render/passes.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <map>
 
 #include "core/interrupt.h"
 #include "film/film_error.h"
+#include "film/image_io.h"
 #include "test_support.h"
 
 using namespace mirage;
@@ -220,4 +223,30 @@ TEST(Passes, InterruptedAndResumedEqualsOneGo) {
         EXPECT_EQ(report.passes, 5);
         EXPECT_TRUE(sameFilm(oneGo, resumed)) << (photon ? "photon" : "volpath");
     }
+}
+
+TEST(PassesCli, ATimeLimitedFrameRecordsItsPassesAndIsReproducedByThem) {
+    const std::string dir = test::tempDir();
+    const std::string vdb = test::makeFogSphere(dir, 16);
+    const std::string common = "render '" + vdb + "' --resolution 24x24 -q ";
+    std::string out;
+    ASSERT_EQ(
+        0, test::runMirage(common + "--threads 2 --time-limit 1 -o '" + dir + "/timed.exr'", &out))
+        << out;
+    std::map<std::string, std::string> meta;
+    const Image timed = readExr(dir + "/timed.exr", &meta);
+    EXPECT_EQ(meta["mirage:stopped_by"], "time limit");
+    EXPECT_EQ(meta["mirage:pass_spp"], "4");
+    EXPECT_FALSE(meta["mirage:estimated_error"].empty());
+    const int passes = std::atoi(meta["mirage:passes"].c_str());
+    ASSERT_GE(passes, 1);
+    EXPECT_EQ(meta["mirage:samples"], std::to_string(passes * 4 * 24 * 24));
+    ASSERT_EQ(0, test::runMirage(common + "--threads 1 --passes " + std::to_string(passes) +
+                                     " -o '" + dir + "/counted.exr'",
+                                 &out))
+        << out;
+    const Image counted = readExr(dir + "/counted.exr");
+    ASSERT_EQ(timed.rgba.size(), counted.rgba.size());
+    EXPECT_EQ(
+        0, std::memcmp(timed.rgba.data(), counted.rgba.data(), timed.rgba.size() * sizeof(float)));
 }

@@ -116,6 +116,17 @@ inline const std::string kTranslateKeys =
     "[[volume.transform.key]]\nframe = 2\ntranslate = [1, 0, 0]\n";
 constexpr double kHalfPan = 0.5;  // m
 
+// Renders a loaded scene with its own settings, quietly, for its statistics.
+inline RenderStats renderStats(const Scene& scene, const std::string& integrator) {
+    auto in = makeIntegrator(integrator);
+    in->preprocess(scene.render);
+    RenderSettings s = scene.settings;
+    s.progress = Progress::Mode::Quiet;
+    RenderStats stats;
+    render(scene.render, *in, s, &stats);
+    return stats;
+}
+
 struct Rendered {
     std::vector<double> Y;  // per pixel, mean luminance-like Y
     RenderStats stats;

@@ -294,11 +294,7 @@ TEST(MotionBlur, MantaflowSequenceRendersBlurred) {
         EXPECT_EQ(scene.volumes[0].velocity.grid, "velocity");
         EXPECT_TRUE(scene.volumes[0].velocity.velocity.staggered());
         EXPECT_TRUE(scene.render.media[0]->moving());
-        auto integrator = makeIntegrator("single");
-        RenderSettings s = scene.settings;
-        s.progress = Progress::Mode::Quiet;
-        RenderStats stats;
-        render(scene.render, *integrator, s, &stats);
+        const RenderStats stats = renderStats(scene, "single");
         EXPECT_EQ(stats.aboveMajorant, 0u);
         EXPECT_EQ(stats.nonFiniteSamples, 0u);
         EXPECT_GT(stats.mediumLookups, 0u);

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "film/color.h"
+#include "puff_scene.h"
 #include "render/integrator.h"
 #include "render/renderer.h"
 #include "scene/pyro_binding.h"
@@ -65,11 +66,7 @@ TEST(PyroCache, MakeAssetFireBindsTheFireShaderInKelvinAndBlurs) {
     EXPECT_EQ(v.velocity.grid, "vel");
     EXPECT_TRUE(m.moving());
     EXPECT_FALSE(v.notes.empty());
-    auto integrator = makeIntegrator("single");
-    RenderSettings s = scene.settings;
-    s.progress = Progress::Mode::Quiet;
-    RenderStats stats;
-    render(scene.render, *integrator, s, &stats);
+    const RenderStats stats = puff::renderStats(scene, "single");
     EXPECT_EQ(stats.aboveMajorant, 0u);
     EXPECT_EQ(stats.nonFiniteSamples, 0u);
 }

@@ -15,149 +15,19 @@
 
 #include "film/color.h"
 #include "photon/photon_pass.h"
+#include "puff_scene.h"
 #include "render/integrator.h"
 #include "render/renderer.h"
 #include "scene/scene.h"
-#include "test_support.h"
 #include "test_grids.h"
+#include "test_support.h"
 #include "tools/asset_writer.h"
 #include "volume/vdb_file.h"
 
 namespace mirage {
 namespace {
 
-constexpr double kVoxel = 0.05;  // m
-constexpr double kPuffRadius = 0.25;
-constexpr double kSpeed = 2.0;    // m/s along +x
-constexpr double kFps = 2.0;      // the scene's frame rate
-constexpr double kShutter = 1.0;  // frames, centred: Δt in [-0.25, 0.25] s, blur 1 m
-
-// A soft ball of density at the origin and a constant velocity over a box that holds every
-// point the ball reaches within the shutter (plus the trilinear stencil).
-std::string writePuff(const std::string& dir, Vec3d velocity = Vec3d(kSpeed, 0, 0),
-                      const std::string& velName = "vel") {
-    TestGridSpec density;
-    density.voxelSize = kVoxel;
-    const int r = int(std::ceil(kPuffRadius / kVoxel));
-    for (int i = -r; i <= r; ++i)
-        for (int j = -r; j <= r; ++j)
-            for (int k = -r; k <= r; ++k) {
-                const double d2 =
-                    (i * i + j * j + k * k) * kVoxel * kVoxel / (kPuffRadius * kPuffRadius);
-                if (d2 < 1.0) density.voxels.push_back({i, j, k, (1 - d2) * (1 - d2)});
-            }
-    TestGridSpec vel;
-    vel.name = velName;
-    vel.valueType = "vec3s";
-    vel.gridClass = "unknown";
-    vel.voxelSize = kVoxel;
-    const int reachX = r + int(std::ceil(0.5 * kShutter / kFps * kSpeed / kVoxel)) + 2;
-    for (int i = -reachX; i <= reachX; ++i)
-        for (int j = -r - 2; j <= r + 2; ++j)
-            for (int k = -r - 2; k <= r + 2; ++k) vel.voxels.push_back({i, j, k, 0.0, velocity});
-    const std::string path = dir + "/puff.vdb";
-    writeTestGrids(path, {density, vel});
-    return path;
-}
-
-// A scene of the puff with `shutter` ("[open, close]" frames, "" for none) and the volume's
-// extra keys, translated by dx.
-std::string writeScene(const std::string& dir, const std::string& name, const std::string& shutter,
-                       const std::string& volumeKeys, double dx = 0) {
-    const std::string path = dir + "/" + name + ".toml";
-    std::ofstream f(path);
-    f << "[film]\nresolution = [48, 24]\nspp = 32\ntile_size = 8\n"
-      << "[camera]\nposition = [0, 0, 4]\nlook_at = [0, 0, 0]\nfov = 25\n";
-    if (!shutter.empty()) f << "shutter = " << shutter << "\n";
-    f << "[output]\nfps = " << kFps << "\n"
-      << "[[volume]]\nfile = \"puff.vdb\"\ndensity_scale = 6\n"
-      << volumeKeys << "[volume.transform]\ntranslate = [" << dx << ", 0, 0]\n"
-      << "[[light]]\ntype = \"sun\"\ndirection = [0.6, -1, -0.5]\n";
-    return path;
-}
-const std::string kOpen = "[-0.5, 0.5]";  // kShutter frames, centred
-const std::string kStill = "velocity = \"\"\n";
-
-struct Rendered {
-    std::vector<double> Y;  // per pixel, mean luminance-like Y
-    RenderStats stats;
-    Film film{1, 1};
-};
-
-Rendered renderScene(const std::string& path, uint64_t seed, const std::string& integrator) {
-    ColorPipeline color;
-    Scene scene = loadScene(path, LoadOptions{}, color);
-    RenderSettings s = scene.settings;
-    s.seed = seed;
-    s.progress = Progress::Mode::Quiet;
-    auto in = makeIntegrator(integrator);
-    in->preprocess(scene.render);
-    Rendered r;
-    r.film = render(scene.render, *in, s, &r.stats);
-    for (int y = 0; y < s.height; ++y)
-        for (int x = 0; x < s.width; ++x) {
-            const Film::Pixel& p = r.film.pixel(x, y);
-            r.Y.push_back(p.samples ? p.xyz[1] / p.samples : 0.0);
-        }
-    return r;
-}
-
-// Per pixel: the mean over replicate renders and the variance of that mean.
-struct Estimate {
-    std::vector<double> mean, var;
-};
-Estimate combine(const std::vector<std::vector<double>>& reps) {
-    const size_t n = reps[0].size(), R = reps.size();
-    Estimate e{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
-    for (size_t i = 0; i < n; ++i) {
-        for (const auto& r : reps) e.mean[i] += r[i] / double(R);
-        for (const auto& r : reps) e.var[i] += (r[i] - e.mean[i]) * (r[i] - e.mean[i]);
-        e.var[i] /= double(R - 1) * double(R);
-    }
-    return e;
-}
-
-// The largest |z| over bands of 4 columns of Σ (a − b) against its standard error: the blur
-// is along x, so the columns carry the profile being compared; bands pool the image's fringe,
-// where a column's few covered samples make its variance estimate unreliable.
-double worstColumnZ(const Estimate& a, const Estimate& b, int width, int height) {
-    constexpr int kBand = 4;
-    double worst = 0.0;
-    for (int x0 = 0; x0 < width; x0 += kBand) {
-        double d = 0.0, v = 0.0;
-        for (int x = x0; x < std::min(width, x0 + kBand); ++x)
-            for (int y = 0; y < height; ++y) {
-                const size_t i = size_t(y) * width + x;
-                d += a.mean[i] - b.mean[i];
-                v += a.var[i] + b.var[i];
-            }
-        if (v > 0.0)
-            worst = std::max(worst, std::abs(d) / std::sqrt(v));
-        else
-            EXPECT_EQ(d, 0.0) << "columns " << x0 << "+";
-    }
-    return worst;
-}
-
-// The mean of still renders of the puff translated to N offsets spread evenly (midpoints)
-// over [-halfLength, halfLength], `reps` replicates with independent seeds. The midpoint rule
-// leaves out the last half step at each end of the blur: N = 32 keeps that below the noise.
-Estimate stillComposite(const std::string& dir, double halfLength, int reps, uint64_t seed0,
-                        const std::string& integrator, int N = 32) {
-    std::vector<std::vector<double>> out;
-    for (int r = 0; r < reps; ++r) {
-        std::vector<double> sum;
-        for (int k = 0; k < N; ++k) {
-            const double dx = -halfLength + (k + 0.5) / N * 2.0 * halfLength;
-            Rendered still = renderScene(writeScene(dir, "still", "", kStill, dx),
-                                         seed0 + uint64_t(r * N + k), integrator);
-            if (sum.empty()) sum.assign(still.Y.size(), 0.0);
-            for (size_t i = 0; i < sum.size(); ++i) sum[i] += still.Y[i] / N;
-        }
-        out.push_back(sum);
-    }
-    return combine(out);
-}
+using namespace puff;
 
 void expectBlurIsMeanOfTranslatedStills(const std::string& integrator) {
     const std::string dir = test::tempDir();
@@ -241,14 +111,6 @@ TEST(MotionBlur, PhotonPassSamplesTimesInTheShutter) {
     const double L = kSpeed * kShutter / kFps;
     EXPECT_NEAR(blur.first, still.first, 0.02);
     EXPECT_NEAR(blur.second, still.second + L * L / 12.0, 0.1 * L * L / 12.0);
-}
-
-bool sameFilm(const Film& a, const Film& b) {
-    if (a.width() != b.width() || a.height() != b.height()) return false;
-    for (int y = 0; y < a.height(); ++y)
-        for (int x = 0; x < a.width(); ++x)
-            if (std::memcmp(&a.pixel(x, y), &b.pixel(x, y), sizeof(Film::Pixel)) != 0) return false;
-    return true;
 }
 
 TEST(MotionBlur, ZeroShutterIsBitIdenticalToNoBlur) {
@@ -432,11 +294,7 @@ TEST(MotionBlur, MantaflowSequenceRendersBlurred) {
         EXPECT_EQ(scene.volumes[0].velocity.grid, "velocity");
         EXPECT_TRUE(scene.volumes[0].velocity.velocity.staggered());
         EXPECT_TRUE(scene.render.media[0]->moving());
-        auto integrator = makeIntegrator("single");
-        RenderSettings s = scene.settings;
-        s.progress = Progress::Mode::Quiet;
-        RenderStats stats;
-        render(scene.render, *integrator, s, &stats);
+        const RenderStats stats = renderStats(scene, "single");
         EXPECT_EQ(stats.aboveMajorant, 0u);
         EXPECT_EQ(stats.nonFiniteSamples, 0u);
         EXPECT_GT(stats.mediumLookups, 0u);

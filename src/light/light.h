@@ -53,6 +53,10 @@ public:
     virtual bool emitPhoton(const Bounds3& sceneBounds, Sampler& sampler,
                             PhotonEmission* out) const = 0;
     virtual std::string describe() const = 0;
+    // The spectral shape of everything the light sends (any scale) when sampleLi's Li is that
+    // spectrum times a factor independent of λ: every light here. Null for a light whose
+    // colour varies over directions or points (render/achromatic_film.h then samples colour).
+    virtual const Spectrum* spectrum() const { return nullptr; }
 };
 
 // Normalises a colour spectrum so that ∫ S dλ = 1 over 360–830 nm.

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "render/achromatic_film.h"
 
 namespace mirage {
 
@@ -22,7 +23,8 @@ namespace {
 // wavelengths, then the integrator's; its time in the shutter from a stream of its own, so
 // that a closed shutter leaves every other number where it was.
 void renderTile(const RenderScene& scene, const Integrator& integrator, const RenderSettings& s,
-                const PerspectiveCamera& camera, int tile, ThreadState& ts, Film* film) {
+                const PerspectiveCamera& camera, const std::optional<AchromaticFilm>& achromatic,
+                int tile, ThreadState& ts, Film* film) {
     const int tilesX = tileCountX(s);
     const int x0 = (tile % tilesX) * s.tileSize, y0 = (tile / tilesX) * s.tileSize;
     const int x1 = std::min(x0 + s.tileSize, s.width), y1 = std::min(y0 + s.tileSize, s.height);
@@ -37,7 +39,8 @@ void renderTile(const RenderScene& scene, const Integrator& integrator, const Re
                 if (scene.camera.motionBlur())
                     ts.tracking.setTimeOffset(shutterTime(scene.camera, s.seed, pixel, uint64_t(i)));
                 const Ray ray = camera.generate(float(x) + jx, float(y) + jy);
-                const RadianceSample rs = integrator.Li(scene, ray, w, sampler, ts);
+                RadianceSample rs = integrator.Li(scene, ray, w, sampler, ts);
+                if (achromatic) achromatic->apply(w, &rs);
                 film->addSample(x, y, rs.L, w, rs.alpha, rs.xyz);
             }
         }
@@ -52,6 +55,8 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
     Film film = checkpoint && checkpoint->initial ? *checkpoint->initial : Film(s.width, s.height);
     MIRAGE_CHECK(film.width() == s.width && film.height() == s.height);
     PerspectiveCamera camera(scene.camera, s.width, s.height);
+    // Colour exactly per sample where nothing in the scene is spectral.
+    const std::optional<AchromaticFilm> achromatic = AchromaticFilm::forScene(scene, integrator);
 
     // Which tiles are finished. A tile's pixels are written before its flag is stored (release)
     // and read by a checkpoint writer only after it loads the flag (acquire): no data race.
@@ -85,7 +90,7 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
             uint64_t aboveBefore = ts.tracking.aboveMajorant;
             for (int tile = r.begin(); tile < r.end(); ++tile) {
                 if (done[tile].load(std::memory_order_relaxed) || interruptRequested()) continue;
-                renderTile(scene, integrator, s, camera, tile, ts, &film);
+                renderTile(scene, integrator, s, camera, achromatic, tile, ts, &film);
                 done[tile].store(1, std::memory_order_release);
                 progress.advance();
                 int64_t n = ++finishedNow;

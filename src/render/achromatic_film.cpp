@@ -84,10 +84,12 @@ void AchromaticFilm::apply(const SampledWavelengths& w, RadianceSample* rs) cons
     rs->L = SampledSpectrum(0.f);
 }
 
-std::string achromaticFilmReason(const RenderScene& scene) {
+bool sampledColour(const RenderScene& scene, std::string* why) {
     const std::string part = spectralPart(scene);
-    return part.empty() ? "exact per sample (grey media, one light colour)"
-                        : "sampled at 4 wavelengths per sample (" + part + ")";
+    *why = part.empty() ? "grey media, one light colour: single and volpath add each sample's "
+                          "exact XYZ, no colour noise (photon: 4 wavelengths per sample)"
+                        : "4 wavelengths per sample (" + part + ")";
+    return !part.empty();
 }
 
 }  // namespace mirage

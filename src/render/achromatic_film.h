@@ -40,7 +40,8 @@ private:
     Vec3 mXyz;        // its XYZ, in the film's normalisation
 };
 
-// Why a scene is or is not rendered without chromatic noise, for `mirage info` (one phrase).
-std::string achromaticFilmReason(const RenderScene& scene);
+// Whether the scene's colour is sampled at each sample's wavelengths, and why (for `mirage
+// info`): false when it is achromatic (above), and then single and volpath film it exactly.
+bool sampledColour(const RenderScene& scene, std::string* why);
 
 }  // namespace mirage

@@ -85,7 +85,10 @@ TEST(AchromaticFilm, TakenOnlyWhenNothingIsSpectral) {
     tinted.media[0] = std::make_unique<Medium>(
         s, std::vector<FloatGrid>{test::makeGrid(ball, 0, 23, 1.0 / 24)}, Transform(), 1.f, 16);
     EXPECT_FALSE(AchromaticFilm::forScene(tinted, *volpath));
-    EXPECT_NE(achromaticFilmReason(tinted).find("spectral"), std::string::npos);
+    std::string why;
+    EXPECT_TRUE(sampledColour(tinted, &why));
+    EXPECT_NE(why.find("spectral"), std::string::npos);
+    EXPECT_FALSE(sampledColour(scene, &why));
 }
 
 TEST(AchromaticFilm, EveryPixelHasTheLightsChromaticity) {

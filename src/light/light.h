@@ -18,9 +18,9 @@
 namespace mirage {
 
 struct LightSample {
-    Vec3 wi;              // unit direction from the shaded point towards the light
-    float distance;       // to the light (kInfinity for distant lights)
-    SampledSpectrum Li;   // incident radiance divided by the sampling pdf (W·m⁻²·nm⁻¹)
+    Vec3 wi;             // unit direction from the shaded point towards the light
+    float distance;      // to the light (kInfinity for distant lights)
+    SampledSpectrum Li;  // incident radiance divided by the sampling pdf (W·m⁻²·nm⁻¹)
 };
 
 // One photon leaving a light. Of N photons emitted from a light of power Φ, each carries
@@ -62,6 +62,10 @@ public:
     }
     // True for lights at infinity, which escaped rays see (escapedRadiance).
     virtual bool infinite() const { return false; }
+    // The spectral shape of everything the light sends (any scale) when sampleLi's Li is that
+    // spectrum times a factor independent of λ: every light here. Null for a light whose
+    // colour varies over directions or points (render/achromatic_film.h then samples colour).
+    virtual const Spectrum* spectrum() const { return nullptr; }
 };
 
 // Normalises a colour spectrum so that ∫ S dλ = 1 over 360–830 nm.

@@ -102,6 +102,8 @@ public:
         return "point light at " + vecStr(mP) + ", " + std::to_string(mPower) + " W";
     }
 
+    const Spectrum* spectrum() const override { return &mI; }
+
 private:
     Vec3 mP;
     float mPower;
@@ -164,6 +166,8 @@ public:
                std::to_string(mPower) + " W";
     }
 
+    const Spectrum* spectrum() const override { return &mI; }
+
 private:
     float falloff(float cosT) const {
         if (cosT >= mCosInner) return 1.f;
@@ -220,6 +224,8 @@ public:
         return "distant light along " + vecStr(mDir) + ", " + std::to_string(mE) + " W/m²";
     }
 
+    const Spectrum* spectrum() const override { return &mSpd; }
+
 private:
     Vec3 mDir;
     float mE;
@@ -273,6 +279,8 @@ public:
         return "quad light at " + vecStr(mCorner) + ", " + std::to_string(mArea) + " m², " +
                std::to_string(mPower) + " W";
     }
+
+    const Spectrum* spectrum() const override { return &mL; }
 
 private:
     Vec3 mCorner, mU, mV, mN;

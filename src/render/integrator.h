@@ -92,6 +92,11 @@ public:
                               const SampledWavelengths& w, Sampler& sampler,
                               ThreadState& ts) const = 0;
     virtual IntegratorStats stats() const { return {}; }
+    // Whether Li's radiance is a light's spectrum times what the scene does to it: no λ
+    // dependence of the integrator's own (no photons at their own wavelengths, no dispersive
+    // curved rays). Then a scene with nothing spectral in it is filmed without colour noise
+    // (render/achromatic_film.h).
+    virtual bool lightShapedRadiance() const { return false; }
 };
 
 // Single scattering plus emission: delta tracking along the camera ray, next-event estimation

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "render/achromatic_film.h"
 
 namespace mirage {
 
@@ -24,8 +25,9 @@ namespace {
 // leaves every other number where it was. A camera that moves within the shutter is placed at
 // that time (CameraDesc::poseAt) for the sample's ray. Returns the samples taken.
 uint64_t renderTile(const RenderScene& scene, const Integrator& integrator, const RenderSettings& s,
-                    const PassSamples& pass, const PerspectiveCamera& camera, int tile,
-                    ThreadState& ts, Film* film) {
+                    const PassSamples& pass, const PerspectiveCamera& camera,
+                    const std::optional<AchromaticFilm>& achromatic, int tile, ThreadState& ts,
+                    Film* film) {
     const PixelWindow win = renderWindow(s);
     const int tilesX = tileCountX(s);
     const int x0 = win.x0 + (tile % tilesX) * s.tileSize;
@@ -52,7 +54,8 @@ uint64_t renderTile(const RenderScene& scene, const Integrator& integrator, cons
                         ? PerspectiveCamera(scene.camera.poseAt(time), s.width, s.height)
                               .generate(float(x) + jx, float(y) + jy)
                         : camera.generate(float(x) + jx, float(y) + jy);
-                const RadianceSample rs = integrator.Li(scene, ray, w, sampler, ts);
+                RadianceSample rs = integrator.Li(scene, ray, w, sampler, ts);
+                if (achromatic) achromatic->apply(w, &rs);
                 film->addSample(x - win.x0, y - win.y0, rs.L, w, rs.alpha, rs.xyz);
             }
         }
@@ -72,6 +75,8 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
     MIRAGE_CHECK(film.width() == win.width() && film.height() == win.height());
     MIRAGE_CHECK(!pass.pixels || pass.pixels->size() == size_t(s.width) * size_t(s.height));
     PerspectiveCamera camera(scene.camera, s.width, s.height);
+    // Colour exactly per sample where nothing in the scene is spectral.
+    const std::optional<AchromaticFilm> achromatic = AchromaticFilm::forScene(scene, integrator);
 
     // Which tiles are finished. A tile's pixels are written before its flag is stored (release)
     // and read by a checkpoint writer only after it loads the flag (acquire): no data race.
@@ -105,7 +110,8 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
             uint64_t aboveBefore = ts.tracking.aboveMajorant;
             for (int tile = r.begin(); tile < r.end(); ++tile) {
                 if (done[tile].load(std::memory_order_relaxed) || interruptRequested()) continue;
-                samples += renderTile(scene, integrator, s, pass, camera, tile, ts, &film);
+                samples +=
+                    renderTile(scene, integrator, s, pass, camera, achromatic, tile, ts, &film);
                 done[tile].store(1, std::memory_order_release);
                 progress.advance();
                 int64_t n = ++finishedNow;

@@ -33,6 +33,7 @@ class SingleScatterIntegrator : public Integrator {
 public:
     explicit SingleScatterIntegrator(bool directLight) : mDirect(directLight) {}
     const IntegratorInfo& info() const override { return integratorInfo("single"); }
+    bool lightShapedRadiance() const override { return true; }
 
     RadianceSample Li(const RenderScene& scene, const Ray& cameraRay, const SampledWavelengths& w,
                       Sampler& sampler, ThreadState& ts) const override {

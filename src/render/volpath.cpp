@@ -50,6 +50,7 @@ class VolPathIntegrator : public Integrator {
 public:
     explicit VolPathIntegrator(int maxDepth) : mMaxDepth(maxDepth) {}
     const IntegratorInfo& info() const override { return integratorInfo("volpath"); }
+    bool lightShapedRadiance() const override { return true; }
 
     RadianceSample Li(const RenderScene& scene, const Ray& cameraRay, const SampledWavelengths& w,
                       Sampler& sampler, ThreadState& ts) const override {

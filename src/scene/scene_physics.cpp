@@ -4,6 +4,7 @@
 
 #include "core/text.h"
 #include "medium/ocean_components.h"
+#include "render/achromatic_film.h"
 #include "scene/scene.h"
 #include "volume/grid_expression.h"
 
@@ -153,6 +154,9 @@ std::vector<PhysicsTerm> Scene::physics() const {
                                   "per medium, one grid lookup and one coefficient per "
                                   "component serve all 4 wavelengths; only light and emission "
                                   "spectra are sampled)"});
+    std::string colourWhy;
+    const bool colourSampled = sampledColour(render, &colourWhy);
+    terms.push_back({"sampled colour", colourSampled, colourWhy});
     terms.push_back(surfacesTerm(render));
     terms.push_back({"fluorescence", !m.fluorescenceWhy.empty(),
                      m.fluorescenceWhy.empty() ? "no shader declares a quantum efficiency"

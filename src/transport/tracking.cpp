@@ -144,7 +144,7 @@ SampledSpectrum residualRatioTracking(TrackingContext& ctx, size_t i, const Ray&
     Medium::Context& mc = ctx.context(i);
     const Ray r = m.toObject(worldRay, ctx.context(i));
     SampledSpectrum T(1.f);
-    float tau = -std::log1p(-sampler.get1D());  // majorant optical depth to the next collision
+    float tau = exponentialDraw(sampler);  // majorant optical depth to the next collision
     uint64_t collisions = 0;
     bool capped = false;
     m.majorant().traverse(r.o, r.d, 0.f, tMax, [&](float t0, float t1, float sigmaMaj) {
@@ -170,7 +170,7 @@ SampledSpectrum residualRatioTracking(TrackingContext& ctx, size_t i, const Ray&
                 return true;
             }
             t += need;
-            tau = -std::log1p(-sampler.get1D());
+            tau = exponentialDraw(sampler);
             if (++collisions >= ctx.maxCollisions) {
                 capped = true;
                 return false;

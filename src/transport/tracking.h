@@ -9,6 +9,7 @@
 // summed rate, so the next collision of the scene is the earliest of each medium's next.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -71,6 +72,11 @@ private:
 bool nextTentativeCollision(const MajorantGrid& majorant, const Ray& objectRay, float t,
                             float tEnd, float tau, float* tHit, float* sigmaMaj,
                             float pathMajorant = -1.f);
+
+// An Exp(1) draw, the optical depth to the next tentative collision: −ln(1 − u). 1 − u is exact
+// for the sampler's 24-bit u, so logf loses nothing against log1pf and costs less (glibc's
+// logf is table-driven; log1pf is not).
+inline float exponentialDraw(Sampler& sampler) { return -std::log(1.f - sampler.get1D()); }
 
 enum class Track { Continue, Stop };
 

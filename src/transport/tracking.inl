@@ -27,7 +27,7 @@ bool trackCollisions(TrackingContext& ctx, const Ray& worldRay, float tMax, Samp
         heapStreams.resize(n);
         streams = heapStreams.data();
     }
-    auto exp1 = [&] { return -std::log1p(-sampler.get1D()); };
+    auto exp1 = [&] { return exponentialDraw(sampler); };
 
     for (size_t i = 0; i < n; ++i) {
         Stream& s = streams[i];

@@ -1,0 +1,47 @@
+// Colour without chromatic noise where nothing in the scene is spectral.
+//
+// The film estimates a pixel's XYZ from each sample's four wavelengths (spectrum/cie.h):
+// X̂ = ¼ Σ_i L(λ_i) x̄(λ_i) / p(λ_i). In a scene whose media are all grey (σa and σs the same at
+// every wavelength, nothing emits or fluoresces), without surfaces, and whose lights all share
+// one spectral shape S(λ) (any powers), a camera path's radiance is L(λ) = G S(λ): G is a
+// function of the path's other numbers alone, since nothing the path meets depends on λ. The
+// film's G·X̂[S] then carries the wavelengths' noise as colour noise on a grey image (9 % of
+// volpath's relMSE on the race scene, docs/performance.md). Replacing X̂[S] by its
+// expectation over the wavelengths, XYZ[S] (spectrumToXyz, once per render), is a conditional
+// expectation (Rao–Blackwell): the same mean, less variance, every pixel exactly the lights'
+// chromaticity. G is read back from the sample as the least-squares ratio Σ L_i S_i / Σ S_i²,
+// exact when L = G S; S > 0 over the visible range is required, so that the ratio exists for
+// every draw of the wavelengths.
+#pragma once
+
+#include <optional>
+
+#include "render/integrator.h"
+
+namespace mirage {
+
+class AchromaticFilm {
+public:
+    // The film's shortcut for this scene and integrator, or nothing when the scene is not
+    // achromatic (above) or the integrator's radiance may depend on λ by itself
+    // (Integrator::lightShapedRadiance).
+    static std::optional<AchromaticFilm> forScene(const RenderScene& scene,
+                                                  const Integrator& integrator);
+
+    // Moves the sample's spectral radiance into its XYZ: xyz += G · XYZ[S], L = 0.
+    void apply(const SampledWavelengths& w, RadianceSample* rs) const;
+
+    const Spectrum& shape() const { return mShape; }
+    Vec3 xyz() const { return mXyz; }
+
+private:
+    AchromaticFilm(Spectrum shape, Vec3 xyz) : mShape(std::move(shape)), mXyz(xyz) {}
+    Spectrum mShape;  // the lights' common spectral shape (any scale)
+    Vec3 mXyz;        // its XYZ, in the film's normalisation
+};
+
+// Whether the scene's colour is sampled at each sample's wavelengths, and why (for `mirage
+// info`): false when it is achromatic (above), and then single and volpath film it exactly.
+bool sampledColour(const RenderScene& scene, std::string* why);
+
+}  // namespace mirage

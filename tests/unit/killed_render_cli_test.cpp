@@ -5,7 +5,6 @@
 // skip complete frames; and --max-memory refuses an impossible photon count within 2 s.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -160,17 +159,17 @@ TEST(KilledRenderCli, SkipExistingSkipsCompleteFramesOnly) {
     EXPECT_EQ(meta["mirage:complete"], "true");
 }
 
-TEST(KilledRenderCli, MaxMemoryRefusesABillionPhotonsWithin2Seconds) {
+// A billion photons would take hours to trace (and ctest's timeout would end the test), so a
+// refusal that names the photon maps is one made before the photon pass, not after it: no clock
+// is needed to tell, and none is read (a wall-clock bound fails on a loaded machine).
+TEST(KilledRenderCli, MaxMemoryRefusesABillionPhotonsBeforeTracingThem) {
     const std::string dir = test::tempDir();
     const std::string scene = writeScene(dir);
     std::string out;
-    auto t0 = std::chrono::steady_clock::now();
     int rc = render(
         "'" + scene + "' -q --set render.photons=1000000000 --max-memory 1G -o '" + dir + "/m.exr'",
         &out);
-    double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     EXPECT_EQ(rc, 1) << out;
-    EXPECT_LT(seconds, 2.0);
     EXPECT_NE(out.find("more than --max-memory 1.00 GiB"), std::string::npos) << out;
     EXPECT_NE(out.find("photon maps"), std::string::npos) << out;
     EXPECT_FALSE(fs::exists(dir + "/m.exr"));

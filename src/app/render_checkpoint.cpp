@@ -74,6 +74,7 @@ FrameFingerprint frameFingerprint(const Scene& scene, const std::string& input,
     m["spp"] = std::to_string(s.spp);
     m["tile_size"] = std::to_string(s.tileSize);
     m["version"] = MIRAGE_VERSION;
+    if (!s.aovs.empty()) m["aovs"] = joinList(s.aovs);
     std::string sets;
     for (const auto& o : overrides) sets += (sets.empty() ? "" : " ") + o;
     m["set"] = sets;

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "render/camera_ray_data.h"
 
 namespace mirage {
 
@@ -20,9 +21,20 @@ namespace {
 // Every sample of one tile's pixels into the film (tiles do not overlap: no two threads write
 // one pixel). A sample's numbers come from its own (seed, pixel, sample): pixel jitter, its
 // wavelengths, then the integrator's; its time in the shutter from a stream of its own, so
-// that a closed shutter leaves every other number where it was.
+// that a closed shutter leaves every other number where it was. With AOVs, ts.aov collects
+// each sample's passes, and the camera ray's data passes take numbers of their own too.
 void renderTile(const RenderScene& scene, const Integrator& integrator, const RenderSettings& s,
-                const PerspectiveCamera& camera, int tile, ThreadState& ts, Film* film) {
+                const PerspectiveCamera& camera, int tile, ThreadState& ts, Film* film,
+                DeepFilm* deepFilm) {
+    const AovLayout& layout = film->aovs();
+    AovSample aov(layout.groupSlots());
+    ts.aov = layout.empty() ? nullptr : &aov;
+    ts.lightSplit.assign(size_t(layout.groupSlots()), SampledSpectrum(0.f));
+    DeepSample deep;
+    DeepPixel deepPixel;
+    ts.deep = deepFilm ? &deep : nullptr;
+    const bool walkCameraRay = layout.cameraData() || deepFilm;
+    const uint64_t dataSeed = hashCombine(s.seed, 0x616f7664617461ull);  // "aovdata"
     const int tilesX = tileCountX(s);
     const int x0 = (tile % tilesX) * s.tileSize, y0 = (tile / tilesX) * s.tileSize;
     const int x1 = std::min(x0 + s.tileSize, s.width), y1 = std::min(y0 + s.tileSize, s.height);
@@ -37,20 +49,45 @@ void renderTile(const RenderScene& scene, const Integrator& integrator, const Re
                 if (scene.camera.motionBlur())
                     ts.tracking.setTimeOffset(shutterTime(scene.camera, s.seed, pixel, uint64_t(i)));
                 const Ray ray = camera.generate(float(x) + jx, float(y) + jy);
+                if (ts.aov) aov.reset();
+                if (ts.deep) deep.reset();
                 const RadianceSample rs = integrator.Li(scene, ray, w, sampler, ts);
-                film->addSample(x, y, rs.L, w, rs.alpha, rs.xyz);
+                if (walkCameraRay) {
+                    Sampler data(SamplerKind::Random, dataSeed, pixel, uint64_t(i));
+                    cameraRayData(scene, ray, data, ts, ts.aov, ts.deep);
+                }
+                const bool kept = film->addSample(x, y, rs.L, w, rs.alpha, rs.xyz, ts.aov);
+                if (ts.deep && kept) deepPixel.addSample(deep, w, rs.alpha);
             }
+            if (!deepFilm) continue;
+            deepFilm->setPixel(x, y, deepPixel.merge(s.deep, film->pixel(x, y).samples));
+            deepPixel.clear();
         }
+    ts.aov = nullptr;
+    ts.deep = nullptr;
 }
 
 }  // namespace
 
+AovLayout aovLayout(const RenderScene& scene, const RenderSettings& s, const IntegratorInfo& info) {
+    AovLayout layout(s.aovs, scene.lightGroupNames());
+    if (layout.groupSlots() > 0 && info.photonPass)
+        throw MirageError(
+            "light-group passes (lightgroup_*) need an integrator without a photon "
+            "pass: photons do not record which light they came from; the " +
+            info.name + " integrator has one (use single or volpath)");
+    return layout;
+}
+
 Film render(const RenderScene& scene, Integrator& integrator, const RenderSettings& s,
-            RenderStats* stats, TileCheckpoint* checkpoint) {
+            RenderStats* stats, TileCheckpoint* checkpoint, DeepFilm* deep) {
     const int tilesX = tileCountX(s);
     const int tiles = tileCount(s);
-    Film film = checkpoint && checkpoint->initial ? *checkpoint->initial : Film(s.width, s.height);
+    Film film = checkpoint && checkpoint->initial
+                    ? *checkpoint->initial
+                    : Film(s.width, s.height, aovLayout(scene, s, integrator.info()));
     MIRAGE_CHECK(film.width() == s.width && film.height() == s.height);
+    MIRAGE_CHECK(film.aovs().stride() == aovLayout(scene, s, integrator.info()).stride());
     PerspectiveCamera camera(scene.camera, s.width, s.height);
 
     // Which tiles are finished. A tile's pixels are written before its flag is stored (release)
@@ -85,7 +122,7 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
             uint64_t aboveBefore = ts.tracking.aboveMajorant;
             for (int tile = r.begin(); tile < r.end(); ++tile) {
                 if (done[tile].load(std::memory_order_relaxed) || interruptRequested()) continue;
-                renderTile(scene, integrator, s, camera, tile, ts, &film);
+                renderTile(scene, integrator, s, camera, tile, ts, &film, deep);
                 done[tile].store(1, std::memory_order_release);
                 progress.advance();
                 int64_t n = ++finishedNow;

@@ -6,9 +6,11 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "core/progress.h"
+#include "film/deep.h"
 #include "film/film.h"
 #include "render/integrator.h"
 
@@ -22,7 +24,17 @@ struct RenderSettings {
     // The camera samples' numbers (core/rng.h): Sobol is stratified over each pixel's samples.
     SamplerKind sampler = SamplerKind::Sobol;
     Progress::Mode progress = Progress::Mode::Auto;
+    // Render passes beside the beauty (film/aov.h; [output] aovs, --aov), in the order of
+    // their layers. Empty: the beauty alone, at its old cost and bits.
+    std::vector<std::string> aovs;
+    // Deep output ([output] deep, --deep): a path is what turns it on; the tolerances merge a
+    // pixel's events into deep samples (film/deep.h).
+    DeepSettings deep;
 };
+
+// The passes `s` asks for, with the scene's light groups. Throws MirageError for an unknown
+// pass, and for light groups with an integrator whose photons do not record their light.
+AovLayout aovLayout(const RenderScene& scene, const RenderSettings& s, const IntegratorInfo& info);
 
 struct RenderStats {
     double seconds = 0;
@@ -61,7 +73,8 @@ struct TileCheckpoint {
 // Renders every tile not already done, stopping early when interruptRequested() (tiles in
 // flight finish; the rest are left undone, and stats->interrupted is set). On return,
 // checkpoint->done (if given) says which tiles the film holds.
+// With `deep` (settings.deep.path set), every rendered pixel's deep samples go there.
 Film render(const RenderScene& scene, Integrator& integrator, const RenderSettings& settings,
-            RenderStats* stats, TileCheckpoint* checkpoint = nullptr);
+            RenderStats* stats, TileCheckpoint* checkpoint = nullptr, DeepFilm* deep = nullptr);
 
 }  // namespace mirage

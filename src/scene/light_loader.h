@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "light/light.h"
+#include "render/render_scene.h"
 #include "scene/toml_reader.h"
 
 namespace mirage {
@@ -12,5 +13,8 @@ class ColorPipeline;
 
 // One [[light]]; errors name the file, line and key.
 std::unique_ptr<Light> readLight(const TableReader& t, const ColorPipeline& color);
+// Every [[light]] of the scene into scene->lights, with its group (`group = "key"`, for the
+// lightgroup_* passes) into scene->lightGroups and lightGroupIndex.
+void readLights(const TableReader& top, const ColorPipeline& color, RenderScene* scene);
 
 }  // namespace mirage

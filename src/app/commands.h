@@ -18,6 +18,8 @@ struct RenderOptions {
     int frame = -1;                // --frame
     std::string frames;            // --frames A-B
     std::vector<std::string> overrides;  // --set
+    std::vector<std::string> aovs;       // --aov, after [output] aovs
+    std::string deep;                    // --deep; "" = the scene's [output] deep, if any
     std::string resolution;        // --resolution WxH
     int spp = 0, threads = 0, turntable = 0;
     int64_t seed = -1;

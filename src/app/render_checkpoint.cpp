@@ -117,6 +117,7 @@ FrameFingerprint frameFingerprint(const Scene& scene, const std::string& input,
                       scene.passes.sppPerPass, scene.passes.noiseThreshold);
     m["passes"] = passes;
     m["version"] = MIRAGE_VERSION;
+    if (!s.aovs.empty()) m["aovs"] = joinList(s.aovs);
     m["set"] = joinOverrides(overrides, false);
     return fingerprintOf(m, scene, input);
 }

@@ -17,6 +17,7 @@
 #include "core/text.h"
 #include "core/thread_limit.h"
 #include "film/color.h"
+#include "film/deep.h"
 #include "film/image_io.h"
 #include "film/partial_film.h"
 #include "scene/memory_budget.h"
@@ -98,6 +99,7 @@ struct FrameJob {
     Scene scene;
     std::string integratorName;
     std::string out;  // the EXR
+    std::string deep;  // the deep EXR; "" = none
     double loadSeconds = 0;
 };
 
@@ -157,7 +159,7 @@ std::optional<FrameJob> prepareFrame(RenderSession& rs, int frame) {
     job.integratorName = scene.integrator;
     if (!o.quality.empty())
         applyQualityPreset(scene, qualityPreset(o.quality), job.integratorName, o.overrides);
-    applyFrameSettings(scene, o.input, FrameSettings{o.resolution, o.spp, o.seed, o.quiet});
+    applyFrameSettings(scene, o.input, FrameSettings{o.resolution, o.spp, o.seed, o.quiet, o.aovs});
     applyPassOptions(o, &scene.passes);
     if (!o.region.empty())
         scene.settings.region =
@@ -165,6 +167,16 @@ std::optional<FrameJob> prepareFrame(RenderSession& rs, int frame) {
     if (o.turntable > 0) setTurntable(&scene.render.camera, frame, o.turntable, scene.output.fps);
     checkOutputSettings(scene, rs.color);
     job.out = framePath(o.output.empty() ? scene.output.path : o.output, frame, rs.sequence);
+    const std::string deep = o.deep.empty() ? scene.settings.deep.path : o.deep;
+    if (!deep.empty()) {
+        job.deep = framePath(deep, frame, rs.sequence);
+        scene.settings.deep.path = job.deep;
+        if (fs::absolute(job.deep).lexically_normal() == fs::absolute(job.out).lexically_normal())
+            throw MirageError(std::string(o.deep.empty() ? "[output] deep" : "--deep") + " '" +
+                              job.deep +
+                              "' is the beauty's path: give the deep image a name "
+                              "of its own");
+    }
     if (o.skipExisting && outputComplete(o, job.out)) {
         rs.skip(frame, job.out);
         return std::nullopt;
@@ -238,6 +250,9 @@ private:
     static PartialFilm resumeIfAsked(const RenderOptions& o, const FrameJob& job,
                                      const std::string& path, const FrameFingerprint& fingerprint) {
         const RenderSettings& s = job.scene.settings;
+        if (o.resume && fs::exists(path) && !job.deep.empty())
+            throw MirageError("--resume: " + path + " holds no deep samples, and the frame " +
+                              "writes a deep image (" + job.deep + "); render it without --resume");
         if (o.resume && fs::exists(path))
             return loadPartialForResume(path, fingerprint, renderWindow(s).width(),
                                         renderWindow(s).height(), s.tileSize);
@@ -336,10 +351,14 @@ ExrOptions outputExr(RenderSession& rs, const FrameJob& job, RenderedFrame& rend
     const DroppedWork dropped = droppedWork(rendered);
     ExrOptions exr;
     exr.halfFloat = !rs.o.floatExr && scene.output.halfFloat;
+    exr.multipart = scene.output.multipart;
     exr.colorSpace = rs.color.workingSpace();
     exr.chromaticities = rs.color.workingChromaticities();
     if (!scene.output.colorSpace.empty() && scene.output.colorSpace != rs.color.workingSpace()) {
         rs.color.convert(rendered.image.rgba, 4, scene.output.colorSpace);
+        for (ImageLayer& layer : rendered.image.layers)
+            if (layer.channels.size() == 3)
+                rs.color.convert(layer.pixels, 3, scene.output.colorSpace);
         exr.colorSpace = scene.output.colorSpace;
         exr.chromaticities = outputChromaticities(rs.o.ocioConfig, scene.output.colorSpace);
     }
@@ -446,6 +465,25 @@ void attachSavedPhotons(const RenderSession& rs, FrameJob& job) {
         readFramePhotons(PhotonFrameKey{job.scene, rs.o.input, job.frame, rs.o.overrides}, path);
 }
 
+// The frame's deep image (film/deep.h), with the beauty's header; its samples per pixel and
+// file size go into both headers and the summary.
+void writeDeep(const FrameJob& job, const RenderedFrame& rendered, ExrOptions& exr, bool quiet) {
+    const DeepFilm& deep = *rendered.deep;
+    char mean[32];
+    std::snprintf(mean, sizeof mean, "%.2f", deep.meanSamples());
+    exr.metadata["deep_samples_mean"] = mean;
+    exr.metadata["deep_samples_max"] = std::to_string(deep.maxSamples());
+    writeDeepExr(job.deep, deep, exr.halfFloat, exr.colorSpace, exr.metadata);
+    std::error_code ec;
+    const uintmax_t bytes = fs::file_size(job.deep, ec);
+    exr.metadata["deep_file"] = job.deep;
+    exr.metadata["deep_file_bytes"] = std::to_string(ec ? 0 : bytes);
+    if (!quiet)
+        std::fprintf(stderr, "frame %d: deep %s: %s samples per pixel (max %zu), %s\n", job.frame,
+                     job.deep.c_str(), mean, deep.maxSamples(),
+                     formatBytes(ec ? 0 : uint64_t(bytes)).c_str());
+}
+
 // Renders one frame and writes its preview and EXR; the exit code when the command must stop
 // (interrupted), nothing to go on.
 std::optional<int> renderFrameFiles(RenderSession& rs, int frame) {
@@ -465,7 +503,10 @@ std::optional<int> renderFrameFiles(RenderSession& rs, int frame) {
         preview = framePath(preview, frame, rs.sequence);
         writePreview(preview, rendered.image, rs.color, scene.output.display, scene.output.view);
     }
-    writeExr(job->out, rendered.image, outputExr(rs, *job, rendered));
+    ExrOptions exr = outputExr(rs, *job, rendered);
+    // The deep image before the beauty, whose mirage:complete says the frame is done.
+    if (rendered.deep) writeDeep(*job, rendered, exr, rs.o.quiet);
+    writeExr(job->out, rendered.image, exr);
     // The final frame is in place (atomically): its partial file has served.
     std::error_code ec;
     fs::remove(cp.path, ec);
@@ -473,6 +514,7 @@ std::optional<int> renderFrameFiles(RenderSession& rs, int frame) {
 
     if (!rs.o.quiet) printFrameSummary(*job, rendered, cp, writeSeconds);
     std::printf("%s\n", job->out.c_str());
+    if (!job->deep.empty()) std::printf("%s\n", job->deep.c_str());
     if (!preview.empty()) std::printf("%s\n", preview.c_str());
     return std::nullopt;
 }
@@ -568,6 +610,14 @@ Command addRenderCommand(CLI::App& app) {
     render->add_flag("--float", o->floatExr,
                      "Write 32-bit float EXR instead of half (overrides "
                      "[output] half)");
+    render->add_option("--deep", o->deep,
+                       "Also write a deep scanline EXR (Z, ZBack, premultiplied RGBA per stretch "
+                       "of volume; overrides [output] deep; docs/aovs.md)");
+    render->add_option("--aov", o->aovs,
+                       "Render pass beside the beauty, as EXR layer NAME (repeatable; adds to "
+                       "[output] aovs): emission, volume_direct, volume_indirect, surface_direct, "
+                       "surface_indirect, caustic, lightgroup_emission, lightgroup_<group>, "
+                       "alpha, depth, albedo, transmittance (docs/aovs.md)");
     render->add_flag("-q,--quiet", o->quiet, "No progress output");
     render->add_option("--ocio", o->ocioConfig, "OCIO config file (default: $OCIO, else built-in)");
     render->add_flag("--resume", o->resume,

@@ -2,9 +2,10 @@
 // 8-bit display previews, and the EXR reader the tests and the tradeoff instrument use.
 //
 // Every write goes to a temporary `<dir>/.<name>.tmp-…` (core/atomic_file.h) and is renamed
-// over `<dir>/<name>` only once the file is complete and closed: rename within one folder is atomic on POSIX file systems, so a
-// reader (a compositor watching the folder, a render farm's checker) sees the old file or the
-// new one, never half of one, and a render killed mid-write leaves the previous good file alone.
+// over `<dir>/<name>` only once the file is complete and closed: rename within one folder is atomic
+// on POSIX file systems, so a reader (a compositor watching the folder, a render farm's checker)
+// sees the old file or the new one, never half of one, and a render killed mid-write leaves the
+// previous good file alone.
 
 #include "film/image_io.h"
 
@@ -95,51 +96,154 @@ void writeSubimagesAtomically(const std::string& path, const std::vector<OIIO::I
         "cannot move the finished file into place");
 }
 
+namespace {
+
+// A region of a larger frame (ExrOptions::fullWidth > 0): the image is the data window, placed
+// at (dataX, dataY) of a display window that is the whole frame.
+void placeDataWindow(const ExrOptions& options, const Image& image, OIIO::ImageSpec* spec) {
+    if (options.fullWidth <= 0) return;
+    MIRAGE_CHECK(options.dataX >= 0 && options.dataY >= 0 &&
+                 options.dataX + image.width <= options.fullWidth &&
+                 options.dataY + image.height <= options.fullHeight);
+    spec->x = options.dataX;
+    spec->y = options.dataY;
+    spec->full_x = spec->full_y = 0;
+    spec->full_width = options.fullWidth;
+    spec->full_height = options.fullHeight;
+}
+
+// The header every part of an EXR shares: compression, colour tags, metadata.
+void describeExr(const ExrOptions& options, OIIO::ImageSpec* spec) {
+    // ZIP (16 scanlines per block, lossless): the usual choice for final frames, read fast by
+    // every compositor; rendered noise defeats the gain PIZ has on photographs.
+    spec->attribute("compression", "zip");
+    if (!options.colorSpace.empty()) {
+        spec->attribute("oiio:ColorSpace", options.colorSpace);
+        spec->attribute(kColorSpaceAttr, options.colorSpace);
+    }
+    if (!options.chromaticities.empty())
+        spec->attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8),
+                        options.chromaticities.data());
+    for (const auto& [key, value] : options.metadata) spec->attribute("mirage:" + key, value);
+}
+
+// Interleaved channels and their names and formats, to be written as one part.
+struct Channels {
+    std::vector<std::string> names;
+    std::vector<OIIO::TypeDesc> formats;
+    std::vector<const std::vector<float>*> sources;  // interleaved source of each channel
+    std::vector<int> strides, offsets;               // floats per pixel, channel in the pixel
+
+    void add(const std::string& name, OIIO::TypeDesc format, const std::vector<float>& src,
+             int stride, int offset) {
+        names.push_back(name);
+        formats.push_back(format);
+        sources.push_back(&src);
+        strides.push_back(stride);
+        offsets.push_back(offset);
+    }
+    void addLayer(const ImageLayer& layer, bool half) {
+        const int n = int(layer.channels.size());
+        for (int c = 0; c < n; ++c)
+            // Depth stays float: half keeps three digits, a compositor's Z needs more.
+            add(layer.name + "." + layer.channels[c],
+                half && layer.channels[c] != "Z" ? OIIO::TypeHalf : OIIO::TypeFloat, layer.pixels,
+                n, c);
+    }
+    // The part's pixels, channel-interleaved, half channels clamped to the finite half range.
+    std::vector<float> interleave(size_t pixels) const {
+        const size_t n = names.size();
+        std::vector<float> out(pixels * n);
+        for (size_t c = 0; c < n; ++c) {
+            const bool half = formats[c] == OIIO::TypeHalf;
+            for (size_t p = 0; p < pixels; ++p) {
+                float v = (*sources[c])[p * size_t(strides[c]) + size_t(offsets[c])];
+                if (half && std::isfinite(v)) v = clamp(v, -kHalfMax, kHalfMax);
+                out[p * n + c] = v;
+            }
+        }
+        return out;
+    }
+    OIIO::ImageSpec spec(const Image& image, const std::string& partName,
+                         const ExrOptions& options) const {
+        OIIO::ImageSpec spec(image.width, image.height, int(names.size()), formats[0]);
+        spec.channelnames = names;
+        spec.channelformats = formats;
+        auto a = std::find(names.begin(), names.end(), "A");
+        spec.alpha_channel = a == names.end() ? -1 : int(a - names.begin());
+        if (!partName.empty()) spec.attribute("name", partName);
+        describeExr(options, &spec);
+        return spec;
+    }
+};
+
+}  // namespace
+
 void writeExr(const std::string& path, const Image& image, const ExrOptions& options) {
     checkImage(path, image);
     if (lowerExtension(path) != ".exr") fail(path, "an OpenEXR file name must end in .exr");
     MIRAGE_CHECK(options.chromaticities.empty() || options.chromaticities.size() == 8);
+    const size_t pixels = size_t(image.width) * size_t(image.height);
+    for (const ImageLayer& layer : image.layers)
+        MIRAGE_CHECK(layer.pixels.size() == pixels * layer.channels.size());
 
-    OIIO::ImageSpec spec(image.width, image.height, 4,
-                         options.halfFloat ? OIIO::TypeHalf : OIIO::TypeFloat);
-    spec.channelnames = {"R", "G", "B", "A"};
-    spec.alpha_channel = 3;
-    if (options.fullWidth > 0) {
-        MIRAGE_CHECK(options.dataX >= 0 && options.dataY >= 0 &&
-                     options.dataX + image.width <= options.fullWidth &&
-                     options.dataY + image.height <= options.fullHeight);
-        spec.x = options.dataX;
-        spec.y = options.dataY;
-        spec.full_x = spec.full_y = 0;
-        spec.full_width = options.fullWidth;
-        spec.full_height = options.fullHeight;
+    const OIIO::TypeDesc format = options.halfFloat ? OIIO::TypeHalf : OIIO::TypeFloat;
+    std::vector<Channels> parts(1);
+    for (int c = 0; c < 4; ++c) parts[0].add(std::string(1, "RGBA"[c]), format, image.rgba, 4, c);
+    for (const ImageLayer& layer : image.layers) {
+        if (options.multipart) parts.emplace_back();
+        parts.back().addLayer(layer, options.halfFloat);
     }
-    // ZIP (16 scanlines per block, lossless): the usual choice for final frames, read fast by
-    // every compositor; rendered noise defeats the gain PIZ has on photographs.
-    spec.attribute("compression", "zip");
-    if (!options.colorSpace.empty()) {
-        spec.attribute("oiio:ColorSpace", options.colorSpace);
-        spec.attribute(kColorSpaceAttr, options.colorSpace);
+    std::vector<std::vector<float>> buffers;
+    std::vector<OIIO::ImageSpec> specs;
+    for (size_t i = 0; i < parts.size(); ++i) {
+        buffers.push_back(parts[i].interleave(pixels));
+        const std::string name = !options.multipart ? ""
+                                 : i == 0           ? "rgba"
+                                                    : image.layers[i - 1].name;
+        specs.push_back(parts[i].spec(image, name, options));
+        placeDataWindow(options, image, &specs.back());
     }
-    if (!options.chromaticities.empty())
-        spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8),
-                       options.chromaticities.data());
-    for (const auto& [key, value] : options.metadata) spec.attribute("mirage:" + key, value);
-
-    if (!options.halfFloat) {
-        writeAtomically(path, spec, image.rgba.data(), OIIO::AutoStride);
-        return;
-    }
-    std::vector<float> clamped(image.rgba);
-    for (float& v : clamped)
-        if (std::isfinite(v)) v = clamp(v, -kHalfMax, kHalfMax);
-    writeAtomically(path, spec, clamped.data(), OIIO::AutoStride);
+    std::vector<const float*> data;
+    for (const std::vector<float>& b : buffers) data.push_back(b.data());
+    writeSubimagesAtomically(path, specs, data, OIIO::AutoStride);
 }
+
+namespace {
+
+// The `layer.channel` channels of the current part into image->layers, in the order the file
+// stores them (a layer read before from another part is extended).
+void readLayers(const OIIO::ImageSpec& spec, const std::vector<float>& all, Image* image) {
+    const int n = spec.nchannels;
+    const size_t pixels = size_t(spec.width) * size_t(spec.height);
+    for (int c = 0; c < n; ++c) {
+        const std::string& full = spec.channelnames[size_t(c)];
+        const size_t dot = full.rfind('.');
+        if (dot == std::string::npos || dot == 0) continue;
+        const std::string name = full.substr(0, dot);
+        auto it = std::find_if(image->layers.begin(), image->layers.end(),
+                               [&](const ImageLayer& l) { return l.name == name; });
+        if (it == image->layers.end()) {
+            image->layers.push_back({name, {}, {}});
+            it = image->layers.end() - 1;
+        }
+        it->channels.push_back(full.substr(dot + 1));
+        std::vector<float> merged(pixels * it->channels.size());
+        const size_t m = it->channels.size();
+        for (size_t p = 0; p < pixels; ++p) {
+            for (size_t k = 0; k + 1 < m; ++k) merged[p * m + k] = it->pixels[p * (m - 1) + k];
+            merged[p * m + m - 1] = all[p * size_t(n) + size_t(c)];
+        }
+        it->pixels = std::move(merged);
+    }
+}
+
+}  // namespace
 
 Image readExr(const std::string& path, std::map<std::string, std::string>* metadata) {
     std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
     if (!in) fail(path, "cannot read image: " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
+    const OIIO::ImageSpec spec = in->spec();
     int n = spec.nchannels;
     if (spec.width <= 0 || spec.height <= 0 || n <= 0) fail(path, "image has no pixels");
 
@@ -166,6 +270,17 @@ Image readExr(const std::string& path, std::map<std::string, std::string>* metad
         dst[1] = src[g];
         dst[2] = src[b];
         dst[3] = a >= 0 ? src[a] : 1.f;  // no alpha: fully covered
+    }
+    readLayers(spec, all, &image);
+    // Further parts of a multi-part file: their layers, when they match the first's size.
+    for (int part = 1; in->seek_subimage(part, 0); ++part) {
+        const OIIO::ImageSpec& ps = in->spec();
+        if (ps.width != spec.width || ps.height != spec.height || ps.deep) continue;
+        std::vector<float> more(size_t(ps.width) * ps.height * size_t(ps.nchannels));
+        if (!in->read_image(part, 0, 0, ps.nchannels, OIIO::TypeFloat, more.data()))
+            fail(path,
+                 "cannot read pixels of part " + std::to_string(part) + ": " + in->geterror());
+        readLayers(ps, more, &image);
     }
 
     if (metadata) {

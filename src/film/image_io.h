@@ -20,10 +20,17 @@ struct ExrOptions {
     // pixel (0, 0) at (dataX, dataY) of a display window fullWidth × fullHeight from (0, 0).
     // fullWidth = 0: the image is the whole frame.
     int dataX = 0, dataY = 0, fullWidth = 0, fullHeight = 0;
+    // Image::layers (the AOVs) as parts of their own instead of channels of the beauty's part.
+    bool multipart = false;
 };
 
+// Writes the beauty as R G B A and each layer's channels as `layer.channel` (depth in float
+// even when the rest is half): one part, or with options.multipart one part per layer, named
+// "rgba" and after the layers.
+
 void writeExr(const std::string& path, const Image& image, const ExrOptions& options);
-// Reads an RGBA EXR back (tests, the tradeoff instrument). Throws MirageError on failure.
+// Reads an RGBA EXR back (tests, the tradeoff instrument), and its `layer.channel` channels as
+// Image::layers, from one part or several. Throws MirageError on failure.
 Image readExr(const std::string& path, std::map<std::string, std::string>* metadata = nullptr);
 
 // Converts a working-space image through display/view and writes an 8-bit preview.

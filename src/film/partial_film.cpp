@@ -7,8 +7,9 @@
 #include <chrono>
 #include <cstring>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/text.h"
+#include "film/exr_output.h"
 
 namespace mirage {
 
@@ -27,12 +28,31 @@ double* pixelDouble(Film::Pixel& p, int i) {
     return i < 3 ? &p.xyz[i] : i == 3 ? &p.alpha : &p.xyzSq[i - 4];
 }
 
-// One pixel in the file's native layout: 4 float channels, then kAcc uint32 channels.
+// One pixel in the file's native layout: 4 float channels, then kAcc uint32 channels, then two
+// uint32 channels per double of the film's AOV sums (acc.aov<i>hi, acc.aov<i>lo).
 struct PixelRecord {
     float rgba[4];
     uint32_t acc[kAcc];
 };
 static_assert(sizeof(PixelRecord) == 4 * 4 + kAcc * 4, "no padding in the native layout");
+constexpr int kRecordWords = int(sizeof(PixelRecord) / 4);
+
+std::string aovChannel(int i, bool high) {
+    return "acc.aov" + std::to_string(i) + (high ? "hi" : "lo");
+}
+
+// The layout's names and light groups, as the metadata keeps them (the names hold no ',').
+std::vector<std::string> splitList(const std::string& s) {
+    std::vector<std::string> out;
+    size_t start = 0;
+    while (start < s.size()) {
+        size_t comma = s.find(',', start);
+        if (comma == std::string::npos) comma = s.size();
+        out.push_back(s.substr(start, comma - start));
+        start = comma + 1;
+    }
+    return out;
+}
 
 [[noreturn]] void fail(const std::string& path, const std::string& message) {
     throw MirageError(FileLoc{path, 0, 0}, message);
@@ -43,6 +63,24 @@ void splitDouble(double d, uint32_t* hi, uint32_t* lo) {
     std::memcpy(&bits, &d, 8);
     *hi = uint32_t(bits >> 32);
     *lo = uint32_t(bits);
+}
+
+// Sets the high or the low word of a double (splitDouble's inverse, one word at a time).
+void setWord(double* slot, bool high, uint32_t v) {
+    uint64_t bits;
+    std::memcpy(&bits, slot, 8);
+    bits = high ? (bits & 0xffffffffull) | (uint64_t(v) << 32) : (bits & ~0xffffffffull) | v;
+    std::memcpy(slot, &bits, 8);
+}
+
+// The preview channels of a finished pixel: its mean in the working space.
+void developPixel(const Film::Pixel& p, const Mat3& toWorking, float rgba[4]) {
+    double inv = 1.0 / double(p.samples);
+    Vec3d rgb = toWorking.apply(Vec3d(p.xyz[0] * inv, p.xyz[1] * inv, p.xyz[2] * inv));
+    rgba[0] = float(rgb.x);
+    rgba[1] = float(rgb.y);
+    rgba[2] = float(rgb.z);
+    rgba[3] = float(p.alpha * inv);
 }
 
 std::string encodeDone(const std::vector<uint8_t>& done) {
@@ -85,36 +123,43 @@ void writePartialFilm(const std::string& path, const Film& film, int tileSize,
     MIRAGE_CHECK(tileSize > 0 && done.size() == size_t(tilesX) * ((h + tileSize - 1) / tileSize));
 
     // Only finished tiles are read: the others may be in progress on another thread.
-    std::vector<PixelRecord> pixels(size_t(w) * h);
-    std::memset(pixels.data(), 0, pixels.size() * sizeof(PixelRecord));
+    const int stride = film.aovs().stride();
+    const size_t words = size_t(kRecordWords + 2 * stride);
+    std::vector<uint32_t> record(size_t(w) * h * words, 0u);
     for (size_t t = 0; t < done.size(); ++t) {
         if (!done[t]) continue;
         int x0 = int(t % tilesX) * tileSize, y0 = int(t / tilesX) * tileSize;
         for (int y = y0; y < std::min(y0 + tileSize, h); ++y)
             for (int x = x0; x < std::min(x0 + tileSize, w); ++x) {
                 Film::Pixel p = film.pixel(x, y);
-                PixelRecord& r = pixels[size_t(y) * w + x];
+                uint32_t* word = &record[(size_t(y) * w + x) * words];
+                const double* aov = film.aovSums(x, y);
+                for (int i = 0; i < stride; ++i)
+                    splitDouble(aov[i], &word[kRecordWords + 2 * i],
+                                &word[kRecordWords + 2 * i + 1]);
+                PixelRecord r;
+                std::memset(&r, 0, sizeof r);
                 for (int i = 0; i < kAccDoubles; ++i)
                     splitDouble(*pixelDouble(p, i), &r.acc[2 * i], &r.acc[2 * i + 1]);
                 r.acc[2 * kAccDoubles] = p.samples;
                 r.acc[2 * kAccDoubles + 1] = p.nonFinite;
-                if (p.samples == 0) continue;
-                double inv = 1.0 / double(p.samples);
-                Vec3d rgb = toWorking.apply(Vec3d(p.xyz[0] * inv, p.xyz[1] * inv, p.xyz[2] * inv));
-                r.rgba[0] = float(rgb.x);
-                r.rgba[1] = float(rgb.y);
-                r.rgba[2] = float(rgb.z);
-                r.rgba[3] = float(p.alpha * inv);
+                if (p.samples > 0) developPixel(p, toWorking, r.rgba);
+                std::memcpy(word, &r, sizeof r);
             }
     }
 
-    OIIO::ImageSpec spec(w, h, 4 + kAcc, OIIO::TypeFloat);
+    OIIO::ImageSpec spec(w, h, int(words), OIIO::TypeFloat);
     spec.channelnames = {"R", "G", "B", "A"};
     spec.channelformats.assign(4, OIIO::TypeFloat);
     for (const char* name : kAccChannels) {
         spec.channelnames.push_back(name);
         spec.channelformats.push_back(OIIO::TypeUInt32);
     }
+    for (int i = 0; i < stride; ++i)
+        for (bool high : {true, false}) {
+            spec.channelnames.push_back(aovChannel(i, high));
+            spec.channelformats.push_back(OIIO::TypeUInt32);
+        }
     spec.alpha_channel = 3;
     spec.tile_width = tileSize;
     spec.tile_height = tileSize;
@@ -123,21 +168,18 @@ void writePartialFilm(const std::string& path, const Film& film, int tileSize,
     spec.attribute("mirage:tile_size", std::to_string(tileSize));
     spec.attribute("mirage:tiles_done", encodeDone(done));
     for (const auto& [key, value] : metadata) spec.attribute("mirage:" + key, value);
+    if (!film.aovs().empty()) {
+        spec.attribute("mirage:aovs", joinList(film.aovs().names(), ","));
+        spec.attribute("mirage:light_groups", joinList(film.aovs().lightGroups(), ","));
+    }
 
     // Temporary file next to the target, then rename (atomic within one folder).
-    createParentFolders(path);
-    replaceFileAtomically(
-        path,
-        [&](const std::string& tmp) {
-            std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("openexr");
-            if (!out) fail(path, "no OpenEXR writer: " + OIIO::geterror());
-            if (!out->open(tmp, spec))
-                fail(path, "cannot open '" + tmp + "' for writing: " + out->geterror());
-            bool ok = out->write_image(OIIO::TypeUnknown, pixels.data(), sizeof(PixelRecord));
-            ok = out->close() && ok;
-            if (!ok) fail(path, "cannot write the partial file: " + out->geterror());
+    writeOpenExrAtomically(
+        path, spec,
+        [&](OIIO::ImageOutput& out) {
+            return out.write_image(OIIO::TypeUnknown, record.data(), words * 4);
         },
-        "cannot move the partial file into place");
+        "partial file");
 }
 
 PartialFilm readPartialFilm(const std::string& path) {
@@ -169,7 +211,16 @@ PartialFilm readPartialFilm(const std::string& path) {
             fail(path,
                  std::string("partial file lacks the accumulator channel ") + kAccChannels[c]);
     }
-    result.film = std::make_unique<Film>(w, h);
+    AovLayout layout;
+    if (!result.metadata["aovs"].empty()) {
+        try {
+            layout = AovLayout(splitList(result.metadata["aovs"]),
+                               splitList(result.metadata["light_groups"]));
+        } catch (const MirageError& e) {
+            fail(path, std::string("partial file has a malformed mirage:aovs list: ") + e.what());
+        }
+    }
+    result.film = std::make_unique<Film>(w, h, layout);
     std::vector<uint32_t> channel(size_t(w) * h);
     for (int c = 0; c < kAcc; ++c) {
         if (!in->read_image(0, 0, index[c], index[c] + 1, OIIO::TypeUInt32, channel.data()))
@@ -180,12 +231,7 @@ PartialFilm readPartialFilm(const std::string& path) {
                 uint32_t v = channel[size_t(y) * w + x];
                 // Even channels hold a double's high word, odd ones its low word.
                 if (c < 2 * kAccDoubles) {
-                    uint64_t bits;
-                    double* slot = pixelDouble(p, c / 2);
-                    std::memcpy(&bits, slot, 8);
-                    bits = (c % 2 == 0) ? (bits & 0xffffffffull) | (uint64_t(v) << 32)
-                                        : (bits & ~0xffffffffull) | v;
-                    std::memcpy(slot, &bits, 8);
+                    setWord(pixelDouble(p, c / 2), c % 2 == 0, v);
                 } else if (c == 2 * kAccDoubles) {
                     p.samples = v;
                 } else {
@@ -193,6 +239,17 @@ PartialFilm readPartialFilm(const std::string& path) {
                 }
             }
     }
+    for (int i = 0; i < layout.stride(); ++i)
+        for (bool high : {true, false}) {
+            const std::string name = aovChannel(i, high);
+            const int c = spec.channelindex(name);
+            if (c < 0) fail(path, "partial file lacks the accumulator channel " + name);
+            if (!in->read_image(0, 0, c, c + 1, OIIO::TypeUInt32, channel.data()))
+                fail(path, "cannot read the partial file's pixels: " + in->geterror());
+            for (int y = 0; y < h; ++y)
+                for (int x = 0; x < w; ++x)
+                    setWord(&result.film->aovSums(x, y)[i], high, channel[size_t(y) * w + x]);
+        }
     in->close();
     return result;
 }

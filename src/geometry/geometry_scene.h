@@ -50,6 +50,9 @@ struct ShapeInfo {
     ShapeType type = ShapeType::Mesh;
     int material = 0;
     int interiorMedium = -1;  // index of the scene medium inside the shape, −1 for none
+    // A holdout ([[shape]] holdout = true): it occludes and casts shadows, but the camera sees
+    // it black with zero alpha, so that a render comps over a plate holding the real object.
+    bool holdout = false;
     Bounds3 bounds;
     size_t triangles = 0;
     // Sphere: centre and radius; quad: corner and edges (world).
@@ -81,6 +84,8 @@ public:
     const ShapeInfo& shape(int i) const { return mShapes[size_t(i)]; }
     const Material& material(int i) const { return mMaterials[size_t(i)]; }
     const Material& materialAt(const SurfaceHit& h) const { return material(h.material); }
+    void setHoldout(int shape, bool holdout) { mShapes[size_t(shape)].holdout = holdout; }
+    bool holdout(const SurfaceHit& h) const { return mShapes[size_t(h.shape)].holdout; }
     Bounds3 bounds() const { return mBounds; }
     double buildSeconds() const { return mBuildSeconds; }
 

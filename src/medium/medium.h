@@ -63,6 +63,10 @@ public:
     Bounds3 objectBounds() const { return mMajorant.bounds(); }
     const MajorantGrid& majorant() const { return mMajorant; }
     bool emissive() const { return mShader.emission.has_value(); }
+    // A holdout ([[volume]] holdout = true): it attenuates and shadows, but the camera sees no
+    // light of its own and no coverage of its own (docs/aovs.md, "Holdouts").
+    bool holdout() const { return mHoldout; }
+    void setHoldout(bool holdout) { mHoldout = holdout; }
     // Some component re-emits absorbed light (Γ > 0): the Γ roulette applies (reemission.h).
     bool fluorescent() const { return mFluorescent; }
     // "Model only what a scene requires" (docs/design.md): every component is linear with
@@ -259,6 +263,7 @@ private:
     std::vector<std::shared_ptr<const Region>> mExcluded;
     bool mFluorescent = false;
     bool mGreyCoefficients = false, mGreyPath = true;
+    bool mHoldout = false;
 };
 
 }  // namespace mirage

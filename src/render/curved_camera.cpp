@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include "transport/ray_optical_depth.h"
@@ -68,10 +69,24 @@ public:
         // before inside the estimate, through ts.photonView: T at the photon's wavelength.
         ViewWeight& prefix = ts.photonView;
         prefix = ViewWeight();
+        // The sample's passes: each chord's go to a scratch first, weighted as its radiance.
+        AovSample* const aov = ts.aov;
+        std::optional<AovSample> chordAov;
+        if (aov) chordAov.emplace(int(aov->group.size()));
+        auto inner = [&](const Ray& r) {
+            if (aov) {
+                chordAov->reset();
+                ts.aov = &*chordAov;
+            }
+            RadianceSample s = mInner->Li(scene, r, w, sampler, ts);
+            ts.aov = aov;
+            return s;
+        };
         auto add = [&](const RadianceSample& s, double n) {
             const float k = float((nCam / n) * (nCam / n));
             out.L += s.L * T * k;
             out.xyz += s.xyz * k;
+            if (aov) aov->addWeighted(*chordAov, T, k);
         };
         bool atSurface = false;
         Ray next;
@@ -102,7 +117,7 @@ public:
             // What the media along this chord emit and scatter towards it (the wrapped
             // integrator, stopped at the chord's end), then their transmittance over arc
             // length (the chord parametrised by arc: |d| = len/h).
-            add(mInner->Li(scene, Ray{pa, unit, len}, w, sampler, ts), rf.field->index(a.r, lambda));
+            add(inner(Ray{pa, unit, len}), rf.field->index(a.r, lambda));
             const SampledSpectrum chordT =
                 transmittance(ts.tracking, Ray{pa, unit * (len / h)}, h, sampler);
             T *= chordT;
@@ -122,7 +137,7 @@ public:
             next = Ray{Vec3(r.end.r), Vec3(r.end.direction())};
             nNext = rf.field->index(r.end.r, lambda);
         }
-        const RadianceSample last = mInner->Li(scene, next, w, sampler, ts);
+        const RadianceSample last = inner(next);
         add(last, nNext);
         prefix = ViewWeight();
         out.alpha = 1.f - T.average() * (1.f - last.alpha);

@@ -16,7 +16,9 @@ SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, 
                                   Sampler& sampler, ThreadState& ts) {
     SampledSpectrum L(0.f);
     const Medium& m = ts.tracking.medium(c.medium);
-    for (const auto& light : scene.lights) {
+    SampledSpectrum* split = ts.startLightSplit();
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const Light* light = scene.lights[i].get();
         float u1, u2;
         sampler.get2D(&u1, &u2);  // one pair of dimensions: stratified over the light
         LightSample ls;
@@ -29,7 +31,9 @@ SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, 
             continue;
         Ray shadow{c.p, ls.wi, ls.distance};
         SampledSpectrum T = transmittance(ts.tracking, shadow, ls.distance, sampler);
-        L += T * phase * ls.Li;
+        const SampledSpectrum term = T * phase * ls.Li;
+        L += term;
+        if (split) split[scene.lightGroupSlot(i)] += term;
     }
     return L;
 }
@@ -41,7 +45,9 @@ SampledSpectrum directLightSurface(const RenderScene& scene, const SurfaceHit& h
     Frame frame(hit.ns);
     Vec3 woL = frame.toLocal(wo);
     const float side = dot(wo, hit.ng);
-    for (const auto& light : scene.lights) {
+    SampledSpectrum* split = ts.startLightSplit();
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const Light* light = scene.lights[i].get();
         float u1, u2;
         sampler.get2D(&u1, &u2);  // one pair of dimensions: stratified over the light
         LightSample ls;
@@ -55,7 +61,9 @@ SampledSpectrum directLightSurface(const RenderScene& scene, const SurfaceHit& h
         float len = shadowLength(hit.p + ls.wi * ls.distance, ls.distance);
         if (scene.geometry->occluded(shadow.o, ls.wi, len)) continue;
         SampledSpectrum T = transmittance(ts.tracking, shadow, ls.distance, sampler);
-        L += T * f * std::abs(wiL.z) * ls.Li;
+        const SampledSpectrum term = T * f * std::abs(wiL.z) * ls.Li;
+        L += term;
+        if (split) split[scene.lightGroupSlot(i)] += term;
     }
     return L;
 }

@@ -7,7 +7,9 @@ namespace mirage {
 SampledSpectrum directLightIsotropic(const RenderScene& scene, const Vec3& p, Sampler& sampler,
                                      ThreadState& ts) {
     SampledSpectrum L(0.f);
-    for (const auto& light : scene.lights) {
+    SampledSpectrum* split = ts.startLightSplit();
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const Light* light = scene.lights[i].get();
         float u1 = sampler.get1D(), u2 = sampler.get1D();
         LightSample ls;
         if (!light->sampleLi(p, u1, u2, ts.tracking.wavelengths(), &ls)) continue;
@@ -19,7 +21,10 @@ SampledSpectrum directLightIsotropic(const RenderScene& scene, const Vec3& p, Sa
                            : ls.distance;
         if (scene.hasSurfaces() && scene.geometry->occluded(p, ls.wi, length)) continue;
         Ray shadow{p, ls.wi, ls.distance};
-        L += transmittance(ts.tracking, shadow, ls.distance, sampler) * ls.Li * kInv4Pi;
+        const SampledSpectrum term =
+            transmittance(ts.tracking, shadow, ls.distance, sampler) * ls.Li * kInv4Pi;
+        L += term;
+        if (split) split[scene.lightGroupSlot(i)] += term;
     }
     return L;
 }

@@ -3,17 +3,23 @@
 // tracer implement the same interface.
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/light_path.h"
 #include "core/progress.h"
 #include "core/rng.h"
+#include "film/aov.h"
 #include "medium/index_field.h"
 #include "photon/view_weight.h"
+#include "render/radiance_sample.h"
 #include "render/render_scene.h"
 #include "transport/curved_path.h"
+#include "transport/path_vertex.h"
+#include "transport/scatter_point.h"
 #include "transport/tracking.h"
 
 namespace mirage {
@@ -28,6 +34,20 @@ struct ThreadState {
     // estimates made at the photons' own wavelengths (photon/view_weight.h): the curved
     // camera's earlier chords. One (nothing) for a camera ray.
     ViewWeight photonView;
+    // The render passes of the sample being rendered; null when the render has none, and then
+    // nothing below is touched.
+    AovSample* aov = nullptr;
+    DeepSample* deep = nullptr;       // the sample's deep record; null without deep output
+    std::vector<EmissionAt> emitted;  // scratch: a flight's emission per collision
+    // Next-event estimation's parts per light-group slot (render/direct_light.h), when the
+    // passes split light groups: the last estimate's, overwritten by the next.
+    std::vector<SampledSpectrum> lightSplit;
+    // Zeroes the parts for the estimate about to be made; null when the render does not split.
+    SampledSpectrum* startLightSplit() {
+        if (!aov || aov->group.empty()) return nullptr;
+        std::fill(lightSplit.begin(), lightSplit.end(), SampledSpectrum(0.f));
+        return lightSplit.data();
+    }
 };
 
 // Figures of the photon integrator's two passes, for the render summary and the EXR header
@@ -43,14 +63,6 @@ struct PhotonStats {
     double discBvhBuildSeconds = 0;    // beam: Embree BVH over the photon discs
     double estimateSeconds = 0;        // beam/point and surface estimates, all threads
     std::vector<std::pair<std::string, std::string>> metadata() const;
-};
-
-struct RadianceSample {
-    SampledSpectrum L;   // W·m⁻²·sr⁻¹·nm⁻¹
-    float alpha = 0.f;   // 1 − transmittance of the ray (coverage)
-    // Radiance already reduced to CIE XYZ in the film's normalisation (spectrumToXyz), added to
-    // the pixel beside L: what a photon-map estimate gives, each photon at its own wavelength.
-    Vec3 xyz;
 };
 
 // What an integrator is. The scene loader (its check of [render] integrator, `mirage info`),

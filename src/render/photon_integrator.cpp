@@ -148,6 +148,13 @@ public:
     const IntegratorInfo& info() const override { return integratorInfo("photon"); }
 
     void preprocess(const RenderScene& scene) override {
+        // A photon estimate gathers from every medium at a point alike: it cannot leave out a
+        // holdout medium's in-scattering on the camera ray.
+        for (const auto& m : scene.media)
+            if (m->holdout())
+                throw MirageError(
+                    "a [[volume]] with holdout = true needs the single or volpath "
+                    "integrator: photon estimates do not tell media apart");
         mMedia = scene.mediaPointers();
         mCurved = photonsCurve(mSettings.field.get(), scene.bounds());
         // Curved light: where paths curve there are no (straight) shadow rays, so the maps hold
@@ -172,7 +179,7 @@ public:
         RadianceSample out = mSingle->Li(scene, ray, w, sampler, ts);
         if (mThreads) mThreads->local().depth.setTimeOffset(ts.tracking.timeOffset());
         if (scene.hasSurfaces()) {
-            out.xyz = photonsAlongSpecularChain(scene, ray, w, sampler, ts.photonView);
+            photonsAlongSpecularChain(scene, ray, w, sampler, ts.photonView, &out);
             return out;
         }
         if (!mPhotons || mPhotons->size() == 0) return out;
@@ -181,7 +188,8 @@ public:
         PhotonThreadState& pt = mThreads->local();
         auto t0 = Clock::now();
         pt.depth.march(ray, ray.tMax);
-        out.xyz = volumeEstimate(ray, ray.tMax, u, pt, ts.photonView);
+        out.addXyz(volumeEstimate(ray, ray.tMax, u, pt, ts.photonView), LightPath::VolumeIndirect,
+                   kUnplaced);
         pt.estimateSeconds += secondsSince(t0);
         ++pt.estimates;
         return out;
@@ -302,25 +310,28 @@ private:
                                      mStep, u, pt.neighbours.data(), pt.probe, view);
     }
 
-    // The photon part with surfaces (see the top of the file), XYZ.
-    Vec3 photonsAlongSpecularChain(const RenderScene& scene, const Ray& cameraRay,
+    // The photon part with surfaces (see the top of the file), XYZ, into *out: the volume
+    // estimates are volume_indirect, the caustic map caustic, the global map surface_indirect.
+    void photonsAlongSpecularChain(const RenderScene& scene, const Ray& cameraRay,
                                    const SampledWavelengths& w, Sampler& sampler,
-                                   const ViewWeight& prefix) const {
+                                   const ViewWeight& prefix, RadianceSample* out) const {
         const float u = sampler.get1D();  // the point estimate's march jitter
         PhotonThreadState& pt = mThreads->local();
         auto t0 = Clock::now();
         const bool volume = mPhotons && mPhotons->size() > 0;
         const int kSurface = mSettings.k > 0 ? mSettings.k : 32;
-        Vec3 xyz(0.f);
         ViewWeight view = prefix;
         PathThroughput path;  // the chain's throughput at the path's wavelengths
         Ray ray = cameraRay;
+        float viewT = 0.f;  // distance along the chain to this ray's origin (deep output)
         for (int bounce = 0; bounce <= kMaxSpecularBounces; ++bounce) {
             std::optional<SurfaceHit> hit = scene.geometry->intersect(ray);
             const float tEnd = hit ? hit->t : ray.tMax;
             pt.depth.march(ray, tEnd);
-            if (volume) xyz += volumeEstimate(ray, tEnd, u, pt, view);
-            if (!hit) break;
+            if (volume)
+                out->addXyz(volumeEstimate(ray, tEnd, u, pt, view), LightPath::VolumeIndirect,
+                            kUnplaced);
+            if (!hit || scene.geometry->holdout(*hit)) break;  // a holdout: nothing behind
             const Material& mat = scene.geometry->materialAt(*hit);
             if (!mat.specular()) {
                 pt.neighbours.resize(size_t(kSurface));
@@ -328,10 +339,12 @@ private:
                     return pt.depth.transmittance(hit->t, lambda) * view(lambda);
                 };
                 const Vec3 wo = -ray.d;
-                xyz += mCaustic->estimate(hit->p, hit->ng, wo, mat, kSurface, mMaxRadius,
-                                          pt.neighbours.data(), T) +
-                       mGlobal->estimate(hit->p, hit->ng, wo, mat, kSurface, mMaxRadius,
-                                         pt.neighbours.data(), T);
+                const Vec3 caustic = mCaustic->estimate(hit->p, hit->ng, wo, mat, kSurface,
+                                                        mMaxRadius, pt.neighbours.data(), T);
+                const Vec3 global = mGlobal->estimate(hit->p, hit->ng, wo, mat, kSurface,
+                                                      mMaxRadius, pt.neighbours.data(), T);
+                out->addXyz(caustic, LightPath::Caustic, global, LightPath::SurfaceIndirect,
+                            DeepAt{viewT + hit->t, true});
                 break;
             }
             attenuateView(pt.depth, tEnd, &view);
@@ -342,11 +355,11 @@ private:
                 break;
             weighSpecularVertex(mat, bs, w, &view);
             if (view.zero()) break;
+            viewT += hit->t;
             ray = next;
         }
         pt.estimateSeconds += secondsSince(t0);
         ++pt.estimates;
-        return xyz;
     }
 
     // The media of a segment the chain leaves: their transmittance at every wavelength.

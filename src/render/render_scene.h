@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "geometry/geometry_scene.h"
@@ -19,6 +20,19 @@ struct RenderScene {
     // Surfaces (meshes, spheres, quads) and their materials; null when the scene has none, and
     // then every integrator behaves exactly as for media alone.
     std::unique_ptr<GeometryScene> geometry;
+    // Light groups (the lightgroup_* passes, film/aov.h): their names, and each light's group
+    // as an index into them. A light without a group (and every light of a scene that names
+    // none) is in the group "default".
+    std::vector<std::string> lightGroups;
+    std::vector<int> lightGroupIndex;  // per light; empty: all in "default"
+
+    std::vector<std::string> lightGroupNames() const {
+        return lightGroups.empty() ? std::vector<std::string>{"default"} : lightGroups;
+    }
+    // The light's slot among the light-group passes (slot 0 is emission).
+    int lightGroupSlot(size_t light) const {
+        return light < lightGroupIndex.size() ? lightGroupIndex[light] + 1 : 1;
+    }
 
     bool hasSurfaces() const { return geometry && !geometry->empty(); }
 

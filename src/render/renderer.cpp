@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "render/achromatic_film.h"
+#include "render/camera_ray_data.h"
 
 namespace mirage {
 
@@ -23,12 +24,23 @@ namespace {
 // the full frame whatever the region and the tile: pixel jitter, its wavelengths, then the
 // integrator's; its time in the shutter from a stream of its own, so that a closed shutter
 // leaves every other number where it was. A camera that moves within the shutter is placed at
-// that time (CameraDesc::poseAt) for the sample's ray. Returns the samples taken.
+// that time (CameraDesc::poseAt) for the sample's ray. With AOVs, ts.aov collects each sample's
+// passes, and the camera ray's data passes take numbers of their own too. Returns the samples
+// taken.
 uint64_t renderTile(const RenderScene& scene, const Integrator& integrator, const RenderSettings& s,
                     const PassSamples& pass, const PerspectiveCamera& camera,
                     const std::optional<AchromaticFilm>& achromatic, int tile, ThreadState& ts,
-                    Film* film) {
+                    Film* film, DeepFilm* deepFilm) {
     const PixelWindow win = renderWindow(s);
+    const AovLayout& layout = film->aovs();
+    AovSample aov(layout.groupSlots());
+    ts.aov = layout.empty() ? nullptr : &aov;
+    ts.lightSplit.assign(size_t(layout.groupSlots()), SampledSpectrum(0.f));
+    DeepSample deep;
+    DeepPixel deepPixel;
+    ts.deep = deepFilm ? &deep : nullptr;
+    const bool walkCameraRay = layout.cameraData() || deepFilm;
+    const uint64_t dataSeed = hashCombine(s.seed, 0x616f7664617461ull);  // "aovdata"
     const int tilesX = tileCountX(s);
     const int x0 = win.x0 + (tile % tilesX) * s.tileSize;
     const int y0 = win.y0 + (tile / tilesX) * s.tileSize;
@@ -54,29 +66,60 @@ uint64_t renderTile(const RenderScene& scene, const Integrator& integrator, cons
                         ? PerspectiveCamera(scene.camera.poseAt(time), s.width, s.height)
                               .generate(float(x) + jx, float(y) + jy)
                         : camera.generate(float(x) + jx, float(y) + jy);
+                if (ts.aov) aov.reset();
+                if (ts.deep) deep.reset();
                 RadianceSample rs = integrator.Li(scene, ray, w, sampler, ts);
                 if (achromatic) achromatic->apply(w, &rs);
-                film->addSample(x - win.x0, y - win.y0, rs.L, w, rs.alpha, rs.xyz);
+                if (walkCameraRay) {
+                    Sampler data(SamplerKind::Random, dataSeed, pixel, uint64_t(i));
+                    cameraRayData(scene, ray, data, ts, ts.aov, ts.deep);
+                }
+                const bool kept =
+                    film->addSample(x - win.x0, y - win.y0, rs.L, w, rs.alpha, rs.xyz, ts.aov);
+                if (ts.deep && kept) deepPixel.addSample(deep, w, rs.alpha);
             }
+            if (!deepFilm) continue;
+            deepFilm->setPixel(
+                x, y, deepPixel.merge(s.deep, film->pixel(x - win.x0, y - win.y0).samples));
+            deepPixel.clear();
         }
+    ts.aov = nullptr;
+    ts.deep = nullptr;
     return taken;
 }
 
 }  // namespace
 
+AovLayout aovLayout(const RenderScene& scene, const RenderSettings& s, const IntegratorInfo& info) {
+    AovLayout layout(s.aovs, scene.lightGroupNames());
+    if (layout.groupSlots() > 0 && info.photonPass)
+        throw MirageError(
+            "light-group passes (lightgroup_*) need an integrator without a photon "
+            "pass: photons do not record which light they came from; the " +
+            info.name + " integrator has one (use single or volpath)");
+    return layout;
+}
+
 Film render(const RenderScene& scene, Integrator& integrator, const RenderSettings& s,
-            RenderStats* stats, TileCheckpoint* checkpoint, const PassSamples& pass) {
+            RenderStats* stats, TileCheckpoint* checkpoint, const PassSamples& pass,
+            DeepFilm* deep) {
     const PixelWindow win = renderWindow(s);
     MIRAGE_CHECK(win.x0 >= 0 && win.y0 >= 0 && win.x1 <= s.width && win.y1 <= s.height);
     const int tilesX = tileCountX(s);
     const int tiles = tileCount(s);
-    Film film =
-        checkpoint && checkpoint->initial ? *checkpoint->initial : Film(win.width(), win.height());
+    Film film = checkpoint && checkpoint->initial
+                    ? *checkpoint->initial
+                    : Film(win.width(), win.height(), aovLayout(scene, s, integrator.info()));
     MIRAGE_CHECK(film.width() == win.width() && film.height() == win.height());
+    MIRAGE_CHECK(film.aovs().stride() == aovLayout(scene, s, integrator.info()).stride());
     MIRAGE_CHECK(!pass.pixels || pass.pixels->size() == size_t(s.width) * size_t(s.height));
+    // Deep pixels are numbered in the whole frame; the command refuses deep with a region.
+    MIRAGE_CHECK(!deep || (win.width() == s.width && win.height() == s.height));
     PerspectiveCamera camera(scene.camera, s.width, s.height);
-    // Colour exactly per sample where nothing in the scene is spectral.
-    const std::optional<AchromaticFilm> achromatic = AchromaticFilm::forScene(scene, integrator);
+    // Colour exactly per sample where nothing in the scene is spectral; not with AOVs or deep
+    // samples, which split each sample's spectral radiance and must sum to the beauty exactly.
+    const std::optional<AchromaticFilm> achromatic =
+        film.aovs().empty() && !deep ? AchromaticFilm::forScene(scene, integrator) : std::nullopt;
 
     // Which tiles are finished. A tile's pixels are written before its flag is stored (release)
     // and read by a checkpoint writer only after it loads the flag (acquire): no data race.
@@ -110,8 +153,8 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
             uint64_t aboveBefore = ts.tracking.aboveMajorant;
             for (int tile = r.begin(); tile < r.end(); ++tile) {
                 if (done[tile].load(std::memory_order_relaxed) || interruptRequested()) continue;
-                samples +=
-                    renderTile(scene, integrator, s, pass, camera, achromatic, tile, ts, &film);
+                samples += renderTile(scene, integrator, s, pass, camera, achromatic, tile, ts,
+                                      &film, deep);
                 done[tile].store(1, std::memory_order_release);
                 progress.advance();
                 int64_t n = ++finishedNow;

@@ -7,9 +7,11 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "core/progress.h"
+#include "film/deep.h"
 #include "film/film.h"
 #include "render/integrator.h"
 
@@ -37,19 +39,29 @@ struct RenderSettings {
     // The camera samples' numbers (core/rng.h): Sobol is stratified over each pixel's samples.
     SamplerKind sampler = SamplerKind::Sobol;
     Progress::Mode progress = Progress::Mode::Auto;
+    // Render passes beside the beauty (film/aov.h; [output] aovs, --aov), in the order of
+    // their layers. Empty: the beauty alone, at its old cost and bits.
+    std::vector<std::string> aovs;
+    // Deep output ([output] deep, --deep): a path is what turns it on; the tolerances merge a
+    // pixel's events into deep samples (film/deep.h).
+    DeepSettings deep;
 };
+
+// The passes `s` asks for, with the scene's light groups. Throws MirageError for an unknown
+// pass, and for light groups with an integrator whose photons do not record their light.
+AovLayout aovLayout(const RenderScene& scene, const RenderSettings& s, const IntegratorInfo& info);
 
 struct RenderStats {
     double seconds = 0;
     uint64_t samples = 0;
-    uint64_t mediumLookups = 0;  // medium evaluations (each reads every grid of its shader)
+    uint64_t mediumLookups = 0;     // medium evaluations (each reads every grid of its shader)
     uint64_t nonFiniteSamples = 0;  // camera samples dropped by the film (NaN/∞)
     uint64_t cappedFlights = 0;     // free flights cut at the collision cap (tracking.h)
     uint64_t aboveMajorant = 0;     // lookups whose σt exceeded their majorant (must be 0)
-    int tiles = 0;             // tiles in the image
-    int tilesDone = 0;         // finished, including those restored from a partial file
-    int tilesResumed = 0;      // restored from a partial file, not rendered now
-    bool interrupted = false;  // stopped by interruptRequested() before every tile was done
+    int tiles = 0;                  // tiles in the image
+    int tilesDone = 0;              // finished, including those restored from a partial file
+    int tilesResumed = 0;           // restored from a partial file, not rendered now
+    bool interrupted = false;       // stopped by interruptRequested() before every tile was done
 };
 
 // The pixels a render covers: the region, or the whole frame.
@@ -90,7 +102,9 @@ struct PassSamples {
 // Renders every tile not already done, stopping early when interruptRequested() (tiles in
 // flight finish; the rest are left undone, and stats->interrupted is set). On return,
 // checkpoint->done (if given) says which tiles the film holds.
+// With `deep` (settings.deep.path set), every rendered pixel's deep samples go there.
 Film render(const RenderScene& scene, Integrator& integrator, const RenderSettings& settings,
-            RenderStats* stats, TileCheckpoint* checkpoint = nullptr, const PassSamples& pass = {});
+            RenderStats* stats, TileCheckpoint* checkpoint = nullptr, const PassSamples& pass = {},
+            DeepFilm* deep = nullptr);
 
 }  // namespace mirage

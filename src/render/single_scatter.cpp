@@ -38,44 +38,69 @@ public:
     RadianceSample Li(const RenderScene& scene, const Ray& cameraRay, const SampledWavelengths& w,
                       Sampler& sampler, ThreadState& ts) const override {
         RadianceSample out;
+        out.aov = ts.aov;
+        out.deep = ts.deep;
         PathThroughput path;
+        DeepView view;
         const GeometryScene* geometry = scene.hasSurfaces() ? scene.geometry.get() : nullptr;
         Ray ray = cameraRay;
         for (int bounce = 0;; ++bounce) {
             std::optional<SurfaceHit> hit;
             if (geometry) hit = geometry->intersect(ray);
             const float tEnd = hit ? hit->t : ray.tMax;
-            // The scattering point along the whole flight (transport/scatter_point.h).
+            // The scattering point along the whole flight (transport/scatter_point.h). The
+            // walk scores emission straight into the beauty, or, with passes or deep output,
+            // apart per collision, to be tagged and placed.
+            const bool split = out.aov || out.deep;
+            ts.emitted.clear();
             const ScatterPointWalk walk =
-                chooseScatterPoints(ts.tracking, ray, tEnd, path.beta, sampler, &out.L);
+                chooseScatterPoints(ts.tracking, ray, tEnd, path.beta, sampler,
+                                    split ? nullptr : &out.L, split ? &ts.emitted : nullptr);
+            for (const EmissionAt& e : ts.emitted)
+                out.add(e.L, path.history.emitted(), kEmissionGroup,
+                        view.at(path.history, e.t, false));
             for (int k = 0; walk.chosen && mDirect && k < kScatterPoints; ++k)
-                out.L += path.beta * walk.weight[k] *
-                         directLightMedium(scene, walk.collision[k], -ray.d, sampler, ts);
+                out.addLit(path.beta * walk.weight[k],
+                           directLightMedium(scene, walk.collision[k], -ray.d, sampler, ts),
+                           path.history.gathered(false), ts.lightSplit,
+                           view.at(path.history, walk.collision[k].t, false));
             const bool escaped = walk.reachedEnd;
             path.beta *= walk.T;
+            // A holdout is seen as nothing: what lies in front of it covers the pixel, and
+            // nothing of its own does (docs/aovs.md, "Holdouts").
+            const bool holdout = hit && geometry->holdout(*hit);
             if (bounce == 0)
-                out.alpha = escaped && !hit ? clamp(1.f - walk.T.average(), 0.f, 1.f) : 1.f;
+                out.alpha = clamp((escaped && (!hit || holdout) ? 1.f - walk.T.average() : 1.f) -
+                                      walk.holdoutCoverage,
+                                  0.f, 1.f);
             // Leaving the scene: the dome, seen through the media (camera ray or after glass).
+            // Light seen straight from its source, as emission is: the emission pass and
+            // lightgroup_emission (docs/aovs.md).
             if (escaped && !hit && std::isinf(ray.tMax))
-                out.L += path.beta * escapedRadiance(scene, ray.d, w, bounce == 0);
-            if (!escaped || !hit || bounce >= kMaxSpecularBounces) break;
+                out.add(path.beta * escapedRadiance(scene, ray.d, w, bounce == 0),
+                        path.history.emitted(), kEmissionGroup, kUnplaced);
+            if (!escaped || !hit || holdout || bounce >= kMaxSpecularBounces) break;
 
             // The surface: emission and direct light where it is diffuse, else follow the mirror
             // or glass.
             const Material& mat = geometry->materialAt(*hit);
-            if (mat.emissive()) out.L += path.beta * mat.emission(w);
+            const DeepAt at = view.at(path.history, hit->t, true);
+            if (mat.emissive())
+                out.add(path.beta * mat.emission(w), path.history.emitted(), kEmissionGroup, at);
             if (!mat.specular()) {
                 if (mDirect)
-                    out.L += path.beta * directLightSurface(scene, *hit, mat, -ray.d, sampler, ts);
+                    out.addLit(path.beta, directLightSurface(scene, *hit, mat, -ray.d, sampler, ts),
+                               path.history.gathered(true), ts.lightSplit, at);
                 break;
             }
+            view.specular(path.history, hit->t);
             Ray next;
             if (!continueAtSurface(mat, *hit, ray.d, w, TransportMode::Radiance, sampler, &path,
                                    &next))
                 break;
             ray = next;
         }
-        out.L = path.estimate(out.L);
+        out.finish(path);
         return out;
     }
 

@@ -55,7 +55,10 @@ public:
     RadianceSample Li(const RenderScene& scene, const Ray& cameraRay, const SampledWavelengths& w,
                       Sampler& sampler, ThreadState& ts) const override {
         RadianceSample out;
+        out.aov = ts.aov;
+        out.deep = ts.deep;
         PathThroughput path;
+        DeepView view;
         Ray ray = cameraRay;
         const GeometryScene* geometry = scene.hasSurfaces() ? scene.geometry.get() : nullptr;
         bool fluoresced = false;
@@ -67,40 +70,74 @@ public:
             const float tEnd = hit ? hit->t : ray.tMax;
             float lambdaIn = 0.f;  // > 0: the path fluoresced at this collision, goes on at λi
             bool scattered = false;
+            bool heldOut = false;  // a real event in a holdout medium the camera looks into
+            float eventT = 0.f;    // where the path fluoresced
             const bool escaped =
                 trackCollisions(ts.tracking, ray, tEnd, sampler, [&](const Collision& c) {
                     const Medium& m = ts.tracking.medium(c.medium);
-                    scoreEmission(c, m, path, &out.L);
+                    // A holdout medium seen by the camera only attenuates: no emission, and a
+                    // real event in it ends the path with nothing (and no coverage).
+                    if (m.holdout() && path.history.vertices == 0) {
+                        heldOut = chooseEvent(c, path, sampler).event != MediumEvent::Null;
+                        return heldOut ? Track::Stop : Track::Continue;
+                    }
+                    if (m.emissive()) {
+                        SampledSpectrum e;
+                        scoreEmission(c, m, path, &e);
+                        out.add(e, path.history.emitted(), kEmissionGroup,
+                                view.at(path.history, c.t, false));
+                    }
                     if (m.fluorescent() && fluoresce(m, c, ts, sampler, &path, &next, &lambdaIn)) {
                         scattered = path.alive();
+                        eventT = c.t;
                         return Track::Stop;
                     }
                     const CollisionOutcome o = chooseEvent(c, path, sampler);
                     if (o.event == MediumEvent::Null) return Track::Continue;
                     if (o.event == MediumEvent::Scattered) {
-                        out.L += path.beta * directLightMedium(scene, c, -ray.d, sampler, ts);
+                        out.addLit(path.beta, directLightMedium(scene, c, -ray.d, sampler, ts),
+                                   path.history.gathered(false), ts.lightSplit,
+                                   view.at(path.history, c.t, false));
+                        view.scatter(path.history, c.t, false);
+                        path.history.scatter(false);
                         next = Ray{c.p, samplePhase(m, c, ray.d, sampler, &path), kInfinity};
                         scattered = true;
                     }
                     return Track::Stop;  // scattered, or absorbed for good
                 });
+            // A holdout seen before the path scattered is nothing to the camera: black, and
+            // only what lies in front of it covers the pixel (docs/aovs.md, "Holdouts"). Light
+            // that scattered meets it as any surface.
+            const bool holdout = hit && path.history.vertices == 0 && geometry->holdout(*hit);
             if (depth == 0)
-                out.alpha = escaped && !hit ? clamp(1.f - path.beta.average(), 0.f, 1.f) : 1.f;
+                out.alpha = escaped && (!hit || holdout)
+                                ? clamp(1.f - path.beta.average(), 0.f, 1.f)
+                            : heldOut ? 0.f
+                                      : 1.f;
+            if (heldOut) break;
+            if (holdout && escaped) break;
             if (lambdaIn > 0.f) {
                 SampledWavelengths li = ts.tracking.wavelengths();
                 li.lambda.fill(lambdaIn);
                 ts.tracking.setWavelengths(li);
-                out.L += path.beta * directLightIsotropic(scene, next.o, sampler, ts);
+                out.addLit(path.beta, directLightIsotropic(scene, next.o, sampler, ts),
+                           path.history.gathered(false), ts.lightSplit,
+                           view.at(path.history, eventT, false));
+                view.scatter(path.history, eventT, false);
+                path.history.scatter(false);
                 fluoresced = true;
             }
+            // Leaving the scene: the dome (camera ray or after mirrors and glass), light seen
+            // straight from its source as emission is (docs/aovs.md).
             if (!scattered && escaped && !hit && specularChain && std::isinf(ray.tMax))
-                out.L += path.beta *
-                         escapedRadiance(scene, ray.d, ts.tracking.wavelengths(), depth == 0);
+                out.add(path.beta *
+                            escapedRadiance(scene, ray.d, ts.tracking.wavelengths(), depth == 0),
+                        path.history.emitted(), kEmissionGroup, kUnplaced);
             if (scattered) specularChain = false;  // a medium event: NEE counted the dome
             if (!scattered && escaped && hit) {
                 specularChain = specularChain && scene.geometry->materialAt(*hit).specular();
                 scattered = scatterAtSurface(scene, *hit, ray, ts.tracking.wavelengths(), sampler,
-                                             ts, &path, &out.L, &next);
+                                             ts, &path, &view, &out, &next);
             }
             if (!scattered) break;
             if (depth + 1 >= mMaxDepth) {
@@ -111,7 +148,7 @@ public:
             ray = next;
         }
         if (fluoresced) ts.tracking.setWavelengths(w);  // the caller's, for its next path
-        out.L = path.estimate(out.L);
+        out.finish(path);
         return out;
     }
 
@@ -138,10 +175,9 @@ private:
     // no λi feeds λo). Not chosen, β carries the ordinary events' factor 1 / (1 − P_f).
     static bool fluoresce(const Medium& m, const Collision& c, ThreadState& ts, Sampler& sampler,
                           PathThroughput* path, Ray* next, float* lambdaIn) {
-        const InelasticEvent in =
-            sampleInelasticEvent(m, ts.tracking.context(size_t(c.medium)), c.p,
-                                 ts.tracking.wavelengths(), c.sigmaMaj,
-                                 eventProbabilities(c, path->beta).pAbsorb, sampler);
+        const InelasticEvent in = sampleInelasticEvent(
+            m, ts.tracking.context(size_t(c.medium)), c.p, ts.tracking.wavelengths(), c.sigmaMaj,
+            eventProbabilities(c, path->beta).pAbsorb, sampler);
         if (!in.chosen) {
             path->beta *= in.otherScale;
             return false;
@@ -160,11 +196,19 @@ private:
     // continues the path. Returns false when the path ends here.
     static bool scatterAtSurface(const RenderScene& scene, const SurfaceHit& hit, const Ray& ray,
                                  const SampledWavelengths& w, Sampler& sampler, ThreadState& ts,
-                                 PathThroughput* path, SampledSpectrum* L, Ray* next) {
+                                 PathThroughput* path, DeepView* view, RadianceSample* out,
+                                 Ray* next) {
         const Material& mat = scene.geometry->materialAt(hit);
-        if (mat.emissive()) *L += path->beta * mat.emission(w);
+        const DeepAt at = view->at(path->history, hit.t, true);
+        if (mat.emissive())
+            out->add(path->beta * mat.emission(w), path->history.emitted(), kEmissionGroup, at);
         if (!mat.specular())
-            *L += path->beta * directLightSurface(scene, hit, mat, -ray.d, sampler, ts);
+            out->addLit(path->beta, directLightSurface(scene, hit, mat, -ray.d, sampler, ts),
+                        path->history.gathered(true), ts.lightSplit, at);
+        if (mat.specular())
+            view->specular(path->history, hit.t);
+        else
+            view->scatter(path->history, hit.t, true);
         return continueAtSurface(mat, hit, ray.d, w, TransportMode::Radiance, sampler, path, next);
     }
 

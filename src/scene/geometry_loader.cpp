@@ -4,7 +4,8 @@
 //             mirror: reflectance (default 1); dielectric: ior (A, default 1.5), cauchy_b (B in
 //             µm², default 0: n(λ) = A + B/λ²).
 //   shape:    type = mesh (file = OBJ) | sphere (center, radius) | quad (corner, edge_u,
-//             edge_v); material (a [[material]] name); transform (as for volumes);
+//             edge_v); material (a [[material]] name); transform (as for volumes); holdout
+//             (true: black with zero alpha to the camera, docs/aovs.md);
 //             interior_medium (index of a [[volume]] placed inside a sphere or closed mesh:
 //             the scene loader confines that medium to the shape's inside).
 // Keys a type does not read are reported as unknown by TableReader::finish.
@@ -138,6 +139,7 @@ std::unique_ptr<GeometryScene> readGeometry(
         } else {
             t.fail("type", "unknown shape type '" + type + "'; expected mesh, sphere or quad");
         }
+        geometry->setHoldout(int(geometry->shapeCount()) - 1, t.getBool("holdout", false));
         t.finish();
     }
     if (geometry->empty()) return nullptr;

@@ -2,6 +2,9 @@
 // working space or by a blackbody temperature (docs/scene-file.md, "Lights").
 #include "scene/light_loader.h"
 
+#include <algorithm>
+#include <cctype>
+
 #include "core/error.h"
 #include "film/color.h"
 #include "light/dome_light.h"
@@ -45,6 +48,41 @@ std::unique_ptr<Light> readDome(const TableReader& t, const ColorPipeline& color
     return nullptr;
 }
 
+// [[light]] group: a name the lightgroup_<name> pass takes, so Nuke's layer rule applies.
+std::string readLightGroup(const TableReader& l) {
+    const std::string group = l.getString("group", "");
+    if (!l.has("group")) return group;
+    const bool valid = !group.empty() && std::all_of(group.begin(), group.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+    });
+    if (!valid)
+        l.fail("group",
+               "'" + group +
+                   "': expected letters, digits and underscores (the pass "
+                   "is named lightgroup_<group>, and a compositor splits layer names there)");
+    if (group == "emission")
+        l.fail("group",
+               "'emission' is the group of light emitted by media and surfaces "
+               "(lightgroup_emission); choose another name");
+    return group;
+}
+
+// The light just added joins `group` ("" = "default"). Until a light names a group, every
+// light is in "default" implicitly (RenderScene::lightGroupNames).
+void assignLightGroup(const std::string& group, RenderScene* scene) {
+    const size_t light = scene->lights.size() - 1;
+    if (group.empty() && scene->lightGroups.empty()) return;
+    if (scene->lightGroups.empty()) {
+        // The first named group: the lights before it were in "default".
+        if (light > 0) scene->lightGroups.push_back("default");
+        scene->lightGroupIndex.assign(light, 0);
+    }
+    const std::string name = group.empty() ? "default" : group;
+    auto it = std::find(scene->lightGroups.begin(), scene->lightGroups.end(), name);
+    if (it == scene->lightGroups.end()) it = scene->lightGroups.insert(it, name);
+    scene->lightGroupIndex.push_back(int(it - scene->lightGroups.begin()));
+}
+
 }  // namespace
 
 std::unique_ptr<Light> readLight(const TableReader& t, const ColorPipeline& color,
@@ -65,8 +103,9 @@ std::unique_ptr<Light> readLight(const TableReader& t, const ColorPipeline& colo
     } else if (type == "distant" || type == "sun") {
         Vec3 dir = t.getVec3("direction");
         if (!(length(dir) > 0)) t.fail("direction", "expected a non-zero direction");
-        light = makeDistantLight(dir, float(t.getNumber("irradiance", kUnitWhiteIrradiance, 0, 1e15)),
-                                 lightColour(t, color));
+        light =
+            makeDistantLight(dir, float(t.getNumber("irradiance", kUnitWhiteIrradiance, 0, 1e15)),
+                             lightColour(t, color));
     } else if (type == "quad") {
         light = makeQuadLight(t.getVec3("corner"), t.getVec3("edge_u"), t.getVec3("edge_v"),
                               float(t.getNumber("power", 100, 0, 1e15)), lightColour(t, color));
@@ -78,6 +117,15 @@ std::unique_ptr<Light> readLight(const TableReader& t, const ColorPipeline& colo
     }
     t.finish();
     return light;
+}
+
+void readLights(const TableReader& top, const ColorPipeline& color,
+                const std::function<std::string(const std::string&)>& resolve, RenderScene* scene) {
+    for (const auto& l : top.tables("light")) {
+        const std::string group = readLightGroup(l);
+        scene->lights.push_back(readLight(l, color, resolve));
+        assignLightGroup(group, scene);
+    }
 }
 
 }  // namespace mirage

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "light/light.h"
+#include "render/render_scene.h"
 #include "scene/toml_reader.h"
 
 namespace mirage {
@@ -16,5 +17,9 @@ class ColorPipeline;
 // (a dome's `map`) into one relative to the working directory.
 std::unique_ptr<Light> readLight(const TableReader& t, const ColorPipeline& color,
                                  const std::function<std::string(const std::string&)>& resolve);
+// Every [[light]] of the scene into scene->lights, with its group (`group = "key"`, for the
+// lightgroup_* passes) into scene->lightGroups and lightGroupIndex.
+void readLights(const TableReader& top, const ColorPipeline& color,
+                const std::function<std::string(const std::string&)>& resolve, RenderScene* scene);
 
 }  // namespace mirage

@@ -34,6 +34,15 @@ void applyFrameSettings(Scene& scene, const std::string& input, const FrameSetti
         }
     }
     if (cli.spp > 0) s.spp = cli.spp;
+    for (const std::string& name : cli.aovs)
+        if (std::find(s.aovs.begin(), s.aovs.end(), name) == s.aovs.end()) s.aovs.push_back(name);
+    if (!cli.aovs.empty()) {
+        try {
+            AovLayout(s.aovs, scene.render.lightGroupNames());
+        } catch (const MirageError& e) {
+            throw MirageError(std::string("--aov: ") + e.what());
+        }
+    }
     if (cli.seed >= 0) s.seed = uint64_t(cli.seed);
     s.progress = cli.quiet ? Progress::Mode::Quiet : Progress::Mode::Auto;
 }
@@ -107,6 +116,23 @@ RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
     if (scene.refraction)
         frame.integrator =
             makeCurvedCameraIntegrator(std::move(frame.integrator), scene.refraction);
+    aovLayout(scene.render, s, frame.integrator->info());  // its errors before the photon pass
+    if (!s.deep.path.empty()) {
+        // A curved camera ray is many chords, each its own straight ray for the integrator.
+        if (scene.refraction)
+            throw MirageError("deep output (" + s.deep.path +
+                              ") follows straight camera rays; "
+                              "the scene bends them ([refraction])");
+        // Deep samples are merged per pixel once, from all of its samples.
+        if (scene.passes.enabled())
+            throw MirageError("deep output (" + s.deep.path +
+                              ") is made by one render of film.spp samples, not by a render in "
+                              "passes (--passes, --time-limit, --noise-threshold)");
+        if (!s.region.empty())
+            throw MirageError("deep output (" + s.deep.path +
+                              ") covers the whole frame: render it without --region");
+        frame.deep = std::make_unique<DeepFilm>(s.width, s.height);
+    }
     frame.integrator->preprocess(scene.render);
     if (scene.passes.enabled()) {
         frame.passes.emplace();
@@ -114,10 +140,11 @@ RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
             std::make_unique<Film>(renderPasses(scene.render, *frame.integrator, s, scene.passes,
                                                 t0, &frame.stats, &*frame.passes, passCheckpoint));
     } else {
-        frame.film = std::make_unique<Film>(
-            render(scene.render, *frame.integrator, s, &frame.stats, checkpoint));
+        frame.film = std::make_unique<Film>(render(scene.render, *frame.integrator, s, &frame.stats,
+                                                   checkpoint, {}, frame.deep.get()));
     }
     frame.image = frame.film->develop(color);
+    if (frame.deep) frame.deep->develop(color.xyzToWorking());
     frame.seconds = secondsSince(t0);
     return frame;
 }

@@ -24,6 +24,7 @@ struct FrameSettings {
     int spp = 0;
     int64_t seed = -1;
     bool quiet = false;
+    std::vector<std::string> aovs;  // --aov: passes added to [output] aovs
 };
 
 // Applies `cli` to `scene`; `input` is the scene's path (a bare VDB keeps its automatic camera
@@ -57,6 +58,7 @@ struct RenderedFrame {
     Image image;  // developed, in the working space
     RenderStats stats;
     std::unique_ptr<Film> film;              // the sums behind `image` (partial files)
+    std::unique_ptr<DeepFilm> deep;          // deep samples (working space), when asked for
     std::unique_ptr<Integrator> integrator;  // for its name, summary and capped paths
     double seconds = 0;                // wall: integrator set-up, photon pass, render, develop
     std::optional<PassReport> passes;  // a render in passes (scene.passes.enabled())

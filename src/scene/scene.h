@@ -27,6 +27,7 @@ struct OutputSettings {
     std::string preview;                  // "" = none; else a PNG/JPEG path
     std::string display = "sRGB", view = "Standard";
     double fps = 24;  // frames per second: converts the shutter (frames) and velocities (1/s)
+    bool multipart = false;  // AOVs as parts of their own (image_io.h ExrOptions::multipart)
 };
 
 // A grid expression as loaded: the code, where it came from, its grids and its cost.

@@ -14,6 +14,7 @@
 #include "scene/camera_loader.h"
 #include "scene/geometry_loader.h"
 #include "scene/light_loader.h"
+#include "scene/output_loader.h"
 #include "scene/pyro_binding.h"
 #include "scene/refraction_loader.h"
 #include "scene/scene.h"
@@ -264,6 +265,10 @@ static void readSettings(const TableReader& top,
             o->fail(miss->key, "'" + miss->value + "' is not in the OCIO config; it has: " +
                                    joinList(miss->known));
         scene.output.fps = o->getNumber("fps", 24.0, 1e-3, 1e6);
+        // Checked once the lights (and their groups) are known: checkAovs.
+        scene.settings.aovs = o->getStrings("aovs");
+        scene.output.multipart = o->getBool("multipart", false);
+        readDeepSettings(*o, resolve, &scene);
         o->finish();
     }
 }
@@ -415,6 +420,7 @@ void readVolume(const TableReader& v, const Resolve& resolve, const std::string&
     // The velocity grid is read only when the shutter opens (it is read before the volumes).
     if (!boxed)
         rec.velocity = readVelocity(v, rec.file, fileGridNames(rec.file), scene->shutter.blurs());
+    const bool holdout = v.getBool("holdout", false);
     v.finish();
     if (boxed) {
         scene->render.media.push_back(std::make_unique<Medium>(shader, box, xf, rec.densityScale));
@@ -430,6 +436,7 @@ void readVolume(const TableReader& v, const Resolve& resolve, const std::string&
         applyTransformMotion(*scene, keys, medium.get());
         scene->render.media.push_back(std::move(medium));
     }
+    scene->render.media.back()->setHoldout(holdout);
     scene->volumes.push_back(std::move(rec));
 }
 
@@ -484,8 +491,8 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
     else if (auto c = top.optionalTable("camera"))
         scene.shutter = readShutter(*c);
     for (const auto& v : top.tables("volume")) readVolume(v, resolve, dir, options, &scene);
-    for (const auto& l : top.tables("light"))
-        scene.render.lights.push_back(readLight(l, color, resolve));
+    readLights(top, color, resolve, &scene.render);
+    checkAovs(top, scene);
     scene.render.geometry = readGeometry(top, resolve, scene.render.media.size(), color);
     confineInteriorMedia(&scene);
     scene.render.camera = readCamera(top, options.frame, scene);

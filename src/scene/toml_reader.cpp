@@ -135,6 +135,22 @@ std::vector<double> TableReader::getNumbers(const std::string& key, size_t minCo
     return out;
 }
 
+std::vector<std::string> TableReader::getStrings(const std::string& key) const {
+    const toml::node* n = node(key);
+    if (!n) return {};
+    const toml::array* a = n->as_array();
+    if (!a) fail(key, std::string("expected an array of strings, found ") + typeName(*n));
+    std::vector<std::string> out;
+    for (const auto& e : *a) {
+        auto v = e.value<std::string>();
+        if (!v)
+            throw MirageError(nodeLoc(e, mFile), "'" + key + "' in " + where() +
+                                                     ": expected strings, found " + typeName(e));
+        out.push_back(*v);
+    }
+    return out;
+}
+
 Vec3 TableReader::getVec3(const std::string& key) const {
     auto v = getNumbers(key, 3, 3);
     Vec3 out{float(v[0]), float(v[1]), float(v[2])};

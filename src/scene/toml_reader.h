@@ -36,6 +36,8 @@ public:
     Vec3 getVec3(const std::string& key) const;
     Vec3 getVec3(const std::string& key, const Vec3& def) const;
     std::vector<double> getNumbers(const std::string& key, size_t minCount, size_t maxCount) const;
+    // An array of strings; empty when the key is missing.
+    std::vector<std::string> getStrings(const std::string& key) const;
     const toml::node* node(const std::string& key) const;  // marks the key as read
 
     TableReader table(const std::string& key) const;  // required

@@ -250,7 +250,7 @@ struct Sweep {
 
     Scene load(const std::vector<std::string>& overrides) const {
         Scene scene = loadScene(o.input, LoadOptions{1, overrides}, color);
-        applyFrameSettings(scene, o.input, FrameSettings{o.resolution, 0, o.seed, true});
+        applyFrameSettings(scene, o.input, FrameSettings{o.resolution, 0, o.seed, true, {}});
         return scene;
     }
 

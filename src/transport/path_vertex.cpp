@@ -37,6 +37,10 @@ bool continueAtSurface(const Material& material, const SurfaceHit& hit, const Ve
     const bool crosses = (dot(wi, hit.ng) > 0.f) != (dot(wo, hit.ng) > 0.f);
     if (crosses != bs.transmitted) return false;
     path->beta *= bs.weight;
+    if (material.specular())
+        path->history.specular();
+    else
+        path->history.scatter(true);
     if (bs.dispersed && !path->heroOnly) path->keepHeroOnly();
     *next = spawnRay(hit, wi);
     if (sample) *sample = bs;

@@ -4,6 +4,7 @@
 // (photon/) both walk with these, so a rule about surfaces or throughput is written once.
 #pragma once
 
+#include "core/light_path.h"
 #include "core/rng.h"
 #include "core/spectral.h"
 #include "geometry/geometry_scene.h"
@@ -23,9 +24,13 @@ constexpr float kRouletteThreshold = 0.25f;
 // it alone (a dispersive refraction, a fluorescent re-emission); its estimate is then L[0]
 // weighted by the number of wavelengths — the estimate of a path that drew one wavelength
 // from p(λ) instead of four stratified ones (pbrt-v4's TerminateSecondary).
+//
+// The history says which light-path class (core/light_path.h) what the path gathers next
+// belongs to; continueAtSurface records surface vertices, the integrators their medium ones.
 struct PathThroughput {
     SampledSpectrum beta{1.f};
     bool heroOnly = false;
+    PathHistory history;
 
     void keepHeroOnly() {
         heroOnly = true;
@@ -91,8 +96,9 @@ CollisionOutcome chooseEvent(const Collision& c, PathThroughput& path, Sampler& 
 // (three numbers), β weighted by f |cos θi| / pdf, the hero wavelength alone after a
 // dispersive sample. A sample that the shading normal sends to the other side of the
 // geometric surface than its lobe says (a reflection below it, a refraction above it) would
-// leak light through the surface and ends the path. Returns false when the path ends here;
-// else *next continues it and *sample (when given) says what was sampled.
+// leak light through the surface and ends the path. The vertex enters the path's history
+// (specular, or a diffuse scattering vertex) once its sample is taken. Returns false when the path
+// ends here; else *next continues it and *sample (when given) says what was sampled.
 bool continueAtSurface(const Material& material, const SurfaceHit& hit, const Vec3& dir,
                        const SampledWavelengths& w, TransportMode mode, Sampler& sampler,
                        PathThroughput* path, Ray* next, BsdfSample* sample = nullptr);

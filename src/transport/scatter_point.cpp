@@ -4,7 +4,7 @@ namespace mirage {
 
 ScatterPointWalk chooseScatterPoints(TrackingContext& ctx, const Ray& worldRay, float tEnd,
                                      const SampledSpectrum& beta, Sampler& sampler,
-                                     SampledSpectrum* L) {
+                                     SampledSpectrum* L, std::vector<EmissionAt>* parts) {
     ScatterPointWalk walk;
     SampledSpectrum T(1.f);
     // One uniform per reservoir, stratified: (u + k) / kScatterPoints. A reservoir fed with one
@@ -19,8 +19,13 @@ ScatterPointWalk chooseScatterPoints(TrackingContext& ctx, const Ray& worldRay, 
     for (int k = 0; k < kScatterPoints; ++k) u[k] = (u0 + k) / kScatterPoints;
     walk.reachedEnd = trackCollisions(ctx, worldRay, tEnd, sampler, [&](const Collision& c) {
         const Medium& m = ctx.medium(size_t(c.medium));
-        if (m.emissive()) *L += beta * T * c.mp.sigmaA * c.mp.Le / c.sigmaMaj;
-        const SampledSpectrum w = T * c.mp.sigmaS / c.sigmaMaj;
+        if (m.holdout())
+            walk.holdoutCoverage += (T * (c.mp.sigmaA + c.mp.sigmaS) / c.sigmaMaj).average();
+        else if (m.emissive() && parts)
+            parts->push_back({c.t, beta * T * c.mp.sigmaA * c.mp.Le / c.sigmaMaj});
+        else if (m.emissive())
+            *L += beta * T * c.mp.sigmaA * c.mp.Le / c.sigmaMaj;
+        const SampledSpectrum w = m.holdout() ? SampledSpectrum(0.f) : T * c.mp.sigmaS / c.sigmaMaj;
         const float wMean = w.average();
         if (wMean > 0.f) {
             total += wMean;

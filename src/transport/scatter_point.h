@@ -15,6 +15,8 @@
 // number (a stratified dimension with the Sobol sampler).
 #pragma once
 
+#include <vector>
+
 #include "transport/tracking.h"
 
 namespace mirage {
@@ -30,12 +32,23 @@ struct ScatterPointWalk {
     SampledSpectrum weight[kScatterPoints];
     SampledSpectrum T{0.f};   // ratio-tracking transmittance over (0, tEnd); 0 when ended early
     bool reachedEnd = false;  // false: rouletted to 0 or cut at the collision cap
+    // Σ mean(T σt / σ̄) over the collisions in holdout media: their share of the ray's
+    // coverage 1 − T, which the pixel's alpha leaves out (0 without holdout media).
+    float holdoutCoverage = 0.f;
 };
 
 // Walks worldRay over (0, tEnd). Emission is scored into *L at every tentative collision
-// (β T σa Le / σ̄, the collision estimator of ∫ T σa Le). β is the path's throughput so far.
+// (β T σa Le / σ̄, the collision estimator of ∫ T σa Le). A holdout medium (Medium::holdout)
+// only attenuates: it emits nothing and holds no scattering point. β is the path's throughput so
+// far.
+// With `parts` (render passes, deep output), each collision's emission is appended there
+// instead, with its distance along worldRay, and L may be null.
+struct EmissionAt {
+    float t;
+    SampledSpectrum L;
+};
 ScatterPointWalk chooseScatterPoints(TrackingContext& ctx, const Ray& worldRay, float tEnd,
-                                      const SampledSpectrum& beta, Sampler& sampler,
-                                     SampledSpectrum* L);
+                                     const SampledSpectrum& beta, Sampler& sampler,
+                                     SampledSpectrum* L, std::vector<EmissionAt>* parts = nullptr);
 
 }  // namespace mirage

@@ -1,0 +1,96 @@
+// Render passes (AOVs): which ones a render asks for (AovLayout), what one camera sample
+// carries into them (AovSample), and the layers they develop into (docs/aovs.md).
+//
+// Light-path passes and light groups are spectral like the beauty: each sample's radiance is
+// split by the integrator at the one place it is added (core/light_path.h, render/integrator.h
+// RadianceSample::add), and the film reduces every part to XYZ with the beauty's own estimator,
+// so that the parts sum to the beauty up to float rounding. Data passes describe the camera ray
+// (render/camera_ray_data.h): its transmittance, the opacity-weighted albedo of what it meets,
+// and the depth where its opacity first reaches one half.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "core/light_path.h"
+#include "core/math.h"
+#include "core/spectral.h"
+
+namespace mirage {
+
+enum class AovKind { LightPath, LightGroup, Alpha, Depth, Albedo, Transmittance };
+
+// One pass: its layer name (and EXR channel prefix), what it holds, and where its sums sit in
+// a pixel's AOV record.
+struct AovPass {
+    std::string name;
+    AovKind kind;
+    int index = 0;    // LightPath: the class; LightGroup: the group slot (0 = emission)
+    int offset = 0;   // first double of the pass in the pixel's record
+    int doubles = 0;  // sums the pass keeps per pixel
+};
+
+// The slot of light emitted by media and surfaces among the light groups.
+constexpr int kEmissionGroup = 0;
+
+class AovLayout {
+public:
+    AovLayout() = default;
+    // The passes `names` asks for, in that order. `lightGroups` are the scene's groups
+    // ([[light]] group); slot 0 is `lightgroup_emission`, slot g + 1 lightGroups[g]. Throws
+    // MirageError naming the pass and the passes there are, for an unknown or repeated name.
+    AovLayout(const std::vector<std::string>& names, const std::vector<std::string>& lightGroups);
+
+    bool empty() const { return mPasses.empty(); }
+    // What it was made from (a partial file stores them to make it again).
+    const std::vector<std::string>& names() const { return mNames; }
+    const std::vector<std::string>& lightGroups() const { return mLightGroups; }
+    const std::vector<AovPass>& passes() const { return mPasses; }
+    int stride() const { return mStride; }  // doubles per pixel
+    // Light-group slots a sample carries: 1 + the scene's groups when a group pass is asked
+    // for, else 0 (the groups are then not split at all).
+    int groupSlots() const { return mGroupSlots; }
+    // Whether the camera ray's data (depth, albedo, transmittance) must be computed.
+    bool cameraData() const { return mCameraData; }
+
+private:
+    std::vector<std::string> mNames, mLightGroups;
+    std::vector<AovPass> mPasses;
+    int mStride = 0;
+    int mGroupSlots = 0;
+    bool mCameraData = false;
+};
+
+// Every pass name a scene with these light groups may ask for, for messages and --help.
+std::vector<std::string> aovNames(const std::vector<std::string>& lightGroups);
+
+// What one camera sample adds to the passes. Spectral parts at the sample's wavelengths, XYZ
+// parts from the photon estimates (each photon at its own wavelength).
+struct AovSample {
+    std::array<SampledSpectrum, kLightPathCount> path;
+    std::array<Vec3, kLightPathCount> pathXyz;
+    std::vector<SampledSpectrum> group;  // groupSlots() entries
+    float depth = kInfinity;             // m along the camera ray; ∞: never 50 % opaque
+    SampledSpectrum albedo;              // ∫ T σs dt + T(surface) ρ(surface)
+    SampledSpectrum transmittance{1.f};
+
+    explicit AovSample(int groupSlots = 0) : group(size_t(groupSlots)) {}
+    void reset();
+    void addPath(const SampledSpectrum& c, LightPath p) { path[size_t(p)] += c; }
+    void addGroup(const SampledSpectrum& c, int slot) {
+        if (!group.empty()) group[size_t(slot)] += c;
+    }
+    void addPathXyz(const Vec3& c, LightPath p) { pathXyz[size_t(p)] += c; }
+    // Applies f to every spectral radiance part (a path's final estimate, a chord's weight).
+    template <typename F>
+    void forEachRadiance(F&& f) {
+        for (SampledSpectrum& s : path) f(s);
+        for (SampledSpectrum& s : group) f(s);
+    }
+    // Adds `o` weighted by T (spectral parts) and k (all radiance parts): the curved camera's
+    // chords (render/curved_camera.cpp).
+    void addWeighted(const AovSample& o, const SampledSpectrum& T, float k);
+};
+
+}  // namespace mirage

@@ -1,0 +1,238 @@
+// Render passes (docs/aovs.md): the light-path passes and the light groups sum to the beauty
+// per pixel with every integrator, the EXR layers carry names Nuke splits into layers, a
+// partial file carries the passes bit for bit, and a render without AOVs keeps its bits.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "core/error.h"
+#include "film/color.h"
+#include "film/image_io.h"
+#include "film/partial_film.h"
+#include "scene/render_frame.h"
+#include "scene/scene.h"
+#include "test_support.h"
+#include "tools/asset_writer.h"
+
+using namespace mirage;
+
+namespace {
+
+// Fire (emission and smoke in one volume), a fog sphere, a diffuse floor, a mirror sphere and
+// two light groups: every light-path class occurs.
+std::string writeAovScene(const std::string& dir, const std::string& integrator,
+                          const std::string& aovs, const std::string& extra = "") {
+    if (!std::filesystem::exists(dir + "/fire.vdb")) {
+        writeProceduralAsset("fire", dir + "/fire.vdb", 16, 3);
+        writeProceduralAsset("fog-sphere", dir + "/fog.vdb", 16, 1);
+    }
+    const std::string path = dir + "/aov_" + integrator + std::to_string(aovs.size()) +
+                             std::to_string(extra.size()) + ".toml";
+    std::ofstream f(path);
+    f << "[film]\nresolution = [12, 10]\nspp = 4\nseed = 3\n"
+         "[render]\nintegrator = \""
+      << integrator
+      << "\"\nphotons = 20000\n"
+         "[camera]\nposition = [0.0, 1.0, 3.6]\nlook_at = [0.0, 0.8, 0.0]\nfov = 40.0\n"
+         "[[volume]]\nfile = \"fire.vdb\"\nshader = \"fire\"\ndensity_scale = 6.0\n"
+         "[[volume]]\nfile = \"fog.vdb\"\nshader = \"smoke\"\ndensity_scale = 3.0\n"
+         "transform = { scale = 0.5, translate = [0.6, 0.5, 0.2] }\n"
+         "[[material]]\nname = \"white\"\ntype = \"diffuse\"\nreflectance = 0.7\n"
+         "[[material]]\nname = \"chrome\"\ntype = \"mirror\"\n"
+         "[[shape]]\ntype = \"quad\"\ncorner = [-2, 0, 2]\nedge_u = [4, 0, 0]\n"
+         "edge_v = [0, 0, -4]\nmaterial = \"white\"\n"
+         "[[shape]]\ntype = \"sphere\"\ncenter = [-0.7, 0.3, 0.4]\nradius = 0.3\n"
+         "material = \"chrome\"\n"
+         "[[light]]\ntype = \"point\"\nposition = [1.5, 2.5, 2.0]\npower = 20000\ngroup = \"key\"\n"
+         "[[light]]\ntype = \"distant\"\ndirection = [-1, -1, 0.3]\ngroup = \"fill\"\n"
+         "[output]\naovs = ["
+      << aovs << "]\n"
+      << extra;
+    return path;
+}
+
+const char* const kLightPathAovs =
+    "\"emission\", \"volume_direct\", \"volume_indirect\", \"surface_direct\", "
+    "\"surface_indirect\", \"caustic\"";
+const char* const kGroupAovs = "\"lightgroup_emission\", \"lightgroup_key\", \"lightgroup_fill\"";
+
+const ImageLayer* findLayer(const Image& image, const std::string& name) {
+    for (const ImageLayer& l : image.layers)
+        if (l.name == name) return &l;
+    return nullptr;
+}
+
+// Per pixel and channel, Σ of the named layers against the beauty, to float rounding.
+void expectSumToBeauty(const Image& image, const std::vector<std::string>& names,
+                       const std::string& what) {
+    std::vector<const ImageLayer*> layers;
+    for (const std::string& n : names) {
+        layers.push_back(findLayer(image, n));
+        ASSERT_NE(layers.back(), nullptr) << n;
+    }
+    double nonZeroParts = 0;
+    for (size_t p = 0; p < size_t(image.width) * image.height; ++p)
+        for (int c = 0; c < 3; ++c) {
+            double sum = 0, magnitude = 0;
+            for (const ImageLayer* l : layers) {
+                sum += l->pixels[p * 3 + c];
+                magnitude += std::abs(l->pixels[p * 3 + c]);
+                nonZeroParts += l->pixels[p * 3 + c] != 0.f;
+            }
+            const double beauty = image.rgba[p * 4 + c];
+            EXPECT_NEAR(sum, beauty, 1e-5 * magnitude + 1e-7)
+                << what << " pixel " << p << " c " << c;
+        }
+    EXPECT_GT(nonZeroParts, 0) << what;
+}
+
+Image renderAovScene(const std::string& integrator, const std::string& aovs,
+                     const std::string& extra = "") {
+    ColorPipeline color;
+    Scene scene = loadScene(writeAovScene(test::tempDir(), integrator, aovs, extra), {}, color);
+    scene.settings.progress = Progress::Mode::Quiet;
+    scene.photon.progress = Progress::Mode::Quiet;
+    return renderFrame(scene, "", color).image;
+}
+
+}  // namespace
+
+TEST(Aov, LightPathPassesSumToTheBeautyWithEveryIntegrator) {
+    for (const char* integrator : {"single", "volpath", "photon"}) {
+        const Image image = renderAovScene(integrator, kLightPathAovs);
+        std::vector<std::string> names;
+        for (int p = 0; p < kLightPathCount; ++p) names.push_back(lightPathName(LightPath(p)));
+        expectSumToBeauty(image, names, integrator);
+        // Fire is seen directly, and the smoke scatters light once, in every integrator.
+        for (const char* pass : {"emission", "volume_direct"}) {
+            const ImageLayer* l = findLayer(image, pass);
+            double total = 0;
+            for (float v : l->pixels) total += v;
+            EXPECT_GT(total, 0.0) << integrator << " " << pass;
+        }
+    }
+}
+
+TEST(Aov, LightGroupsSumToTheBeauty) {
+    for (const char* integrator : {"single", "volpath"}) {
+        const Image image = renderAovScene(integrator, kGroupAovs);
+        expectSumToBeauty(image, {"lightgroup_emission", "lightgroup_key", "lightgroup_fill"},
+                          integrator);
+    }
+}
+
+TEST(Aov, TheBeautyKeepsItsBitsWithAovs) {
+    const Image plain = renderAovScene("volpath", "");
+    const Image passes = renderAovScene(
+        "volpath", std::string(kLightPathAovs) + ", " + kGroupAovs + ", \"depth\", \"albedo\"");
+    ASSERT_EQ(plain.rgba.size(), passes.rgba.size());
+    EXPECT_TRUE(plain.layers.empty());
+    for (size_t i = 0; i < plain.rgba.size(); ++i) ASSERT_EQ(plain.rgba[i], passes.rgba[i]) << i;
+}
+
+TEST(Aov, DataPasses) {
+    const Image image = renderAovScene("single",
+                                       "\"alpha\", \"depth\", \"transmittance\", "
+                                       "\"albedo\"");
+    const ImageLayer* alpha = findLayer(image, "alpha");
+    const ImageLayer* depth = findLayer(image, "depth");
+    const ImageLayer* T = findLayer(image, "transmittance");
+    ASSERT_TRUE(alpha && depth && T && findLayer(image, "albedo"));
+    EXPECT_EQ(depth->channels, std::vector<std::string>{"Z"});
+    int sky = 0, floor = 0;
+    for (size_t p = 0; p < size_t(image.width) * image.height; ++p) {
+        EXPECT_EQ(alpha->pixels[p], image.rgba[p * 4 + 3]);
+        // Where nothing is ever 50 % opaque the depth is ∞ (the top rows see the sky).
+        if (!std::isfinite(depth->pixels[p])) {
+            ++sky;
+            EXPECT_GT(T->pixels[p * 3 + 1], 0.4f);
+        } else {
+            EXPECT_GT(depth->pixels[p], 1.f);
+            EXPECT_LT(depth->pixels[p], 20.f);
+            floor += image.rgba[p * 4 + 3] == 1.f;
+        }
+    }
+    EXPECT_GT(sky, 0);
+    EXPECT_GT(floor, 0);
+}
+
+TEST(Aov, ExrLayersFollowNukesLayerRule) {
+    const Image image = renderAovScene("single", std::string(kGroupAovs) +
+                                                     ", \"volume_direct\", "
+                                                     "\"depth\"");
+    const std::string dir = test::tempDir();
+    for (bool multipart : {false, true}) {
+        const std::string path = dir + (multipart ? "/multi.exr" : "/single.exr");
+        ExrOptions options;
+        options.multipart = multipart;
+        writeExr(path, image, options);
+        auto in = OIIO::ImageInput::open(path);
+        ASSERT_TRUE(in);
+        std::vector<std::string> channels;
+        int parts = 0;
+        for (; in->seek_subimage(parts, 0); ++parts)
+            for (const std::string& c : in->spec().channelnames) channels.push_back(c);
+        EXPECT_EQ(parts, multipart ? 6 : 1);  // the beauty and five passes
+        const std::regex nuke("([A-Za-z0-9_]+\\.[A-Za-z0-9_]+)|[RGBA]");
+        for (const std::string& c : channels) EXPECT_TRUE(std::regex_match(c, nuke)) << c;
+        for (const char* c : {"R", "G", "B", "A", "lightgroup_key.R", "lightgroup_fill.G",
+                              "lightgroup_emission.B", "volume_direct.R", "depth.Z"})
+            EXPECT_NE(std::find(channels.begin(), channels.end(), c), channels.end()) << c;
+        // Read back: the same layers.
+        const Image back = readExr(path);
+        ASSERT_EQ(back.layers.size(), image.layers.size());
+        const ImageLayer* key = findLayer(back, "lightgroup_key");
+        ASSERT_TRUE(key);
+        EXPECT_NEAR(key->pixels[5], findLayer(image, "lightgroup_key")->pixels[5],
+                    2e-3 * std::abs(key->pixels[5]) + 1e-6);
+    }
+}
+
+TEST(Aov, PartialFileCarriesThePassSums) {
+    ColorPipeline color;
+    Scene scene = loadScene(writeAovScene(test::tempDir(), "single", kGroupAovs), {}, color);
+    scene.settings.progress = Progress::Mode::Quiet;
+    RenderedFrame frame = renderFrame(scene, "", color);
+    const Film& film = *frame.film;
+    const std::string path = test::tempDir() + "/aov.exr.partial";
+    const int tiles = tileCount(scene.settings);
+    writePartialFilm(path, film, scene.settings.tileSize, std::vector<uint8_t>(size_t(tiles), 1),
+                     color.xyzToWorking(), {});
+    PartialFilm back = readPartialFilm(path);
+    ASSERT_EQ(back.film->aovs().stride(), film.aovs().stride());
+    EXPECT_EQ(back.film->aovs().names(), film.aovs().names());
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x)
+            for (int i = 0; i < film.aovs().stride(); ++i)
+                ASSERT_EQ(back.film->aovSums(x, y)[i], film.aovSums(x, y)[i]);
+}
+
+TEST(Aov, BadInputNamesTheLine) {
+    ColorPipeline color;
+    const std::string dir = test::tempDir();
+    auto error = [&](const std::string& integrator, const std::string& aovs,
+                     const std::string& extra = "") {
+        try {
+            Scene s = loadScene(writeAovScene(dir, integrator, aovs, extra), {}, color);
+            s.settings.progress = Progress::Mode::Quiet;
+            renderFrame(s, "", color);
+        } catch (const MirageError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    // An unknown pass, and a light group no light belongs to: the [output] line.
+    std::string e = error("single", "\"volume_drect\"");
+    const std::regex line("aov_single[0-9]+\\.toml:[0-9]+:");
+    EXPECT_TRUE(std::regex_search(e, line)) << e;
+    EXPECT_NE(e.find("unknown AOV 'volume_drect'"), std::string::npos) << e;
+    e = error("single", "\"lightgroup_rim\"");
+    EXPECT_NE(e.find("lightgroup_key"), std::string::npos) << e;
+    EXPECT_TRUE(std::regex_search(e, line)) << e;
+    // Light groups with photons, which do not know their light.
+    e = error("photon", kGroupAovs);
+    EXPECT_NE(e.find("photon"), std::string::npos) << e;
+}

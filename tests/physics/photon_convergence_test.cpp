@@ -25,18 +25,6 @@ using namespace mirage;
 
 namespace {
 
-RenderScene fogBox() {
-    RenderScene scene;
-    scene.media.push_back(
-        test::gridMedium([](int, int, int) { return 1.f; }, 0, 31, 1.0 / 32, 0.4f, 4.f, 0.3f));
-    scene.lights.push_back(
-        makeDistantLight(normalize(Vec3(0.3f, -1.f, -0.2f)), 1000.f, Spectrum(1.f)));
-    scene.camera.position = Vec3(0.5f, 0.6f, 3.f);
-    scene.camera.lookAt = Vec3(0.5f, 0.5f, 0.5f);
-    scene.camera.fovDeg = 26.f;
-    return scene;
-}
-
 RenderSettings settings(int spp, uint64_t seed) { return test::smallRenderSettings(spp, seed); }
 
 using test::ImageError;
@@ -49,7 +37,7 @@ double secondsSince(std::chrono::steady_clock::time_point t0) {
 }  // namespace
 
 TEST(PhotonConvergence, PhotonMapConvergesToVolPath) {
-    RenderScene scene = fogBox();
+    RenderScene scene = test::fogBoxScene();
     ColorPipeline color;
 
     auto t0 = std::chrono::steady_clock::now();
@@ -75,11 +63,12 @@ TEST(PhotonConvergence, PhotonMapConvergesToVolPath) {
         pm->preprocess(scene);
         Image image = render(scene, *pm, settings(64, 3), nullptr).develop(color);
         ImageError e = compare(image, ref);
-        std::printf("beam, %6llu photons: rel. RMSE %.4f (4×4 blocks %.4f) bias %+.4f "
-                    "(R %+.4f G %+.4f B %+.4f, chromaticity %.4f) in %.1fs\n  %s\n",
-                    (unsigned long long)photons, e.relRmse, e.blockRmse, e.bias,
-                    e.channelBias[0], e.channelBias[1], e.channelBias[2], e.chromaticity,
-                    secondsSince(t1), pm->stats().summary.c_str());
+        std::printf(
+            "beam, %6llu photons: rel. RMSE %.4f (4×4 blocks %.4f) bias %+.4f "
+            "(R %+.4f G %+.4f B %+.4f, chromaticity %.4f) in %.1fs\n  %s\n",
+            (unsigned long long)photons, e.relRmse, e.blockRmse, e.bias, e.channelBias[0],
+            e.channelBias[1], e.channelBias[2], e.chromaticity, secondsSince(t1),
+            pm->stats().summary.c_str());
         // Measured over seeds 7–10: pixel error 0.60–0.75 → 0.35–0.41 → 0.21–0.22, block error
         // 0.54–0.71 → 0.21–0.28 → 0.088–0.10, |bias| ≤ 1.1 % at 1e5.
         EXPECT_LT(e.relRmse, 0.85 * previous.relRmse) << photons << " photons";
@@ -105,16 +94,17 @@ TEST(PhotonConvergence, PhotonMapConvergesToVolPath) {
     pm->preprocess(scene);
     Image image = render(scene, *pm, settings(16, 3), nullptr).develop(color);
     ImageError e = compare(image, ref);
-    std::printf("point, 100000 photons: rel. RMSE %.4f (4×4 blocks %.4f) bias %+.4f in %.1fs\n"
-                "  %s\n",
-                e.relRmse, e.blockRmse, e.bias, secondsSince(t2), pm->stats().summary.c_str());
+    std::printf(
+        "point, 100000 photons: rel. RMSE %.4f (4×4 blocks %.4f) bias %+.4f in %.1fs\n"
+        "  %s\n",
+        e.relRmse, e.blockRmse, e.bias, secondsSince(t2), pm->stats().summary.c_str());
     EXPECT_LT(std::abs(e.bias), 0.03);
     EXPECT_LT(e.blockRmse, 0.15);
     EXPECT_LT(e.chromaticity, 0.01);
 }
 
 TEST(PhotonConvergence, SameSeedSameBitsForOneAndTwoThreads) {
-    RenderScene scene = fogBox();
+    RenderScene scene = test::fogBoxScene();
     ColorPipeline color;
     Image images[2];
     for (PhotonEstimate estimate : {PhotonEstimate::Beam, PhotonEstimate::Point}) {
@@ -167,10 +157,11 @@ TEST(PhotonConvergence, BothEstimatesUnbiasedOnTheMeanInAHeterogeneousMedium) {
         pm->preprocess(scene);
         Image image = render(scene, *pm, settings(16, 3), nullptr).develop(color);
         ImageError e = compare(image, ref);
-        std::printf("%s, 4e5 photons on the fog ball: bias %+.4f (R %+.4f G %+.4f B %+.4f), "
-                    "4×4 blocks %.4f\n",
-                    estimate == PhotonEstimate::Beam ? "beam" : "point", e.bias,
-                    e.channelBias[0], e.channelBias[1], e.channelBias[2], e.blockRmse);
+        std::printf(
+            "%s, 4e5 photons on the fog ball: bias %+.4f (R %+.4f G %+.4f B %+.4f), "
+            "4×4 blocks %.4f\n",
+            estimate == PhotonEstimate::Beam ? "beam" : "point", e.bias, e.channelBias[0],
+            e.channelBias[1], e.channelBias[2], e.blockRmse);
         EXPECT_LT(std::abs(e.bias), 0.05);
         EXPECT_LT(e.chromaticity, 0.017);
     }

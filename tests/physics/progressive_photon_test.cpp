@@ -23,18 +23,6 @@ using namespace mirage;
 
 namespace {
 
-RenderScene fogBox() {
-    RenderScene scene;
-    scene.media.push_back(
-        test::gridMedium([](int, int, int) { return 1.f; }, 0, 31, 1.0 / 32, 0.4f, 4.f, 0.3f));
-    scene.lights.push_back(
-        makeDistantLight(normalize(Vec3(0.3f, -1.f, -0.2f)), 1000.f, Spectrum(1.f)));
-    scene.camera.position = Vec3(0.5f, 0.6f, 3.f);
-    scene.camera.lookAt = Vec3(0.5f, 0.5f, 0.5f);
-    scene.camera.fovDeg = 26.f;
-    return scene;
-}
-
 Image progressive(const RenderScene& scene, int passes, const ColorPipeline& color) {
     PhotonIntegratorSettings ps;
     ps.photons = 5000;
@@ -54,7 +42,7 @@ Image progressive(const RenderScene& scene, int passes, const ColorPipeline& col
 }  // namespace
 
 TEST(ProgressivePhoton, PassesConvergeToVolPathPerChannel) {
-    RenderScene scene = fogBox();
+    RenderScene scene = test::fogBoxScene();
     ColorPipeline color;
     auto volpath = makeVolPathIntegrator();
     Image ref = render(scene, *volpath, test::smallRenderSettings(2048, 1), nullptr).develop(color);

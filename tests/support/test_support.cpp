@@ -68,8 +68,8 @@ std::string shippedSceneCopy(const std::string& dir, const std::string& name,
     EXPECT_FALSE(ec) << "copying " << shippedScene(name) << ": " << ec.message();
     if (!asset.empty()) {
         std::string log;
-        EXPECT_EQ(runMirage("make-asset " + asset + " -o '" + dir + "/" + file +
-                                "' --resolution " + std::to_string(resolution),
+        EXPECT_EQ(runMirage("make-asset " + asset + " -o '" + dir + "/" + file + "' --resolution " +
+                                std::to_string(resolution),
                             &log),
                   0)
             << log;
@@ -131,12 +131,24 @@ ShaderDesc greyShader(float sigmaA, float sigmaS, float g) {
     return s;
 }
 
-std::unique_ptr<Medium> gridMedium(const std::function<float(int, int, int)>& value, int lo,
-                                   int hi, double h, float sigmaA, float sigmaS, float g,
+std::unique_ptr<Medium> gridMedium(const std::function<float(int, int, int)>& value, int lo, int hi,
+                                   double h, float sigmaA, float sigmaS, float g,
                                    const Transform& objectToWorld) {
     std::vector<FloatGrid> grids{makeGrid(value, lo, hi, h)};
-    return std::make_unique<Medium>(greyShader(sigmaA, sigmaS, g), std::move(grids),
-                                    objectToWorld, 1.f, 16);
+    return std::make_unique<Medium>(greyShader(sigmaA, sigmaS, g), std::move(grids), objectToWorld,
+                                    1.f, 16);
+}
+
+RenderScene fogBoxScene() {
+    RenderScene scene;
+    scene.media.push_back(
+        gridMedium([](int, int, int) { return 1.f; }, 0, 31, 1.0 / 32, 0.4f, 4.f, 0.3f));
+    scene.lights.push_back(
+        makeDistantLight(normalize(Vec3(0.3f, -1.f, -0.2f)), 1000.f, Spectrum(1.f)));
+    scene.camera.position = Vec3(0.5f, 0.6f, 3.f);
+    scene.camera.lookAt = Vec3(0.5f, 0.5f, 0.5f);
+    scene.camera.fovDeg = 26.f;
+    return scene;
 }
 
 RenderSettings smallRenderSettings(int spp, uint64_t seed, int width, int height) {

@@ -18,6 +18,7 @@
 #include <cstring>
 
 #include "film/color.h"
+#include "fog_box_scene.h"
 #include "render/renderer.h"
 #include "test_support.h"
 

@@ -16,6 +16,7 @@
 #include <cstdio>
 
 #include "film/color.h"
+#include "fog_box_scene.h"
 #include "render/passes.h"
 #include "test_support.h"
 

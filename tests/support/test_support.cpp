@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "fog_box_scene.h"
+
 namespace mirage::test {
 
 std::string mirageBinary() { return MIRAGE_BINARY; }

@@ -41,10 +41,10 @@ std::string shippedSceneCopy(const std::string& dir, const std::string& name,
 
 }  // namespace mirage::test
 
-#define MIRAGE_REQUIRE_SHARED(var, rel)                \
-    std::string var = ::mirage::test::sharedFile(rel); \
-    if (var.empty())                                   \
-    GTEST_SKIP() << "reference data ../shared/data/" << (rel) << " is absent; skipping"
+#define MIRAGE_REQUIRE_SHARED(var, rel)                                               \
+    std::string var = ::mirage::test::sharedFile(rel);                                \
+    if (var.empty()) GTEST_SKIP() << "reference data ../shared/data/" << (rel)        \
+                                  << " is absent; skipping"
 
 #include <functional>
 
@@ -60,13 +60,14 @@ namespace mirage::test {
 FloatGrid makeGrid(const std::function<float(int, int, int)>& value, int lo, int hi, double h,
                    const Vec3d& origin = Vec3d(0.0), const std::string& name = "density");
 
+
 // A ShaderDesc of one grey component reading grid slot "density" (σ in 1/m per unit
 // density, HG asymmetry g).
 ShaderDesc greyShader(float sigmaA, float sigmaS, float g = 0.f);
 
 // A medium of greyShader() over makeGrid(value, lo, hi, h): the test scenes' workhorse.
-std::unique_ptr<Medium> gridMedium(const std::function<float(int, int, int)>& value, int lo, int hi,
-                                   double h, float sigmaA, float sigmaS, float g = 0.f,
+std::unique_ptr<Medium> gridMedium(const std::function<float(int, int, int)>& value, int lo,
+                                   int hi, double h, float sigmaA, float sigmaS, float g = 0.f,
                                    const Transform& objectToWorld = Transform());
 
 // The numbers of path i of an estimate averaged over paths 0, 1, …: with Sobol, the paths are
@@ -78,10 +79,6 @@ constexpr SamplerKind kSamplerKinds[] = {SamplerKind::Sobol, SamplerKind::Random
 
 // Small test renders: width × height pixels in 8-pixel tiles, quiet.
 RenderSettings smallRenderSettings(int spp, uint64_t seed, int width = 32, int height = 32);
-
-// A 1 m cube of uniform fog (σa 0.4, σs 4 per unit density, HG g 0.3) under a white sun of
-// 1000 W/m², seen from the front: the photon estimators' convergence scene.
-RenderScene fogBoxScene();
 
 // An image against a reference over the pixels the reference covers (alpha ≥ 0.5: background
 // and fringes excluded), in scene-linear RGB, each channel on its own relative to that

@@ -129,6 +129,46 @@ TEST(RegionCli, ARegionOutsideTheFrameIsOneClearError) {
     EXPECT_FALSE(fs::exists(dir + "/r.exr"));
 }
 
+// What a region cannot be combined with: a stop that reads the image (its pass count would be
+// the region's, not the frame's: a syntax error, exit 2) and deep output (merged per pixel of
+// the whole frame: one clear error, exit 1). A region in a fixed number of passes is the same
+// bits as those pixels of the whole frame in as many passes.
+TEST(RegionCli, RegionsRefuseImageDrivenStopsAndDeepButTakeFixedPasses) {
+    const std::string dir = test::tempDir();
+    const std::string scene = writeScene(dir);
+    std::string out;
+    EXPECT_EQ(
+        mirage("render '" + scene + "' -q --region 0,0,8,8 --time-limit 5 -o '" + dir + "/r.exr'",
+               &out),
+        2)
+        << out;
+    EXPECT_EQ(mirage("render '" + scene + "' -q --region 0,0,8,8 --noise-threshold 0.1 -o '" + dir +
+                         "/r.exr'",
+                     &out),
+              2)
+        << out;
+    EXPECT_EQ(mirage("render '" + scene + "' -q --region 0,0,8,8 --deep '" + dir + "/d.exr' -o '" +
+                         dir + "/r.exr'",
+                     &out),
+              1)
+        << out;
+    EXPECT_NE(out.find("covers the whole frame"), std::string::npos) << out;
+    EXPECT_FALSE(fs::exists(dir + "/r.exr"));
+
+    ASSERT_EQ(mirage("render '" + scene + "' -q --float --passes 2 -o '" + dir + "/f.exr'", &out),
+              0)
+        << out;
+    ASSERT_EQ(mirage("render '" + scene + "' -q --float --passes 2 --region 8,8,24,16 -o '" + dir +
+                         "/r.exr'",
+                     &out),
+              0)
+        << out;
+    const Exr region = readAll(dir + "/r.exr"), frame = readAll(dir + "/f.exr");
+    EXPECT_EQ(region.spec.x, 8);
+    EXPECT_EQ(region.spec.width, 16);
+    EXPECT_EQ(differences(region, frame), 0u);
+}
+
 TEST(AssembleCli, FourRegionsAssembleIntoTheFullRenderBitForBit) {
     const std::string dir = test::tempDir();
     const std::string scene = writeScene(dir);

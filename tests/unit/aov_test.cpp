@@ -236,3 +236,36 @@ TEST(Aov, BadInputNamesTheLine) {
     e = error("photon", kGroupAovs);
     EXPECT_NE(e.find("photon"), std::string::npos) << e;
 }
+
+// Two scenes the fire scene above does not cover. Grey fog under one white sun is the scene
+// whose beauty the renderer would colour exactly per sample (render/achromatic_film.h): with
+// passes it must not, or the passes would no longer sum to the beauty sample by sample. Under a
+// dome, the dome seen straight through the fog is light seen at its source: it is counted with
+// emission, so the passes and the light groups still sum to the beauty.
+TEST(Aov, GreyFogAndADomeKeepThePassesSummingToTheBeauty) {
+    const std::string dir = test::tempDir();
+    writeProceduralAsset("fog-sphere", dir + "/fog.vdb", 16, 1);
+    const std::string common =
+        "[film]\nresolution = [12, 10]\nspp = 4\nseed = 3\n"
+        "[camera]\nposition = [0.0, 0.5, 3.0]\nlook_at = [0.0, 0.5, 0.0]\nfov = 40.0\n"
+        "[[volume]]\nfile = \"fog.vdb\"\nshader = \"smoke\"\ndensity_scale = 3.0\n";
+    const std::string sun = "[[light]]\ntype = \"distant\"\ndirection = [-1, -1, 0.3]\n";
+    const std::string dome = "[[light]]\ntype = \"dome\"\ncolor = [0.2, 0.4, 0.9]\n";
+    std::vector<std::string> names;
+    for (int p = 0; p < kLightPathCount; ++p) names.push_back(lightPathName(LightPath(p)));
+    for (const std::string& lights : {sun, sun + dome})
+        for (const char* integrator : {"single", "volpath"}) {
+            const std::string path =
+                dir + "/grey_" + std::to_string(lights.size()) + integrator + ".toml";
+            std::ofstream(path) << common << "[render]\nintegrator = \"" << integrator << "\"\n"
+                                << lights << "[output]\naovs = [" << kLightPathAovs
+                                << ", \"lightgroup_emission\", \"lightgroup_default\"]\n";
+            ColorPipeline color;
+            Scene scene = loadScene(path, {}, color);
+            scene.settings.progress = Progress::Mode::Quiet;
+            const Image image = renderFrame(scene, "", color).image;
+            const std::string what = std::string(integrator) + (lights == sun ? " sun" : " dome");
+            expectSumToBeauty(image, names, what);
+            expectSumToBeauty(image, {"lightgroup_emission", "lightgroup_default"}, what);
+        }
+}

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/sampling.h"
+#include "core/spectral.h"
 
 namespace mirage {
 
@@ -17,8 +18,7 @@ constexpr double kFourPi = 4.0 * 3.14159265358979323846;
 // interpolation of ∫ σa B dλ in T is exact to ~1e-5 (B is smooth in T).
 constexpr float kMaxIntegralStepK = 2.f;
 constexpr int kMaxIntegralSteps = 4096;
-// Planck samplers every 25 K: any positive p(λ) keeps the estimate unbiased (the weight divides
-// by it), a near one keeps the weights near 1.
+// Samplers every 25 K: any positive p(λ) keeps the estimate unbiased (the weight divides by it).
 constexpr float kSamplerStepK = 25.f;
 constexpr int kMaxSamplers = 400;
 
@@ -108,8 +108,11 @@ MediumEmitter::MediumEmitter(const Medium& medium) : mMedium(&medium) {
     for (int k = 0; k < samplers; ++k) {
         const double T = double(mTMin) + double(k) * double(mSamplerStep);
         std::vector<float> dense(Spectrum::kDenseSamples);
-        for (int l = 0; l < Spectrum::kDenseSamples; ++l)
-            dense[size_t(l)] = float(planck(double(kLambdaMin) + l, T) * 1e-9);
+        for (int l = 0; l < Spectrum::kDenseSamples; ++l) {
+            const float lambda = kLambdaMin + float(l);
+            dense[size_t(l)] =
+                float(planck(double(lambda), T) * 1e-9) * SampledWavelengths::visiblePdf(lambda);
+        }
         mSamplers.emplace_back(Spectrum::fromDense(std::move(dense)));
     }
 
@@ -234,7 +237,8 @@ bool MediumEmitter::sample(Sampler& sampler, Medium::Context& ctx, PhotonEmissio
         g.indexToWorldF(nanovdb::Vec3f(float(cell.i) + u0, float(cell.j) + u1, float(cell.k) + u2));
     const Vec3 pObject(po[0], po[1], po[2]);
 
-    // λ from the hottest corner's Planck spectrum, then the exact emission there at λ.
+    // λ from the hottest corner's Planck spectrum times the eye's importance, then the exact
+    // emission there at λ.
     float pdf = 0.f;
     const float lambda = mSamplers[cell.sampler].sample(sampler.get1D(), &pdf);
     if (!(pdf > 0.f)) return false;

@@ -10,13 +10,18 @@
 // isothermal, homogeneous block of voxels this is exactly 4π σa V ∫ Le dλ.
 //
 // Sampling (Jensen 2001 §5.1 for lights, here for a volume): a cell ∝ its tabulated power, a
-// uniform point in it, λ from the Planck spectrum of the cell's hottest corner (inverse CDF,
-// spectrum/spectrum_sampling.h), an isotropic direction. The table is an approximation of the
-// field inside a cell, so each photon carries the weight
+// uniform point in it, λ ∝ B(λ, T_hot) v(λ) (inverse CDF, spectrum/spectrum_sampling.h) with
+// T_hot the cell's hottest corner and v the camera's own wavelength density
+// (SampledWavelengths::visiblePdf), an isotropic direction. The table is an approximation of
+// the field inside a cell, so each photon carries the weight
 //     w = f(x, λ) V_cell / (Φ_cell p_cell(λ)),   f = 4π σa(x,λ) Le(x,λ),
-// which makes the photon pass unbiased for the exact field: w = 1 inside an isothermal,
-// homogeneous block, and its mean over all photons is Φ_true / Φ_table. Planck's law grows
-// with T at every λ, so the hottest corner's spectrum keeps w bounded.
+// which makes the photon pass unbiased for the exact field: inside an isothermal, homogeneous
+// block w ∝ 1/v(λ), and its mean over all photons is Φ_true / Φ_table. Planck's law grows with
+// T at every λ, so the hottest corner's spectrum keeps w bounded, and v > 0 over 360–830 nm.
+// Why v: a flame at 1500–1800 K puts ~70 % of its 360–830 nm power above 700 nm, where the
+// colour-matching functions are nearly 0; drawn ∝ B alone, most photons would carry light the
+// film barely sees, and the few visible ones make the lit smoke blotchy in colour. Drawn ∝ B v,
+// the photons sit where the eye looks and carry power ∝ 1/v (more in the deep red).
 //
 // Not covered: emission where every corner of a cell has q = 0 but its interior does not (a hot
 // corner without absorber next to an absorbing cold one: the interpolated interior emits a
@@ -69,7 +74,7 @@ private:
     const Medium* mMedium;
     float mTMin = 0, mTStep = 1, mSamplerStep = 1;
     std::vector<std::vector<float>> mIntegral;  // per component, per T step (W·m⁻²·sr⁻¹ · 1/m)
-    std::vector<SpectrumSampler> mSamplers;  // Planck spectra at mTMin + k · mSamplerStep
+    std::vector<SpectrumSampler> mSamplers;  // B(λ, T) v(λ) at T = mTMin + k · mSamplerStep
     std::vector<Cell> mCells;
     std::vector<double> mCdf;  // cumulative cell power (W)
     double mTotal = 0.0;

@@ -25,10 +25,23 @@ using namespace mirage;
 
 namespace {
 
+// The shader emitting at grid slot "temperature", its medium over `grids`, a camera; no lights.
+RenderScene emissiveScene(ShaderDesc shader, std::vector<FloatGrid> grids, const Vec3& camera,
+                          const Vec3& lookAt, float fovDeg) {
+    RenderScene scene;
+    EmissionSpec e;
+    e.temperatureGrid = "temperature";
+    shader.emission = e;
+    scene.media.push_back(std::make_unique<Medium>(shader, std::move(grids), Transform(), 1.f, 16));
+    scene.camera.position = camera;
+    scene.camera.lookAt = lookAt;
+    scene.camera.fovDeg = fovDeg;
+    return scene;
+}
+
 // A 1 m cube of scattering smoke (σs = 3/m, σa = 0.5/m, g = 0.2) with a hot core: 1900 K at the
 // centre, cooling to 300 K at the faces. Camera in front, no lights.
 RenderScene glowingBox() {
-    RenderScene scene;
     const int n = 24;
     const double h = 1.0 / n;
     auto temperature = [n](int i, int j, int k) {
@@ -39,15 +52,8 @@ RenderScene glowingBox() {
     std::vector<FloatGrid> grids;
     grids.push_back(test::makeGrid([](int, int, int) { return 1.f; }, 0, n - 1, h));
     grids.push_back(test::makeGrid(temperature, 0, n - 1, h, Vec3d(0.0), "temperature"));
-    ShaderDesc shader = test::greyShader(0.5f, 3.f, 0.2f);
-    EmissionSpec e;
-    e.temperatureGrid = "temperature";
-    shader.emission = e;
-    scene.media.push_back(std::make_unique<Medium>(shader, std::move(grids), Transform(), 1.f, 16));
-    scene.camera.position = Vec3(0.5f, 0.6f, 3.f);
-    scene.camera.lookAt = Vec3(0.5f, 0.5f, 0.5f);
-    scene.camera.fovDeg = 26.f;
-    return scene;
+    return emissiveScene(test::greyShader(0.5f, 3.f, 0.2f), std::move(grids), Vec3(0.5f, 0.6f, 3.f),
+                         Vec3(0.5f, 0.5f, 0.5f), 26.f);
 }
 
 // A 1 m cube in two slabs: below y = 0.5 m a flame (σa = 4/m, no scattering, 1800 K), above it
@@ -55,7 +61,6 @@ RenderScene glowingBox() {
 // their own like the fire shader's flame and soot. The camera sees the upper slab alone (8° field
 // of view through y = 0.76 m), so every bit of its light is flame light scattered by the smoke.
 RenderScene flameUnderSmoke() {
-    RenderScene scene;
     const int n = 24;
     const double h = 1.0 / n;
     auto below = [n](int, int j, int) { return j < n / 2 ? 1.f : 0.f; };
@@ -78,14 +83,8 @@ RenderScene flameUnderSmoke() {
     smoke.sigmaS = Spectrum(3.f);
     smoke.g = 0.2f;
     shader.components = {flame, smoke};
-    EmissionSpec e;
-    e.temperatureGrid = "temperature";
-    shader.emission = e;
-    scene.media.push_back(std::make_unique<Medium>(shader, std::move(grids), Transform(), 1.f, 16));
-    scene.camera.position = Vec3(0.5f, 0.76f, 3.f);
-    scene.camera.lookAt = Vec3(0.5f, 0.76f, 0.5f);
-    scene.camera.fovDeg = 8.f;
-    return scene;
+    return emissiveScene(shader, std::move(grids), Vec3(0.5f, 0.76f, 3.f), Vec3(0.5f, 0.76f, 0.5f),
+                         8.f);
 }
 
 // Mean scene-linear R, G, B over the image.

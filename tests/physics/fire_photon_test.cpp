@@ -14,7 +14,6 @@
 #include <fstream>
 
 #include "film/color.h"
-#include "film/image_io.h"
 #include "photon/medium_emitter.h"
 #include "photon/photon_pass.h"
 #include "render/renderer.h"
@@ -293,16 +292,9 @@ TEST(FireScene, SmokeAboveTheFlamesIsLit) {
     const std::string scene =
         test::shippedSceneCopy(dir, "fire_smoke.toml", "fire", "fire_smoke.vdb", 32);
     auto rowsAbove = [&](const std::string& integrator) {
-        const std::string out = dir + "/" + integrator + ".exr";
-        std::string log;
-        EXPECT_EQ(test::runMirage("render '" + scene + "' -o '" + out +
-                                      "' --resolution 45x60 --spp 4 --threads 2 --quiet "
-                                      "--set render.photons=200000 --integrator " +
-                                      integrator,
-                                  &log),
-                  0)
-            << log;
-        const Image im = readExr(out);
+        const Image im = test::renderToExr(
+            scene, dir + "/" + integrator + ".exr",
+            "--resolution 45x60 --spp 4 --set render.photons=200000 --integrator " + integrator);
         Vec3 sum(0.f);
         int n = 0;
         for (int y = 5; y < 20; ++y)

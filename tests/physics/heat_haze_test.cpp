@@ -12,7 +12,6 @@
 #include <string>
 #include <vector>
 
-#include "film/image_io.h"
 #include "test_support.h"
 
 namespace mirage {
@@ -46,16 +45,8 @@ TEST(HeatHaze, HotAirDisplacesTheStripesBehindItAndNotBesideIt) {
     // Rows 116–123 of the 240 × 240 frame (0.0042° a pixel: 2.9 cm at the stripes, which are
     // 5 pixels wide and 10 apart), through the plume above the flames.
     auto band = [&](const std::string& name, const std::string& args) {
-        const std::string out = dir + "/" + name + ".exr";
-        std::string log;
-        EXPECT_EQ(test::runMirage("render '" + scene + "' -o '" + out +
-                                      "' --resolution 240x240 --spp 8 --threads 2 --quiet "
-                                      "--region 0,116,240,124 " +
-                                      args,
-                                  &log),
-                  0)
-            << log;
-        return readExr(out);
+        return test::renderToExr(scene, dir + "/" + name + ".exr",
+                                 "--resolution 240x240 --spp 8 --region 0,116,240,124 " + args);
     };
     const Image hot = band("hot", "");
     const Image cold = band("cold", "--set refraction.temperature_scale=0");

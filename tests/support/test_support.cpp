@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "film/image_io.h"
 #include "fog_box_scene.h"
 
 namespace mirage::test {
@@ -205,6 +206,14 @@ ImageError compareImages(const Image& image, const Image& ref) {
         e.chromaticity = std::max(e.chromaticity, std::abs(sumI[c] / totalI - sumR[c] / totalR));
     }
     return e;
+}
+
+Image renderToExr(const std::string& scene, const std::string& out, const std::string& args) {
+    std::string log;
+    const int status =
+        runMirage("render '" + scene + "' -o '" + out + "' --threads 2 --quiet " + args, &log);
+    EXPECT_EQ(status, 0) << log;
+    return status == 0 ? readExr(out) : Image();
 }
 
 }  // namespace mirage::test

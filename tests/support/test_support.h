@@ -96,4 +96,8 @@ struct ImageError {
 };
 ImageError compareImages(const Image& image, const Image& ref);
 
+// Renders a scene file to `out` (an EXR) quietly on two threads with extra `args`, and reads it
+// back; a failed render is a test failure (and an empty image).
+Image renderToExr(const std::string& scene, const std::string& out, const std::string& args);
+
 }  // namespace mirage::test

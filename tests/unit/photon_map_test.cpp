@@ -1,6 +1,8 @@
 // The photon map's kd-tree against brute force: k-nearest and radius queries on random point
 // sets (with duplicates, coincident coordinates, empty and one-photon maps, k > n), the
 // left-balanced kd layout, per-photon radii, and determinism across thread counts.
+#include "photon/photon_map.h"
+
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -8,7 +10,6 @@
 #include <cstring>
 
 #include "core/rng.h"
-#include "photon/photon_map.h"
 
 using namespace mirage;
 
@@ -27,8 +28,9 @@ PhotonList randomPhotons(size_t n, uint64_t seed) {
             ph = list[size_t(s.get1D() * float(i))];
         } else {
             ph.p = Vec3(s.get1D(), s.get1D(), s.get1D());
-            if (u > 0.75f) ph.p = Vec3(std::floor(ph.p.x * 8) / 8, std::floor(ph.p.y * 8) / 8,
-                                       std::floor(ph.p.z * 8) / 8);
+            if (u > 0.75f)
+                ph.p = Vec3(std::floor(ph.p.x * 8) / 8, std::floor(ph.p.y * 8) / 8,
+                            std::floor(ph.p.z * 8) / 8);
             ph.wi = Vec3(0, 0, 1);
             ph.lambda = 400.f + 300.f * s.get1D();
             ph.power = float(i);  // identifies the photon after the reordering
@@ -187,12 +189,38 @@ TEST(PhotonMap, PhotonRadiiEqualBruteForce) {
             }
             std::sort(d2.begin(), d2.end());
             // The photon itself is its nearest neighbour (distance 0).
-            float expected = d2.size() >= size_t(k) && d2[k - 1] <= rMax * rMax
-                                 ? std::sqrt(d2[k - 1])
-                                 : rMax;
+            float expected =
+                d2.size() >= size_t(k) && d2[k - 1] <= rMax * rMax ? std::sqrt(d2[k - 1]) : rMax;
             EXPECT_EQ(radii[i], clamp(expected, rMin, rMax)) << "photon " << i;
         }
     }
+}
+
+TEST(PhotonMap, RadiiFromAnotherMapAreItsNearestPhotonsRadius) {
+    // Each photon takes the radius of the nearest source photon (ties: the lower slot, as the
+    // k-nearest query breaks them), or maxRadius when none lies within it.
+    const PhotonMap source(randomPhotons(500, 401));
+    std::vector<float> sourceRadii(source.size());
+    for (size_t j = 0; j < source.size(); ++j) sourceRadii[j] = 0.001f * float(j + 1);
+    const float rMax = 0.05f;
+    for (size_t n : {size_t(0), size_t(300)}) {
+        const PhotonMap map(randomPhotons(n, 402));
+        const std::vector<float> radii = map.radiiFrom(source, sourceRadii, rMax);
+        ASSERT_EQ(radii.size(), n);
+        for (size_t i = 0; i < n; ++i) {
+            PhotonNeighbour best{kInfinity, 0};
+            for (size_t j = 0; j < source.size(); ++j) {
+                const Vec3 d = source[j].p - map[i].p;
+                const PhotonNeighbour c{dot(d, d), uint32_t(j)};
+                if (neighbourBefore(c, best)) best = c;
+            }
+            const float expected = best.d2 <= rMax * rMax ? sourceRadii[best.index] : rMax;
+            EXPECT_EQ(radii[i], expected) << "photon " << i;
+        }
+    }
+    // No source photons: every radius is maxRadius.
+    const std::vector<float> none = source.radiiFrom(PhotonMap(), {}, rMax);
+    for (float r : none) EXPECT_EQ(r, rMax);
 }
 
 TEST(PhotonMap, SameTreeAndRadiiForOneAndTwoThreads) {

@@ -1,8 +1,6 @@
 // The photon map's kd-tree against brute force: k-nearest and radius queries on random point
 // sets (with duplicates, coincident coordinates, empty and one-photon maps, k > n), the
 // left-balanced kd layout, per-photon radii, and determinism across thread counts.
-#include "photon/photon_map.h"
-
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -10,6 +8,7 @@
 #include <cstring>
 
 #include "core/rng.h"
+#include "photon/photon_map.h"
 
 using namespace mirage;
 
@@ -28,9 +27,8 @@ PhotonList randomPhotons(size_t n, uint64_t seed) {
             ph = list[size_t(s.get1D() * float(i))];
         } else {
             ph.p = Vec3(s.get1D(), s.get1D(), s.get1D());
-            if (u > 0.75f)
-                ph.p = Vec3(std::floor(ph.p.x * 8) / 8, std::floor(ph.p.y * 8) / 8,
-                            std::floor(ph.p.z * 8) / 8);
+            if (u > 0.75f) ph.p = Vec3(std::floor(ph.p.x * 8) / 8, std::floor(ph.p.y * 8) / 8,
+                                       std::floor(ph.p.z * 8) / 8);
             ph.wi = Vec3(0, 0, 1);
             ph.lambda = 400.f + 300.f * s.get1D();
             ph.power = float(i);  // identifies the photon after the reordering
@@ -189,8 +187,9 @@ TEST(PhotonMap, PhotonRadiiEqualBruteForce) {
             }
             std::sort(d2.begin(), d2.end());
             // The photon itself is its nearest neighbour (distance 0).
-            float expected =
-                d2.size() >= size_t(k) && d2[k - 1] <= rMax * rMax ? std::sqrt(d2[k - 1]) : rMax;
+            float expected = d2.size() >= size_t(k) && d2[k - 1] <= rMax * rMax
+                                 ? std::sqrt(d2[k - 1])
+                                 : rMax;
             EXPECT_EQ(radii[i], clamp(expected, rMin, rMax)) << "photon " << i;
         }
     }

@@ -32,8 +32,8 @@
 // N^-α; α = 2/3 balances the two, and the mean squared error falls as N^(-2/3) in the passes N.
 // Pass 0 is the one-map render, so a render that is not in passes is unchanged. A later pass
 // does not search its own k nearest photons for its radii: each photon takes the radius of the
-// nearest pass-0 photon (PhotonMap::radiiFrom), times radiusScale(p). The k-nearest search was
-// the largest cost of a pass on dense smoke (docs/performance.md), and the first pass's radii
+// nearest pass-0 photon (PhotonMap::radiiFrom), times radiusScale(p). The k-nearest search cost
+// as much as tracing the pass's photons on dense smoke (docs/performance.md), and pass 0's radii
 // are as good a bandwidth for a pass of as many photons; being independent of pass p's photons,
 // they make each pass a kernel estimate of fixed bandwidth, whose blur the alpha rule shrinks
 // as before. The point estimate and the surface maps are averaged over passes too but keep

@@ -5,12 +5,16 @@
 # OUT between runs: Cycles' ray marching and Mirage's tracking converge to slightly different
 # images), by relMSE over the smoke's pixels (pipeline/relmse.py), at each of SPPS.
 #   single    Cycles with 0 volume bounces against mirage --integrator single
-#   multiple  Cycles with 64 volume bounces against mirage --integrator volpath
+#   multiple  Cycles with 64 volume bounces against mirage --integrator volpath, and the
+#             progressive photon mapper (--integrator photon --passes P, one photon map per
+#             pass) against the same volpath reference: its bias counts, and its time is
+#             mirage:time_spent, the photon passes included.
 # Usage: pipeline/race.sh [single | multiple | both]   (default single)
 # Environment: SPPS ("4 16 64"), REF_SPP (1024), THREADS (2), OUT (out/race), SAMPLERS
 # ("sobol random": Mirage's [render] sampler values raced; "default" sets none), MIRAGE
 # (build/mirage: another build to race, e.g. an older one against the same references),
-# MIRAGE_SHARED_DATA.
+# PHOTON_PASSES ("2 8 24": pass counts of the photon rows; "" for none), PHOTONS (100000:
+# photons per pass), PASS_SPP (4: samples per pixel per pass), MIRAGE_SHARED_DATA.
 # Installs Blender when missing (pipeline/install-deps.sh blender). Prints one table per mode (also
 # OUT/<integrator>.csv) and the equal-error time ratios.
 set -euo pipefail
@@ -28,6 +32,9 @@ REF_SPP=${REF_SPP:-1024}
 THREADS=${THREADS:-2}
 OUT=${OUT:-out/race}
 SAMPLERS=${SAMPLERS:-sobol random}
+PHOTON_PASSES=${PHOTON_PASSES-2 8 24}
+PHOTONS=${PHOTONS:-100000}
+PASS_SPP=${PASS_SPP:-4}
 MIRAGE=${MIRAGE:-build/mirage}
 command -v blender >/dev/null || pipeline/install-deps.sh blender >/dev/null
 [ -x build/mirage ] || pipeline/build.sh build >/dev/null
@@ -52,6 +59,15 @@ mirage() {  # integrator sampler spp exr [seed]
   oiiotool --info -v "$4" | awk -F'"' '/mirage:render_seconds/ {print $2}'
 }
 
+# Mirage's progressive photon mapper in P passes: prints the seconds since the frame began
+# (mirage:time_spent: integrator set-up and every pass's photon map included).
+photon() {  # passes exr
+  "$MIRAGE" render tests/bench/smoke1_race.toml --set "volume.0.file=$SMOKE" \
+    --integrator photon --set "render.photons=$PHOTONS" --set "render.pass_spp=$PASS_SPP" \
+    --passes "$1" --threads "$THREADS" --seed 0 -o "$2" --quiet >/dev/null
+  oiiotool --info -v "$2" | awk -F'"' '/mirage:time_spent/ {print $2}'
+}
+
 race() {  # bounces integrator
   local bounces=$1 integrator=$2 tag="$OUT/$2"
   printf '\nsmoke1.vdb 256x256, %d threads: Cycles --volume-bounces %d against mirage --integrator %s\n' \
@@ -74,6 +90,13 @@ race() {  # bounces integrator
         "$tag.mirage.exr" "$tag.mirage_ref.exr"
     done
   done
+  # Multiple scattering: the progressive photon mapper against the same volpath reference.
+  if [ "$integrator" = volpath ]; then
+    for passes in $PHOTON_PASSES; do
+      row "mirage photon" "$((passes * PASS_SPP))" "$(photon "$passes" "$tag.photon.exr")" \
+        "$tag.photon.exr" "$tag.mirage_ref.exr"
+    done
+  fi
   # Equal error: each Mirage's time to Cycles' relMSE at each spp (pipeline/race_ratio.py).
   python3 pipeline/race_ratio.py "$tag.csv"
 }

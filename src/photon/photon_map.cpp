@@ -163,4 +163,20 @@ std::vector<float> PhotonMap::photonRadii(int k, float minRadius, float maxRadiu
     return radii;
 }
 
+std::vector<float> PhotonMap::radiiFrom(const PhotonMap& source,
+                                        const std::vector<float>& sourceRadii,
+                                        float maxRadius) const {
+    MIRAGE_CHECK(sourceRadii.size() == source.size() && maxRadius >= 0.f);
+    std::vector<float> radii(mPhotons.size(), maxRadius);
+    if (source.empty()) return radii;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, mPhotons.size(), 1024),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          PhotonNeighbour nearestOne;
+                          for (size_t i = r.begin(); i < r.end(); ++i)
+                              if (source.nearest(mPhotons[i].p, 1, maxRadius, &nearestOne) == 1)
+                                  radii[i] = sourceRadii[nearestOne.index];
+                      });
+    return radii;
+}
+
 }  // namespace mirage

@@ -61,6 +61,14 @@ public:
     // parallel; slot order, deterministic.
     std::vector<float> photonRadii(int k, float minRadius, float maxRadius) const;
 
+    // Per-photon radii read off another map: each photon takes the radius sourceRadii[j] of its
+    // nearest photon j in `source` (within maxRadius; maxRadius where there is none). A later
+    // pass of progressive photon mapping takes its bandwidth from the first pass's k-nearest
+    // radii this way, one nearest-neighbour query per photon instead of k (photon_integrator).
+    // Computed in parallel; slot order, deterministic.
+    std::vector<float> radiiFrom(const PhotonMap& source, const std::vector<float>& sourceRadii,
+                                 float maxRadius) const;
+
 private:
     void build(Photon* begin, Photon* end, size_t slot);
 

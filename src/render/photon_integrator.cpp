@@ -30,9 +30,15 @@
 // samples per pixel), which is Knaus & Zwicker's estimator: the average of independent
 // estimates whose bias (∝ r²) falls as N^-(1-α) while the variance of the average falls as
 // N^-α; α = 2/3 balances the two, and the mean squared error falls as N^(-2/3) in the passes N.
-// Pass 0 is the one-map render, so a render that is not in passes is unchanged. The point
-// estimate and the surface maps are averaged over passes too but keep their k-nearest radii:
-// their noise falls with the passes, their blur does not.
+// Pass 0 is the one-map render, so a render that is not in passes is unchanged. A later pass
+// does not search its own k nearest photons for its radii: each photon takes the radius of the
+// nearest pass-0 photon (PhotonMap::radiiFrom), times radiusScale(p). The k-nearest search cost
+// as much as tracing the pass's photons on dense smoke (docs/performance.md), and pass 0's radii
+// are as good a bandwidth for a pass of as many photons; being independent of pass p's photons,
+// they make each pass a kernel estimate of fixed bandwidth, whose blur the alpha rule shrinks
+// as before. The point estimate and the surface maps are averaged over passes too but keep
+// their k-nearest radii (and the point estimate its pass-0 march step): their noise falls with
+// the passes, their blur does not.
 //
 // Transmittance from the camera to each photon is the deterministic march of
 // transport/ray_optical_depth.h at the photon's wavelength, done once per camera ray.
@@ -230,8 +236,11 @@ private:
         mRadiusScale = radiusScale(p);
 
         // The maps (kd-trees, per-photon XYZ and phase), then the estimate's own structures
-        // (the beam estimator reads the volume map: dropped first).
+        // (the beam estimator reads the volume map: dropped first). Pass 0's volume map stays
+        // as the later passes' source of radii.
         mBeam.reset();
+        if (p > 0 && !mFirstPhotons && mSettings.estimate == PhotonEstimate::Beam)
+            mFirstPhotons = std::move(mPhotons);
         auto t0 = Clock::now();
         mGlobal = std::make_unique<SurfacePhotons>(std::move(lists.surfaceGlobal));
         mCaustic = std::make_unique<SurfacePhotons>(std::move(lists.surfaceCaustic));
@@ -242,13 +251,17 @@ private:
         const int k = mSettings.kOrDefault();
         if (mSettings.estimate == PhotonEstimate::Beam) {
             t0 = Clock::now();
-            std::vector<float> radii = mPhotons->map().photonRadii(k, minRadius, mMaxRadius);
+            std::vector<float> radii =
+                mFirstPhotons
+                    ? mPhotons->map().radiiFrom(mFirstPhotons->map(), mFirstRadii, mMaxRadius)
+                    : mPhotons->map().photonRadii(k, minRadius, mMaxRadius);
+            if (p == 0) mFirstRadii = radii;
             for (float& r : radii) r *= mRadiusScale;
             mStats.photonRadiiSeconds += secondsSince(t0);
             t0 = Clock::now();
             mBeam = std::make_unique<BeamEstimator>(*mPhotons, std::move(radii));
             mStats.discBvhBuildSeconds += secondsSince(t0);
-        } else {
+        } else if (p == 0) {
             mStep = mSettings.marchStep;
             if (!(mStep > 0.f)) {
                 // Half the typical search radius: the estimate is a blur of that radius, so
@@ -392,6 +405,9 @@ private:
     std::vector<const Medium*> mMedia;
     PhotonPassStats mPassStats;  // summed over passes
     std::unique_ptr<VolumePhotons> mPhotons;
+    // Pass 0's volume map and beam radii (unscaled), the later passes' source of radii.
+    std::unique_ptr<VolumePhotons> mFirstPhotons;
+    std::vector<float> mFirstRadii;
     std::unique_ptr<BeamEstimator> mBeam;
     std::unique_ptr<SurfacePhotons> mGlobal, mCaustic;  // surface photon maps
     float mMaxRadius = 0.f, mStep = 0.f;

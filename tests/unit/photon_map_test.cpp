@@ -195,6 +195,33 @@ TEST(PhotonMap, PhotonRadiiEqualBruteForce) {
     }
 }
 
+TEST(PhotonMap, RadiiFromAnotherMapAreItsNearestPhotonsRadius) {
+    // Each photon takes the radius of the nearest source photon (ties: the lower slot, as the
+    // k-nearest query breaks them), or maxRadius when none lies within it.
+    const PhotonMap source(randomPhotons(500, 401));
+    std::vector<float> sourceRadii(source.size());
+    for (size_t j = 0; j < source.size(); ++j) sourceRadii[j] = 0.001f * float(j + 1);
+    const float rMax = 0.05f;
+    for (size_t n : {size_t(0), size_t(300)}) {
+        const PhotonMap map(randomPhotons(n, 402));
+        const std::vector<float> radii = map.radiiFrom(source, sourceRadii, rMax);
+        ASSERT_EQ(radii.size(), n);
+        for (size_t i = 0; i < n; ++i) {
+            PhotonNeighbour best{kInfinity, 0};
+            for (size_t j = 0; j < source.size(); ++j) {
+                const Vec3 d = source[j].p - map[i].p;
+                const PhotonNeighbour c{dot(d, d), uint32_t(j)};
+                if (neighbourBefore(c, best)) best = c;
+            }
+            const float expected = best.d2 <= rMax * rMax ? sourceRadii[best.index] : rMax;
+            EXPECT_EQ(radii[i], expected) << "photon " << i;
+        }
+    }
+    // No source photons: every radius is maxRadius.
+    const std::vector<float> none = source.radiiFrom(PhotonMap(), {}, rMax);
+    for (float r : none) EXPECT_EQ(r, rMax);
+}
+
 TEST(PhotonMap, SameTreeAndRadiiForOneAndTwoThreads) {
     // Large enough that the two halves of the top levels are built in parallel.
     PhotonList input = randomPhotons(100000, 5);

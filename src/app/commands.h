@@ -55,6 +55,9 @@ struct InfoOptions {
     std::string input;
     std::vector<std::string> overrides;
     std::string ocioConfig;
+    int frame = 1;            // for $F4 patterns and keyed motion, as `render --frame`
+    double shutter = -1;      // --shutter WIDTH (frames); −1: the scene's
+    bool motionBlur = false;  // --motion-blur: --shutter 0.5
 };
 int runInfo(const InfoOptions& o);
 Command addInfoCommand(CLI::App& app);

@@ -44,7 +44,10 @@ void printGrids(const std::string& file) {
 
 int runInfo(const InfoOptions& o) {
     ColorPipeline color(o.ocioConfig);
-    Scene scene = loadScene(o.input, LoadOptions{1, o.overrides}, color);
+    LoadOptions load{o.frame, o.overrides};
+    const double shutterWidth = o.motionBlur ? 0.5 : o.shutter;
+    if (shutterWidth >= 0) load.shutter = ShutterFrames{-0.5 * shutterWidth, 0.5 * shutterWidth};
+    Scene scene = loadScene(o.input, load, color);
     std::printf("%s\n", o.input.c_str());
     std::printf("volumes:\n");
     for (size_t i = 0; i < scene.volumes.size(); ++i) {
@@ -142,6 +145,13 @@ Command addInfoCommand(CLI::App& app) {
     info->add_option("input", o->input, "Scene .toml or .vdb/.nvdb")->required();
     info->add_option("--set", o->overrides, "Override scene values: key.path=value …")->take_all();
     info->add_option("--ocio", o->ocioConfig, "OCIO config file (default: $OCIO, else built-in)");
+    info->add_option("--frame", o->frame,
+                     "Frame number for $F/#### patterns and keyed motion (default 1)");
+    info->add_option(
+        "--shutter", o->shutter,
+        "Describe the scene with a shutter open for WIDTH frames, as render --shutter");
+    info->add_flag("--motion-blur", o->motionBlur, "The same with a 180° shutter (--shutter 0.5)")
+        ->excludes("--shutter");
     return {info, [o] { return runInfo(*o); }};
 }
 

@@ -80,6 +80,49 @@ std::string shutterText(const Scene& scene) {
     return b;
 }
 
+std::string vecText(const Vec3& v) {
+    char b[96];
+    std::snprintf(b, sizeof b, "%.9g,%.9g,%.9g", v.x, v.y, v.z);
+    return b;
+}
+
+std::string poseText(const CameraPose& c) {
+    char fov[32];
+    std::snprintf(fov, sizeof fov, "%.9g", c.fovDeg);
+    return vecText(c.position) + ";" + vecText(c.lookAt) + ";" + vecText(c.up) + ";" + fov;
+}
+
+// What moves the camera within the shutter: its keys (time in seconds, then the pose) and the
+// turntable's angle and rate. The scene text holds the keys too, but the settings lines let a
+// refusal name what changed, and --turntable changes the rate from the command line.
+std::string cameraMotionText(const CameraDesc& c) {
+    std::string keys;
+    for (const CameraKey& k : c.keys) {
+        char t[32];
+        std::snprintf(t, sizeof t, "%.9g", k.time);
+        keys += (keys.empty() ? "" : " | ") + std::string(t) + "s " + poseText(k.pose);
+    }
+    return keys.empty() ? "none" : keys;
+}
+
+std::string turntableText(const CameraDesc& c) {
+    char b[96];
+    std::snprintf(b, sizeof b, "%.9g deg, %.9g deg/s", c.orbitDegrees, c.orbitDegreesPerSecond);
+    return b;
+}
+
+// Each volume's velocity grid and scale: which grid moves it and how far.
+std::string velocityText(const Scene& scene) {
+    std::string text;
+    for (const VolumeRecord& v : scene.volumes) {
+        char scale[32];
+        std::snprintf(scale, sizeof scale, "%.9g", v.velocity.scale);
+        text += (text.empty() ? "" : "; ") + (v.velocity.grid.empty() ? "none" : v.velocity.grid) +
+                " x" + scale;
+    }
+    return text;
+}
+
 }  // namespace
 
 FrameFingerprint frameFingerprint(const Scene& scene, const std::string& input,
@@ -88,13 +131,15 @@ FrameFingerprint frameFingerprint(const Scene& scene, const std::string& input,
     const RenderSettings& s = scene.settings;
     const CameraDesc& c = scene.render.camera;
     std::map<std::string, std::string> m;
-    auto vec = [](const Vec3& v) {
-        char b[96];
-        std::snprintf(b, sizeof b, "%.9g,%.9g,%.9g", v.x, v.y, v.z);
-        return std::string(b);
-    };
-    m["camera"] =
-        vec(c.position) + ";" + vec(c.lookAt) + ";" + vec(c.up) + ";" + std::to_string(c.fovDeg);
+    m["camera"] = poseText(c);
+    // Motion blur: what moves within the shutter, the shutter and the frame rate.
+    m["camera_keys"] = cameraMotionText(c);
+    m["turntable"] = turntableText(c);
+    m["shutter_seconds"] = shutterText(scene);
+    char fps[32];
+    std::snprintf(fps, sizeof fps, "%.9g", scene.output.fps);
+    m["fps"] = fps;
+    m["velocity"] = velocityText(scene);
     m["frame"] = std::to_string(frame);
     m["integrator"] = integrator;
     m["max_depth"] = std::to_string(scene.maxDepth);

@@ -291,19 +291,28 @@ void Medium::excludeFrom(std::shared_ptr<const Region> region) {
 }
 
 void Medium::eval(const Vec3& p, Context& ctx, MediumPoint* out) const {
-    out->sigmaA = SampledSpectrum(0.f);
-    out->sigmaS = SampledSpectrum(0.f);
-    out->components = int(mShader.components.size());
-    if (!inRegion(p, ctx)) {
-        for (int i = 0; i < out->components; ++i) out->sigmaSComponent[i] = SampledSpectrum(0.f);
-        out->Le = SampledSpectrum(0.f);
-        return;
-    }
+    if (!inRegion(p, ctx)) return setZero(out);
     evalUnconfined(p, ctx, out);
 }
 
+void Medium::evalStill(const Vec3& p, Context& ctx, MediumPoint* out) const {
+    if (!inRegion(p, ctx)) return setZero(out);
+    evalGridsAt(p, ctx, out);
+}
+
+void Medium::setZero(MediumPoint* out) const {
+    out->sigmaA = SampledSpectrum(0.f);
+    out->sigmaS = SampledSpectrum(0.f);
+    out->components = int(mShader.components.size());
+    for (int i = 0; i < out->components; ++i) out->sigmaSComponent[i] = SampledSpectrum(0.f);
+    out->Le = SampledSpectrum(0.f);
+}
+
 void Medium::evalUnconfined(const Vec3& pAtTime, Context& ctx, MediumPoint* out) const {
-    const Vec3 p = advected(ctx, pAtTime);
+    evalGridsAt(advected(ctx, pAtTime), ctx, out);
+}
+
+void Medium::evalGridsAt(const Vec3& p, Context& ctx, MediumPoint* out) const {
     out->sigmaA = SampledSpectrum(0.f);
     out->sigmaS = SampledSpectrum(0.f);
     out->components = int(mShader.components.size());

@@ -204,6 +204,10 @@ public:
     // The same, ignoring confinement and exclusions: what the shader gives at the point. For a
     // homogeneous medium it is its σ anywhere, which bounds it exactly as a majorant.
     void evalUnconfined(const Vec3& pObject, Context& ctx, MediumPoint* out) const;
+    // The coefficients of the still medium, the frame's, at an object-space point (confined like
+    // eval()): a moving medium's lookup without its velocity lookup. Residual ratio tracking
+    // takes it as its control, which need only be a function of the ray (transport/tracking.cpp).
+    void evalStill(const Vec3& pObject, Context& ctx, MediumPoint* out) const;
     // Scattering coefficient σs(x, λ) (1/m) at an object-space point for one wavelength —
     // a photon's — whatever the context's wavelengths: Σ_c c_c(x) σs,c(λ).
     float sigmaSAt(const Vec3& pObject, Context& ctx, float lambdaNm) const;
@@ -234,6 +238,9 @@ private:
         if (ctx.mTime == 0.f) return p;
         return p - displacement(ctx, p);
     }
+    // The shader's coefficients from the still grids read at p (already advected, if at all).
+    void evalGridsAt(const Vec3& p, Context& ctx, MediumPoint* out) const;
+    void setZero(MediumPoint* out) const;
     double checkedSigmaMax(int i, const FloatGrid* grid, float k) const;
     void checkEmissionBound(double sigmaMax) const;
     // Component i's grid value at an object-space point (1 for a constant component).

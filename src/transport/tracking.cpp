@@ -150,9 +150,13 @@ SampledSpectrum residualRatioTracking(TrackingContext& ctx, size_t i, const Ray&
     m.majorant().traverse(r.o, r.d, 0.f, tMax, [&](float t0, float t1, float sigmaMaj) {
         if (!(sigmaMaj > 0.f)) return true;  // empty cell: T unchanged
         // The control: σt at the middle of the segment, a function of the ray alone, clamped
-        // into [0, σ̄] per wavelength.
+        // into [0, σ̄] per wavelength. Any such function keeps the estimate unbiased; for a
+        // moving medium it is the still medium's σt there, which costs no velocity lookup
+        // (most of a blurred shadow ray's lookups are controls). On the Mantaflow cache that
+        // cut the blurred render's CPU time by about a fifth for 3 % more variance
+        // (docs/scene-file.md, "Motion blur").
         MediumPoint mp;
-        m.eval(r.at(0.5f * (t0 + t1)), mc, &mp);
+        m.evalStill(r.at(0.5f * (t0 + t1)), mc, &mp);
         ++ctx.lookups;
         SampledSpectrum sigmaC = mp.sigmaA + mp.sigmaS;
         float sigmaR = 0.f;

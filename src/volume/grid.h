@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/math.h"
+#include "volume/leaf_stencil.h"
 
 namespace mirage {
 
@@ -37,21 +38,13 @@ public:
     // tentative collision and every shadow-ray control reads it).
     float sample(const Accessor& acc, const Vec3& pObject) const {
         using Leaf = nanovdb::NanoLeaf<float>;
-        static_assert(Leaf::LOG2DIM == 3, "8³ leaves: offsets x·64 + y·8 + z");
         nanovdb::Vec3f pi = mGrid->worldToIndexF(nanovdb::Vec3f(pObject.x, pObject.y, pObject.z));
         const float fi[3] = {std::floor(pi[0]), std::floor(pi[1]), std::floor(pi[2])};
         const nanovdb::Coord ijk{int32_t(fi[0]), int32_t(fi[1]), int32_t(fi[2])};
-        constexpr int32_t kLast = int32_t(Leaf::DIM) - 1;
-        if ((ijk[0] & kLast) != kLast && (ijk[1] & kLast) != kLast && (ijk[2] & kLast) != kLast) {
-            if (const Leaf* leaf = acc.probeLeaf(ijk)) {
-                const float u[3] = {pi[0] - fi[0], pi[1] - fi[1], pi[2] - fi[2]};
-                const uint32_t o = Leaf::CoordToOffset(ijk);
-                auto v = [&](uint32_t d) { return leaf->getValue(o + d); };
-                auto lerp = [](float a, float b, float w) { return a + w * (b - a); };
-                const float vx = lerp(lerp(v(0), v(1), u[2]), lerp(v(8), v(9), u[2]), u[1]);
-                const float vx1 = lerp(lerp(v(64), v(65), u[2]), lerp(v(72), v(73), u[2]), u[1]);
-                return lerp(vx, vx1, u[0]);
-            }
+        constexpr int kStencil[3] = {1, 1, 1};
+        if (const Leaf* leaf = leafHoldingBox<Leaf>(acc, ijk, kStencil)) {
+            const float u[3] = {pi[0] - fi[0], pi[1] - fi[1], pi[2] - fi[2]};
+            return trilinearInLeaf(*leaf, Leaf::CoordToOffset(ijk), u);
         }
         return nanovdb::createSampler<1, Accessor, false>(acc)(pi);
     }

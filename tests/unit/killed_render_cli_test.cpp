@@ -90,6 +90,47 @@ TEST(KilledRenderCli, ResumeRefusesAPartialFileFromOtherSettings) {
     EXPECT_NE(out.find("scene file or one of its grid files changed"), std::string::npos) << out;
 }
 
+// Motion blur: the camera's keys and a turntable's rate move the camera within the shutter, so
+// they are in the fingerprint; a refusal names them.
+TEST(KilledRenderCli, ResumeRefusesAPartialFileWithOtherCameraMotion) {
+    const std::string dir = test::tempDir();
+    const std::string scene = writeScene(dir, "single");
+    auto keyed = [&](const std::string& keyX) {
+        std::ifstream in(scene);
+        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const std::string camera = "[camera]\n";
+        text.insert(text.find(camera) + camera.size(), "shutter = [-0.25, 0.25]\n");
+        std::ofstream(dir + "/keyed.toml")
+            << text << "[[camera.key]]\nframe = 0\nposition = [0, 1, 4]\n"
+            << "[[camera.key]]\nframe = 1\nposition = [" << keyX << ", 1, 4]\n";
+        return dir + "/keyed.toml";
+    };
+    const std::string target = dir + "/frame.exr";
+    std::string out;
+    int rc = render("'" + keyed("0.5") + "' -q -o '" + target + "'", &out,
+                    "MIRAGE_TEST_STOP_AFTER_TILES=2");
+    ASSERT_EQ(rc, 130) << out;
+    rc = render("'" + keyed("0.7") + "' -q --resume -o '" + target + "'", &out);
+    EXPECT_EQ(rc, 1) << out;
+    EXPECT_NE(out.find("--resume refused"), std::string::npos) << out;
+    EXPECT_NE(out.find("camera_keys was"), std::string::npos) << out;
+
+    // A turntable's rate: the same first frame (numbered .0001), turning at another speed within
+    // the shutter.
+    const std::string turn = dir + "/turn.exr";
+    rc = render("'" + scene + "' -q --turntable 24 --shutter 0.5 -o '" + turn + "'", &out,
+                "MIRAGE_TEST_STOP_AFTER_TILES=2");
+    ASSERT_EQ(rc, 130) << out;
+    rc = render("'" + scene + "' -q --resume --turntable 48 --shutter 0.5 -o '" + turn + "'", &out);
+    EXPECT_EQ(rc, 1) << out;
+    EXPECT_NE(out.find("turntable was"), std::string::npos) << out;
+    // And the shutter given on the command line.
+    rc =
+        render("'" + scene + "' -q --resume --turntable 24 --shutter 0.25 -o '" + turn + "'", &out);
+    EXPECT_EQ(rc, 1) << out;
+    EXPECT_NE(out.find("shutter_seconds was"), std::string::npos) << out;
+}
+
 TEST(KilledRenderCli, SigtermStopsTheRenderWithExit143AndNoFinalFile) {
     const std::string dir = test::tempDir();
     const std::string scene = writeScene(dir, "volpath");

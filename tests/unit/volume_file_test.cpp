@@ -417,7 +417,9 @@ TEST(VolumeFile, WrongGridKindsAreRejectedByName) {
 
 // A field linear in x, v = (2x + 1, −y, 3) in index units, stored at the positions each class
 // says (centres, or the faces of a staggered grid), is reproduced exactly by trilinear lookups
-// anywhere inside the block: the staggered half-voxel shift is exact, not approximate.
+// anywhere inside the block: the staggered half-voxel shift is exact, not approximate. The block
+// spans 3³ leaves, so lookups whose stencil lies in one leaf (read from its array) and those
+// that straddle leaves (read through the accessor) are both checked.
 TEST(VolumeFile, VectorGridsSampleCollocatedAndStaggeredLayouts) {
     const std::string dir = test::tempDir();
     auto field = [](double x, double y) { return Vec3d(2 * x + 1, -y, 3); };
@@ -428,9 +430,9 @@ TEST(VolumeFile, VectorGridsSampleCollocatedAndStaggeredLayouts) {
         spec.valueType = "vec3s";
         spec.gridClass = staggered ? "staggered" : "fog volume";
         spec.voxelSize = 1.0;
-        for (int i = 0; i < 8; ++i)
-            for (int j = 0; j < 8; ++j)
-                for (int k = 0; k < 8; ++k) {
+        for (int i = 0; i < 20; ++i)
+            for (int j = 0; j < 20; ++j)
+                for (int k = 0; k < 20; ++k) {
                     // Component a of a staggered voxel lives at index − ½ along a.
                     const double sx = staggered ? 0.5 : 0.0;
                     Vec3d v(field(i - sx, j).x, field(i, j - sx).y, 3);
@@ -442,7 +444,9 @@ TEST(VolumeFile, VectorGridsSampleCollocatedAndStaggeredLayouts) {
         ASSERT_EQ(g.staggered(), staggered);
         auto acc = g.accessor();
         // Object space = index space (unit voxels at the origin).
-        for (const Vec3 p : {Vec3(2.3f, 3.7f, 4.1f), Vec3(5.5f, 2.25f, 3.f), Vec3(4.f, 4.f, 4.f)}) {
+        for (const Vec3 p : {Vec3(2.3f, 3.7f, 4.1f), Vec3(5.5f, 2.25f, 3.f), Vec3(4.f, 4.f, 4.f),
+                             Vec3(7.6f, 8.4f, 15.5f), Vec3(15.2f, 7.5f, 8.f),
+                             Vec3(8.f, 16.7f, 7.2f), Vec3(6.7f, 6.6f, 6.9f)}) {
             const Vec3 v = g.sample(acc, p);
             const Vec3d want = field(p.x, p.y);
             EXPECT_NEAR(v.x, want.x, 1e-4) << p.x << " " << p.y;

@@ -115,8 +115,8 @@ TEST_P(GalleryNoise, StatedPresetWithinRelMse1e2OfFourTimesTheSamples) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Shipped, GalleryNoise, ::testing::ValuesIn(shippedScenes()),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                             return info.param;
+                         [](const ::testing::TestParamInfo<std::string>& p) {
+                             return p.param;
                          });
 
 }  // namespace

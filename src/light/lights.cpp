@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/sampling.h"
 #include "core/surface_epsilon.h"
+#include "light/spherical_rectangle.h"
 #include "spectrum/spectrum_sampling.h"
 
 namespace mirage {
@@ -244,19 +245,35 @@ public:
         mL = normalizedPowerSpectrum(c).scaled(power / (kPi * mArea));
         mLambda = SpectrumSampler(normalizedPowerSpectrum(c));
     }
+    // A rectangle seen from p is sampled uniformly in solid angle (light/spherical_rectangle.h):
+    // Li = L Ω, bounded near the light. A parallelogram, or a rectangle too small in p's sky
+    // for Ω to be resolved, uniformly over its area: pdf in solid angle d² / (A cosθ_l).
     bool sampleLi(const Vec3& p, float u1, float u2, const SampledWavelengths& w,
                   LightSample* out) const override {
-        // Uniform area sampling; pdf in solid angle = d² / (A cosθ_l).
-        Vec3 q = mCorner + mU * u1 + mV * u2;
-        Vec3 d = q - p;
-        float d2 = dot(d, d);
-        if (d2 <= 0.f) return false;
-        out->distance = std::sqrt(d2);
-        out->wi = d / out->distance;
-        float cosL = -dot(out->wi, mN);
-        if (cosL <= 0.f) return false;
-        out->Li = mL.sample(w) * (cosL * mArea / d2);
+        if (dot(p - mCorner, mN) <= 0.f) return false;  // behind the one-sided emitter
+        SphericalRectangle rect;
+        const bool solidAngle = bySolidAngle(p, &rect);
+        const Vec3 q = solidAngle ? rect.sample(u1, u2) : mCorner + mU * u1 + mV * u2;
+        if (!towards(p, q, out)) return false;
+        out->pdf = solidAngle ? float(1.0 / rect.solidAngle()) : areaPdf(*out);
+        out->Li = mL.sample(w) / out->pdf;
         out->distance *= 0.9999f;  // stop shadow rays just short of the emitter
+        return true;
+    }
+    bool hitLi(const Vec3& p, const Vec3& wi, const SampledWavelengths& w,
+               LightSample* out) const override {
+        const float facing = -dot(wi, mN), height = dot(p - mCorner, mN);
+        if (!(facing > 0.f && height > 0.f)) return false;
+        const Vec3 q = p + wi * (height / facing);
+        // Coordinates of q along the edges (dual basis: the quad may be a parallelogram).
+        const Vec3 cu = cross(mV, mN), cv = cross(mN, mU);
+        const float a = dot(q - mCorner, cu) / dot(mU, cu), b = dot(q - mCorner, cv) / dot(mV, cv);
+        if (!(a >= 0.f && a <= 1.f && b >= 0.f && b <= 1.f)) return false;
+        if (!towards(p, q, out)) return false;
+        SphericalRectangle rect;
+        out->pdf = bySolidAngle(p, &rect) ? float(1.0 / rect.solidAngle()) : areaPdf(*out);
+        out->Li = mL.sample(w);
+        out->distance *= 0.9999f;
         return true;
     }
     float emittedPower(const Bounds3&) const override { return mPower; }
@@ -283,6 +300,23 @@ public:
     const Spectrum* spectrum() const override { return &mL; }
 
 private:
+    bool bySolidAngle(const Vec3& p, SphericalRectangle* rect) const {
+        return rect->setup(p, mCorner, mU, mV) && rect->solidAngle() > 1e-4;
+    }
+    // Direction and distance from p to the point q on the quad; false from behind or on it.
+    bool towards(const Vec3& p, const Vec3& q, LightSample* out) const {
+        const Vec3 d = q - p;
+        const float d2 = dot(d, d);
+        if (!(d2 > 0.f)) return false;
+        out->distance = std::sqrt(d2);
+        out->wi = d / out->distance;
+        return -dot(out->wi, mN) > 0.f;
+    }
+    // Solid-angle pdf of a point drawn uniformly over the area: d² / (A cosθ_l).
+    float areaPdf(const LightSample& s) const {
+        return s.distance * s.distance / (mArea * -dot(s.wi, mN));
+    }
+
     Vec3 mCorner, mU, mV, mN;
     float mArea, mPower;
     Spectrum mL;  // W/m²/sr/nm

@@ -404,12 +404,21 @@ Vec3 Medium::phaseSample(const MediumPoint& mp, const Vec3& wi, float uc, float 
         if (uc * total < acc) { chosen = i; break; }
     }
     Vec3 wo = mPhases[chosen].sample(wi, u1, u2, nullptr);
-    float cosTheta = dot(wi, wo), mixPdf = 0.f;
-    for (int i = 0; i < mp.components; ++i)
-        mixPdf += mp.sigmaSComponent[i].average() / total * mPhases[i].eval(cosTheta);
+    const float mixPdf = phasePdf(mp, wi, wo);
     *pdf = mixPdf;
     *weight = mixPdf > 0.f ? phaseEval(mp, wi, wo) / mixPdf : SampledSpectrum(0.f);
     return wo;
+}
+
+float Medium::phasePdf(const MediumPoint& mp, const Vec3& wi, const Vec3& wo) const {
+    const float cosTheta = dot(wi, wo);
+    if (mp.components == 1) return mPhases[0].eval(cosTheta);
+    const float total = mp.sigmaS.average();
+    if (!(total > 0.f)) return 0.f;
+    float mixPdf = 0.f;
+    for (int i = 0; i < mp.components; ++i)
+        mixPdf += mp.sigmaSComponent[i].average() / total * mPhases[i].eval(cosTheta);
+    return mixPdf;
 }
 
 }  // namespace mirage

@@ -226,6 +226,8 @@ public:
     // per-wavelength weight p(λ)/pdf.
     Vec3 phaseSample(const MediumPoint& mp, const Vec3& wi, float uc, float u1, float u2,
                      SampledSpectrum* weight, float* pdf) const;
+    // The pdf phaseSample draws wo with (1/sr): the mixture of lobes by mean σs,c.
+    float phasePdf(const MediumPoint& mp, const Vec3& wi, const Vec3& wo) const;
 
 private:
     void resolveSlots();

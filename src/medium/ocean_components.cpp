@@ -41,7 +41,7 @@ void makeChlorophyll(MediumComponent* c, float g) {
 
 float case1CdomAbsorption440(float chl) {
     const float aw = ocean::waterAbsorption()(440.f);
-    const float ap = ocean::bricaudA()(440.f) * std::pow(chl, 1.f - ocean::bricaudB()(440.f));
+    const float ap = kCase1ParticleA440 * std::pow(chl, kCase1ParticleExponent);
     return kCase1CdomFraction * (aw + ap);
 }
 
@@ -63,8 +63,8 @@ void applyCase1Cdom(ShaderDesc* shader) {
         particle.kind = ComponentKind::Chlorophyll;
         particle.grid = chl->grid;
         particle.concentration = chl->concentration;
-        particle.sigmaA = comps[i].sigmaA.scaled(kCase1CdomFraction * ocean::bricaudA()(440.f));
-        particle.sigmaAExponent = Spectrum(1.f - ocean::bricaudB()(440.f));
+        particle.sigmaA = comps[i].sigmaA.scaled(kCase1CdomFraction * kCase1ParticleA440);
+        particle.sigmaAExponent = Spectrum(kCase1ParticleExponent);
         particle.sigmaS = Spectrum(0.f);
         particle.sigmaSExponent = 1.f;
         particle.covariesWith.clear();

@@ -10,28 +10,61 @@ float shadowLength(const Vec3& target, float distance) {
     return std::isfinite(distance) ? distance - 4.f * surfaceEpsilon(target) : distance;
 }
 
+// Power heuristic (Veach 1997, §9.2.1, β = 2): the weight of a strategy with pdf `a` against
+// one with pdf `b` for the same direction.
+float powerHeuristic(float a, float b) {
+    const float a2 = a * a, b2 = a2 + b * b;
+    return b2 > 0.f ? a2 / b2 : 0.f;
+}
+
 }  // namespace
 
+// Light arriving at a medium point, by next-event estimation. A light a direction can hit (the
+// quad) is sampled twice, by the light and by the phase function, the two combined by
+// multiple importance sampling (Veach 1997): in a strongly forward medium (marine particles,
+// HG g = 0.92, p up to 26/sr against a mean of 1/4π) the light's own samples alone score rare
+// directions along the lobe ~300 times the mean, the speckles of a lit water box; phase
+// samples take those directions at the lobe's own density. Both are shadow rays with the same
+// transmittance estimate, so the sum stays an unbiased estimate of ∫ T p L dω.
 SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, const Vec3& wo,
                                   Sampler& sampler, ThreadState& ts) {
     SampledSpectrum L(0.f);
     const Medium& m = ts.tracking.medium(c.medium);
+    const SampledWavelengths& w = ts.tracking.wavelengths();
     SampledSpectrum* split = ts.startLightSplit();
+    // One shadow ray's transmittance times the radiance it carries; 0 when blocked.
+    auto shadowed = [&](const LightSample& ls) {
+        if (scene.hasSurfaces() &&
+            scene.geometry->occluded(c.p, ls.wi,
+                                     shadowLength(c.p + ls.wi * ls.distance, ls.distance)))
+            return SampledSpectrum(0.f);
+        Ray shadow{c.p, ls.wi, ls.distance};
+        return transmittance(ts.tracking, shadow, ls.distance, sampler) * ls.Li;
+    };
     for (size_t i = 0; i < scene.lights.size(); ++i) {
         const Light* light = scene.lights[i].get();
         float u1, u2;
         sampler.get2D(&u1, &u2);  // one pair of dimensions: stratified over the light
+        SampledSpectrum term(0.f);
         LightSample ls;
-        if (!light->sampleLi(c.p, u1, u2, ts.tracking.wavelengths(), &ls)) continue;
-        // The light travels along −wi into the point and leaves along wo.
-        SampledSpectrum phase = m.phaseEval(c.mp, -ls.wi, wo);
-        if (phase.isZero()) continue;
-        if (scene.hasSurfaces() &&
-            scene.geometry->occluded(c.p, ls.wi, shadowLength(c.p + ls.wi * ls.distance, ls.distance)))
-            continue;
-        Ray shadow{c.p, ls.wi, ls.distance};
-        SampledSpectrum T = transmittance(ts.tracking, shadow, ls.distance, sampler);
-        const SampledSpectrum term = T * phase * ls.Li;
+        if (light->sampleLi(c.p, u1, u2, w, &ls)) {
+            // The light travels along −wi into the point and leaves along wo.
+            const SampledSpectrum phase = m.phaseEval(c.mp, -ls.wi, wo);
+            const float mis = ls.pdf > 0.f ? powerHeuristic(ls.pdf, m.phasePdf(c.mp, -wo, ls.wi))
+                                           : 1.f;
+            if (!phase.isZero()) term += shadowed(ls) * phase * mis;
+        }
+        if (ls.pdf > 0.f) {
+            // The phase function's sample, for a light with an area (its samples have a pdf)
+            // that the point sees the emitting side of.
+            SampledSpectrum weight;
+            float pdf;
+            const float uc = sampler.get1D(), v1 = sampler.get1D(), v2 = sampler.get1D();
+            const Vec3 wi = m.phaseSample(c.mp, -wo, uc, v1, v2, &weight, &pdf);
+            LightSample hs;
+            if (pdf > 0.f && light->hitLi(c.p, wi, w, &hs))
+                term += shadowed(hs) * weight * powerHeuristic(pdf, hs.pdf);
+        }
         L += term;
         if (split) split[scene.lightGroupSlot(i)] += term;
     }

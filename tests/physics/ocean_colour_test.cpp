@@ -124,7 +124,7 @@ TEST(OceanColour, HighCdomDarkensTheBlueMost) {
 // ρ = log10(max(R(443), R(490), R(510)) / R(555)), bands of 10 nm about each centre. The
 // chlorophyll the model reads off Mirage's reflectance must be the one the water holds, within
 // ±0.2 in log10 (a factor 1.6; the model's own scatter about its data is about ±0.25). Measured
-// (2·10⁶ photons): 0.031 for 0.03 mg/m³, 0.046 for 0.05, 0.072 for 0.1. The fixed a_y(440) =
+// (2·10⁶ photons): 0.034 for 0.03 mg/m³, 0.051 for 0.05, 0.078 for 0.1. The fixed a_y(440) =
 // 0.02 1/m of before (now the Case-2 override) reads 0.135 for 0.03: too green, 4.5-fold.
 // (Above ~0.3 mg/m³ Mirage's particle lobe backscatters more than Morel & Maritorena's, the
 // known limit below, and the model reads half the chlorophyll.)

@@ -295,3 +295,43 @@ TEST(LightEmission, ZeroPowerLightsEmitNothing) {
     PhotonEmission e;
     EXPECT_FALSE(light->emitPhoton(kScene, s, &e));
 }
+
+// The render pass's quad-light samples: irradiance at a point facing a rectangle from over its
+// corner has the closed form E = L/2 [X/√(1+X²) atan(Y/√(1+X²)) + Y/√(1+Y²) atan(X/√(1+Y²))]
+// with X = a/h, Y = b/h (the view factor of a rectangle, e.g. Howell's catalogue, C-11). The
+// estimate Li cosθ must average to it at heights from 1 mm to 3 m; sampled in solid angle, Li
+// itself never exceeds L Ω ≤ 2π L, even 1 mm from the light (with area sampling it reached
+// L A cosθ/d², ~10⁵ L there: the speckles of a light inside a water-filled box).
+TEST(LightEmission, QuadLightSamplesAreBoundedAndAverageToTheViewFactor) {
+    const float a = 0.5f, b = 0.8f, power = 20.f;
+    // Emitting downwards (edge_u × edge_v = −y), as a ceiling light.
+    auto light = makeQuadLight(Vec3(0.f, 2.f, 0.f), Vec3(a, 0, 0), Vec3(0, 0, b), power,
+                               Spectrum(1.f));
+    SampledWavelengths w;
+    w.lambda.fill(550.f);
+    w.pdf.fill(1.f);
+    const double L = power / (kPi * a * b) / double(kLambdaMax - kLambdaMin);  // W/m²/sr/nm
+    for (float h : {0.001f, 0.05f, 0.5f, 3.f}) {
+        const Vec3 p(0.f, 2.f - h, 0.f);  // under the corner
+        const double X = a / h, Y = b / h, sx = std::sqrt(1 + X * X), sy = std::sqrt(1 + Y * Y);
+        const double E = 0.5 * L * (X / sx * std::atan(Y / sx) + Y / sy * std::atan(X / sy));
+        Sampler s(9, 0, 0);
+        std::vector<double> est;
+        double maxLi = 0;
+        for (int i = 0; i < kN; ++i) {
+            float u1, u2;
+            s.get2D(&u1, &u2);
+            LightSample ls;
+            if (!light->sampleLi(p, u1, u2, w, &ls)) {
+                est.push_back(0.0);
+                continue;
+            }
+            maxLi = std::max(maxLi, double(ls.Li[0]));
+            est.push_back(double(ls.Li[0]) * std::max(0.f, ls.wi.y));
+        }
+        const Moment m = moment(est);
+        EXPECT_NEAR(m.mean, E, 4 * m.stderr_ + 1e-4 * E) << "h = " << h;
+        EXPECT_LE(maxLi, 2 * kPi * L * 1.001) << "h = " << h;
+        EXPECT_LT(m.stderr_, 0.01 * E) << "h = " << h;
+    }
+}

@@ -2,11 +2,13 @@
 // the errors for keys a kind does not take.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <map>
 
 #include "core/error.h"
 #include "film/color.h"
+#include "medium/ocean_components.h"
 #include "scene/scene.h"
 #include "scene/shader_loader.h"
 #include "test_support.h"
@@ -88,12 +90,12 @@ TEST(OceanShader, InfoReportsSpectralTransportAndFluorescence) {
     // "Model only what a scene requires": the ocean turns on spectral coefficients (its kinds)
     // and fluorescence (its Γ); smoke turns on neither.
     std::string dir = test::tempDir(), out;
-    ASSERT_EQ(0, test::runMirage("make-asset fog-sphere -o '" + dir +
-                                     "/fog.vdb' --resolution 16",
-                                 &out))
+    ASSERT_EQ(
+        0, test::runMirage("make-asset fog-sphere -o '" + dir + "/fog.vdb' --resolution 16", &out))
         << out;
     auto physics = [&](const std::string& volume) {
-        std::ofstream(dir + "/s.toml") << "[[volume]]\nfile = \"fog.vdb\"\n" << volume
+        std::ofstream(dir + "/s.toml") << "[[volume]]\nfile = \"fog.vdb\"\n"
+                                       << volume
                                        << "\n[[light]]\ntype = \"distant\"\n"
                                           "direction = [0, -1, 0]\nirradiance = 100.0\n";
         ColorPipeline color;
@@ -112,4 +114,35 @@ TEST(OceanShader, InfoReportsSpectralTransportAndFluorescence) {
     auto smoke = physics("shader = \"smoke\"\n");
     EXPECT_FALSE(smoke["spectral coefficients"].active);
     EXPECT_FALSE(smoke["fluorescence"].active);
+}
+
+// Case-1 water's yellow substance follows the chlorophyll as in Morel & Maritorena (2001):
+// a_y(440) = 0.2 [a_w(440) + 0.06 Chl^0.65], a_w(440) = 0.00635 1/m (Pope & Fry 1997), slope
+// 0.014 1/nm. The loader's expansion of `covaries_with` (a constant term and a power law of the
+// chlorophyll) must add up to the published closed form at every concentration.
+TEST(OceanShader, Case1CdomFollowsMorelAndMaritorena) {
+    ShaderDesc s = loadShader("sea_water", "");
+    applyCase1Cdom(&s);
+    const MediumComponent *constant = nullptr, *power = nullptr, *chl = nullptr;
+    for (const auto& c : s.components) {
+        if (c.name == "cdom") constant = &c;
+        if (c.name == "cdom_chl") power = &c;
+        if (c.name == "chlorophyll") chl = &c;
+    }
+    ASSERT_TRUE(constant && power && chl);
+    EXPECT_EQ(power->grid, chl->grid);
+    for (float c : {0.03f, 0.1f, 1.f, 5.f}) {
+        const double published = 0.2 * (0.00635 + 0.06 * std::pow(c, 0.65));
+        for (float l : {440.f, 540.f}) {
+            const double ay = constant->concentration * constant->sigmaA(l) +
+                              power->sigmaA(l) * std::pow(c, power->sigmaAExponent(l));
+            EXPECT_NEAR(ay, published * std::exp(-0.014 * (l - 440.f)), 1e-3 * published)
+                << c << " mg/m³ at " << l << " nm";
+        }
+        EXPECT_NEAR(case1CdomAbsorption440(c), published, 1e-3 * published);
+    }
+    // Printed in the docs: 0.0025 1/m at 0.03 mg/m³, 0.0133 at 1, 0.035 at 5.
+    EXPECT_NEAR(case1CdomAbsorption440(0.03f), 0.0025, 5e-5);
+    EXPECT_NEAR(case1CdomAbsorption440(1.f), 0.0133, 5e-5);
+    EXPECT_NEAR(case1CdomAbsorption440(5.f), 0.0354, 5e-5);
 }

@@ -1,11 +1,14 @@
 // `mirage info`: what a VDB file holds, or what a scene loads and which physics it switches on.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
 #include "app/commands.h"
+#include "core/text.h"
 #include "film/color.h"
+#include "film/cryptomatte.h"
 #include "photon/medium_emitter.h"
 #include "scene/scene.h"
 #include "volume/vdb_file.h"
@@ -38,6 +41,47 @@ void printGrids(const std::string& file) {
                     formatBytes(g.memoryBytes).c_str());
         std::printf("        transform %s\n", g.transform.c_str());
     }
+}
+
+// Light `i`'s group, as the lightgroup_* passes name it ("" when no light has a group).
+std::string lightGroupOf(const RenderScene& scene, size_t i) {
+    if (scene.lightGroups.empty()) return "";
+    return scene.lightGroupNames()[size_t(scene.lightGroupSlot(i) - 1)];
+}
+
+// What the render writes beside the beauty: the passes and light groups, holdouts and deep
+// output (docs/aovs.md). A scene pays only for what it asks for, so each says whether it is on.
+void printOutput(const Scene& scene) {
+    const RenderSettings& s = scene.settings;
+    std::printf("output: %s (%s, %s)\n", scene.output.path.c_str(),
+                scene.output.halfFloat ? "half float" : "float",
+                scene.output.multipart ? "one part per pass" : "one part");
+    std::printf("  passes: %s\n", s.aovs.empty()
+                                      ? "none (the beauty alone; [output] aovs or --aov adds them)"
+                                      : joinList(s.aovs).c_str());
+    if (!scene.render.lightGroups.empty())
+        std::printf("  light groups: %s, and emission (lightgroup_*)\n",
+                    joinList(scene.render.lightGroupNames()).c_str());
+    for (const char* kind : {"volume", "shape"}) {
+        const std::string pass = cryptomattePass(kind);
+        if (std::find(s.aovs.begin(), s.aovs.end(), pass) == s.aovs.end()) continue;
+        const CryptoObjects& o = scene.render.cryptoObjects;
+        std::printf("  cryptomatte: layers %s00–%02d, %d ranks, of the %ss %s\n", pass.c_str(),
+                    kCryptomatteRanks / 2 - 1, kCryptomatteRanks, kind,
+                    joinList(std::string(kind) == "volume" ? o.volumes : o.shapes).c_str());
+    }
+    std::vector<std::string> holdouts;
+    for (size_t i = 0; i < scene.render.media.size(); ++i)
+        if (scene.render.media[i]->holdout()) holdouts.push_back("volume " + std::to_string(i));
+    const GeometryScene* g = scene.render.geometry.get();
+    for (size_t i = 0; g && i < g->shapeCount(); ++i)
+        if (g->shape(int(i)).holdout) holdouts.push_back("shape " + std::to_string(i));
+    std::printf("  holdouts: %s\n", holdouts.empty() ? "none" : joinList(holdouts).c_str());
+    if (s.deep.path.empty())
+        std::printf("  deep: off ([output] deep or --deep writes a deep EXR)\n");
+    else
+        std::printf("  deep: %s (merged within alpha %g, colour %g)\n", s.deep.path.c_str(),
+                    double(s.deep.alphaTolerance), double(s.deep.colorTolerance));
 }
 
 }  // namespace
@@ -108,7 +152,11 @@ int runInfo(const InfoOptions& o) {
                     m.majorant().res(1), m.majorant().res(2), m.majorant().maxValue());
     }
     std::printf("lights:\n");
-    for (const auto& l : scene.render.lights) std::printf("  %s\n", l->describe().c_str());
+    for (size_t i = 0; i < scene.render.lights.size(); ++i) {
+        const std::string group = lightGroupOf(scene.render, i);
+        std::printf("  %s%s\n", scene.render.lights[i]->describe().c_str(),
+                    group.empty() ? "" : ("; light group '" + group + "'").c_str());
+    }
     if (scene.render.lights.empty()) std::printf("  (none)\n");
     const CameraDesc& c = scene.render.camera;
     std::printf("camera: position (%g, %g, %g), look_at (%g, %g, %g), fov %g°\n", c.position.x,
@@ -133,6 +181,7 @@ int runInfo(const InfoOptions& o) {
     std::printf("integrator: %s\n", scene.integratorWhy.empty()
                                         ? "named by [render] integrator or --set"
                                         : scene.integratorWhy.c_str());
+    printOutput(scene);
     std::printf("physics:\n");
     for (const auto& t : scene.physics())
         std::printf("  [%s] %-22s %s\n", t.active ? "on " : "off", t.name.c_str(), t.why.c_str());

@@ -357,7 +357,7 @@ ExrOptions outputExr(RenderSession& rs, const FrameJob& job, RenderedFrame& rend
     if (!scene.output.colorSpace.empty() && scene.output.colorSpace != rs.color.workingSpace()) {
         rs.color.convert(rendered.image.rgba, 4, scene.output.colorSpace);
         for (ImageLayer& layer : rendered.image.layers)
-            if (layer.channels.size() == 3)
+            if (layer.channels.size() == 3 && layer.convertColor)
                 rs.color.convert(layer.pixels, 3, scene.output.colorSpace);
         exr.colorSpace = scene.output.colorSpace;
         exr.chromaticities = outputChromaticities(rs.o.ocioConfig, scene.output.colorSpace);

@@ -80,7 +80,8 @@ Command addRenderCommand(CLI::App& app) {
                        "Render pass beside the beauty, as EXR layer NAME (repeatable; adds to "
                        "[output] aovs): emission, volume_direct, volume_indirect, surface_direct, "
                        "surface_indirect, caustic, lightgroup_emission, lightgroup_<group>, "
-                       "alpha, depth, albedo, transmittance (docs/aovs.md)");
+                       "alpha, depth, albedo, transmittance, variance, and the Cryptomattes "
+                       "crypto_volume, crypto_shape (docs/aovs.md)");
     render->add_flag("-q,--quiet", o->quiet, "No progress output");
     render->add_option("--ocio", o->ocioConfig, "OCIO config file (default: $OCIO, else built-in)");
     render->add_flag("--resume", o->resume,

@@ -8,11 +8,14 @@
 
 #include "film/film.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
 #include "core/error.h"
 #include "film/color.h"
+#include "film/cryptomatte.h"
+#include "film/film_error.h"
 #include "spectrum/cie.h"
 
 namespace mirage {
@@ -60,14 +63,16 @@ bool Film::addSample(int x, int y, const SampledSpectrum& L, const SampledWavele
     }
     p.alpha += alpha;
     ++p.samples;
-    if (aov && !mAovs.empty()) addAovs(size_t(y) * mWidth + x, *aov, w);
+    if (aov && !mAovs.empty()) addAovs(size_t(y) * mWidth + x, *aov, w, xyz);
     return true;
 }
 
 // The radiance passes go through spectrumToXyz exactly as the beauty does (a linear map), so
 // Σ passes = beauty up to rounding. Albedo and transmittance are ratios: their XYZ is that of
-// the spectrum as a radiance, mapped back to ratios in develop().
-void Film::addAovs(size_t pixel, const AovSample& aov, const SampledWavelengths& w) {
+// the spectrum as a radiance, mapped back to ratios in develop(). The variance sums the
+// products of the sample's XYZ (the beauty's `xyz`) that Pixel::xyzSq does not keep.
+void Film::addAovs(size_t pixel, const AovSample& aov, const SampledWavelengths& w,
+                   const Vec3& xyz) {
     double* sums = mAovSums.data() + pixel * size_t(mAovs.stride());
     auto add3 = [&](int offset, const Vec3& v) {
         for (int c = 0; c < 3; ++c) sums[offset + c] += v[c];
@@ -78,7 +83,8 @@ void Film::addAovs(size_t pixel, const AovSample& aov, const SampledWavelengths&
                                       aov.pathXyz[size_t(pass.index)]);
                 break;
             case AovKind::LightGroup:
-                add3(pass.offset, spectrumToXyz(aov.group[size_t(pass.index)], w));
+                add3(pass.offset, spectrumToXyz(aov.group[size_t(pass.index)], w) +
+                                      aov.groupXyz[size_t(pass.index)]);
                 break;
             case AovKind::Depth:
                 if (std::isfinite(aov.depth)) {
@@ -92,10 +98,46 @@ void Film::addAovs(size_t pixel, const AovSample& aov, const SampledWavelengths&
             case AovKind::Transmittance:
                 add3(pass.offset, spectrumToXyz(aov.transmittance, w));
                 break;
+            case AovKind::Variance:
+                sums[pass.offset + 0] += double(xyz.x) * double(xyz.y);
+                sums[pass.offset + 1] += double(xyz.x) * double(xyz.z);
+                sums[pass.offset + 2] += double(xyz.y) * double(xyz.z);
+                break;
+            case AovKind::Cryptomatte: {
+                const std::vector<float>& c =
+                    pass.index == 0 ? aov.volumeCoverage : aov.shapeCoverage;
+                for (size_t i = 0; i < c.size(); ++i) sums[pass.offset + int(i)] += c[i];
+                break;
+            }
             case AovKind::Alpha:
                 break;
         }
 }
+
+namespace {
+
+// The variance of a pixel's mean in each working-space channel r = Σ_c M_rc X_c: the quadratic
+// form Σ_a Σ_b M_ra M_rb Cov(X̄_a, X̄_b) of the XYZ means' covariance (film_error.h), the
+// squares from the beauty's sums and the products XY, XZ, YZ from the pass's.
+Vec3d varianceOfMeanRgb(const Film::Pixel& p, const double* products, const Mat3& toWorking) {
+    double cov[3][3];
+    for (int a = 0; a < 3; ++a) cov[a][a] = varianceOfMean(p, a);
+    const int pairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+    for (int k = 0; k < 3; ++k) {
+        const int a = pairs[k][0], b = pairs[k][1];
+        cov[a][b] = cov[b][a] = covarianceOfMean(p.xyz[a], p.xyz[b], products[k], p.samples);
+    }
+    double v[3];
+    for (int r = 0; r < 3; ++r) {
+        v[r] = 0;
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) v[r] += toWorking(r, a) * toWorking(r, b) * cov[a][b];
+        v[r] = std::max(0.0, v[r]);  // rounding, for a pixel whose samples agree
+    }
+    return Vec3d(v[0], v[1], v[2]);
+}
+
+}  // namespace
 
 uint64_t Film::nonFiniteSamples() const {
     uint64_t n = 0;
@@ -120,7 +162,7 @@ Image Film::develop(const ColorPipeline& color) const {
         out[2] = float(rgb.z);
         out[3] = float(p.alpha * inv);
     }
-    image.layers = developAovs(toWorking);
+    image.layers = developAovs(toWorking, &image.attributes);
     return image;
 }
 
@@ -128,13 +170,19 @@ Image Film::develop(const ColorPipeline& color) const {
 // are divided by the working-space colour of an equal-energy spectrum (XYZ = 1, 1, 1 for CIE
 // 1931), so that a ratio of 1 at every wavelength is (1, 1, 1). Depth is the mean of the
 // samples that reached 50 % opacity, ∞ where none did.
-std::vector<ImageLayer> Film::developAovs(const Mat3& toWorking) const {
+std::vector<ImageLayer> Film::developAovs(
+    const Mat3& toWorking, std::vector<std::pair<std::string, std::string>>* attributes) const {
     std::vector<ImageLayer> layers;
     const Vec3d unit = toWorking.apply(Vec3d(1.0, 1.0, 1.0));
     for (const AovPass& pass : mAovs.passes()) {
+        if (pass.kind == AovKind::Cryptomatte) {
+            developCryptomatte(pass, &layers, attributes);
+            continue;
+        }
         ImageLayer layer;
         layer.name = pass.name;
         const bool ratio = pass.kind == AovKind::Albedo || pass.kind == AovKind::Transmittance;
+        layer.convertColor = pass.kind != AovKind::Variance;
         if (pass.kind == AovKind::Alpha)
             layer.channels = {"A"};
         else if (pass.kind == AovKind::Depth)
@@ -157,6 +205,13 @@ std::vector<ImageLayer> Film::developAovs(const Mat3& toWorking) const {
                 out[0] = float(p.alpha * inv);
                 continue;
             }
+            if (pass.kind == AovKind::Variance) {
+                const Vec3d v = varianceOfMeanRgb(p, sums, toWorking);
+                out[0] = float(v.x);
+                out[1] = float(v.y);
+                out[2] = float(v.z);
+                continue;
+            }
             Vec3d rgb = toWorking.apply(Vec3d(sums[0] * inv, sums[1] * inv, sums[2] * inv));
             if (ratio) rgb = Vec3d(rgb.x / unit.x, rgb.y / unit.y, rgb.z / unit.z);
             out[0] = float(rgb.x);
@@ -166,6 +221,25 @@ std::vector<ImageLayer> Film::developAovs(const Mat3& toWorking) const {
         layers.push_back(std::move(layer));
     }
     return layers;
+}
+
+// A Cryptomatte's three layers (ranks 0–5) from each pixel's mean coverage per object, and its
+// header attributes.
+void Film::developCryptomatte(const AovPass& pass, std::vector<ImageLayer>* layers,
+                              std::vector<std::pair<std::string, std::string>>* attributes) const {
+    const CryptoObjects& o = mAovs.cryptoObjects();
+    const std::vector<std::string>& objects = pass.index == 0 ? o.volumes : o.shapes;
+    std::vector<float> coverage(mPixels.size() * objects.size(), 0.f);
+    for (size_t i = 0; i < mPixels.size(); ++i) {
+        if (mPixels[i].samples == 0) continue;
+        const double inv = 1.0 / double(mPixels[i].samples);
+        const double* sums = mAovSums.data() + i * size_t(mAovs.stride()) + pass.offset;
+        for (size_t j = 0; j < objects.size(); ++j)
+            coverage[i * objects.size() + j] = float(sums[j] * inv);
+    }
+    for (ImageLayer& l : cryptomatteLayers(pass.name, objects, coverage, mPixels.size()))
+        layers->push_back(std::move(l));
+    for (auto& a : cryptomatteAttributes(pass.name, objects)) attributes->push_back(std::move(a));
 }
 
 }  // namespace mirage

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/math.h"
@@ -22,6 +23,10 @@ struct ImageLayer {
     std::string name;
     std::vector<std::string> channels;  // "R", "G", "B"; "A"; "Z"
     std::vector<float> pixels;          // channels.size() floats per pixel
+    // Whether an output colour space converts its R G B like the beauty's (not a variance).
+    bool convertColor = true;
+    // Written as 32-bit float even in a half-float EXR (Cryptomatte's IDs are float32 bits).
+    bool fullFloat = false;
 };
 
 // An RGBA float image, interleaved, in a named colour space, with its render passes.
@@ -29,6 +34,8 @@ struct Image {
     int width = 0, height = 0;
     std::vector<float> rgba;  // 4 floats per pixel, row-major from the top-left
     std::vector<ImageLayer> layers;  // the AOVs, in the order they were asked for
+    // Header attributes the layers need, written as named (Cryptomatte's manifest).
+    std::vector<std::pair<std::string, std::string>> attributes;
     float* pixel(int x, int y) { return &rgba[(size_t(y) * width + x) * 4]; }
     const float* pixel(int x, int y) const { return &rgba[(size_t(y) * width + x) * 4]; }
 };
@@ -82,8 +89,11 @@ public:
     }
 
 private:
-    void addAovs(size_t pixel, const AovSample& aov, const SampledWavelengths& w);
-    std::vector<ImageLayer> developAovs(const Mat3& toWorking) const;
+    void addAovs(size_t pixel, const AovSample& aov, const SampledWavelengths& w, const Vec3& xyz);
+    std::vector<ImageLayer> developAovs(
+        const Mat3& toWorking, std::vector<std::pair<std::string, std::string>>* attributes) const;
+    void developCryptomatte(const AovPass& pass, std::vector<ImageLayer>* layers,
+                            std::vector<std::pair<std::string, std::string>>* attributes) const;
 
     int mWidth, mHeight;
     std::vector<Pixel> mPixels;

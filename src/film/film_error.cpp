@@ -16,13 +16,16 @@ bool covered(const Film::Pixel& p) {
 
 }  // namespace
 
+double covarianceOfMean(double sumA, double sumB, double sumAB, uint32_t samples) {
+    if (samples < 2) return 0.0;
+    const double n = double(samples);
+    const double a = sumA / n, b = sumB / n;
+    return (sumAB - n * a * b) / (n - 1.0) / n;
+}
+
 double varianceOfMean(const Film::Pixel& p, int c) {
-    if (p.samples < 2) return 0.0;
-    const double n = double(p.samples);
-    const double m = p.xyz[c] / n;
     // Rounding can leave Σx² − n m² a little below 0 for a constant pixel.
-    const double s2 = std::max(0.0, (p.xyzSq[c] - n * m * m) / (n - 1.0));
-    return s2 / n;
+    return std::max(0.0, covarianceOfMean(p.xyz[c], p.xyz[c], p.xyzSq[c], p.samples));
 }
 
 double FilmError::relError() const { return std::sqrt(relMse); }

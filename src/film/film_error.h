@@ -15,6 +15,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "film/film.h"
@@ -23,6 +24,9 @@ namespace mirage {
 
 // Variance of the mean of channel c (0 X, 1 Y, 2 Z) of a pixel; 0 with fewer than 2 samples.
 double varianceOfMean(const Film::Pixel& p, int c);
+// The covariance of the means of two quantities a and b over n samples, from their sums Σa,
+// Σb and Σab: (Σab − n ā b̄)/(n − 1)/n, the unbiased sample covariance over n; 0 for n < 2.
+double covarianceOfMean(double sumA, double sumB, double sumAB, uint32_t n);
 
 struct FilmError {
     double relMse = 0;        // the estimated relMSE of the image (above)

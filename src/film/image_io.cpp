@@ -147,8 +147,9 @@ struct Channels {
         for (int c = 0; c < n; ++c)
             // Depth stays float: half keeps three digits, a compositor's Z needs more.
             add(layer.name + "." + layer.channels[c],
-                half && layer.channels[c] != "Z" ? OIIO::TypeHalf : OIIO::TypeFloat, layer.pixels,
-                n, c);
+                half && !layer.fullFloat && layer.channels[c] != "Z" ? OIIO::TypeHalf
+                                                                     : OIIO::TypeFloat,
+                layer.pixels, n, c);
     }
     // The part's pixels, channel-interleaved, half channels clamped to the finite half range.
     std::vector<float> interleave(size_t pixels) const {
@@ -173,6 +174,7 @@ struct Channels {
         spec.alpha_channel = a == names.end() ? -1 : int(a - names.begin());
         if (!partName.empty()) spec.attribute("name", partName);
         describeExr(options, &spec);
+        for (const auto& [key, value] : image.attributes) spec.attribute(key, value);
         return spec;
     }
 };

@@ -171,6 +171,9 @@ void writePartialFilm(const std::string& path, const Film& film, int tileSize,
     if (!film.aovs().empty()) {
         spec.attribute("mirage:aovs", joinList(film.aovs().names(), ","));
         spec.attribute("mirage:light_groups", joinList(film.aovs().lightGroups(), ","));
+        // Cryptomatte's object names (letters, digits and _ - . / :, so a comma list).
+        spec.attribute("mirage:crypto_volumes", joinList(film.aovs().cryptoObjects().volumes, ","));
+        spec.attribute("mirage:crypto_shapes", joinList(film.aovs().cryptoObjects().shapes, ","));
     }
 
     // Temporary file next to the target, then rename (atomic within one folder).
@@ -215,7 +218,9 @@ PartialFilm readPartialFilm(const std::string& path) {
     if (!result.metadata["aovs"].empty()) {
         try {
             layout = AovLayout(splitList(result.metadata["aovs"]),
-                               splitList(result.metadata["light_groups"]));
+                               splitList(result.metadata["light_groups"]),
+                               {splitList(result.metadata["crypto_volumes"]),
+                                splitList(result.metadata["crypto_shapes"])});
         } catch (const MirageError& e) {
             fail(path, std::string("partial file has a malformed mirage:aovs list: ") + e.what());
         }

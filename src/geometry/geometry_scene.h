@@ -14,6 +14,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/region.h"
@@ -53,6 +54,7 @@ struct ShapeInfo {
     // A holdout ([[shape]] holdout = true): it occludes and casts shadows, but the camera sees
     // it black with zero alpha, so that a render comps over a plate holding the real object.
     bool holdout = false;
+    std::string name;  // [[shape]] name: what Cryptomatte calls it (film/cryptomatte.h)
     Bounds3 bounds;
     size_t triangles = 0;
     // Sphere: centre and radius; quad: corner and edges (world).
@@ -85,6 +87,7 @@ public:
     const Material& material(int i) const { return mMaterials[size_t(i)]; }
     const Material& materialAt(const SurfaceHit& h) const { return material(h.material); }
     void setHoldout(int shape, bool holdout) { mShapes[size_t(shape)].holdout = holdout; }
+    void setName(int shape, std::string name) { mShapes[size_t(shape)].name = std::move(name); }
     bool holdout(const SurfaceHit& h) const { return mShapes[size_t(h.shape)].holdout; }
     Bounds3 bounds() const { return mBounds; }
     double buildSeconds() const { return mBuildSeconds; }

@@ -148,7 +148,8 @@ void BeamEstimator::query(const Ray& ray, float tMin, float tMax,
 }
 
 Vec3 BeamEstimator::estimate(const Ray& ray, float tMax, const RayOpticalDepth& depth,
-                             std::vector<BeamHit>* hits, const ViewWeight& view) const {
+                             std::vector<BeamHit>* hits, const ViewWeight& view,
+                             const PhotonGroups& groups) const {
     if (depth.empty()) return Vec3(0.f);
     // Not clipped to the span of `depth`: the σs ratio decides where a disc counts. One whose
     // photon projects where nothing scatters (outside every medium's box or region) adds
@@ -166,7 +167,9 @@ Vec3 BeamEstimator::estimate(const Ray& ray, float tMax, const RayOpticalDepth& 
         if (!(here > 0.f)) continue;
         float w = kernelValue(h.d2, mRadii[h.slot]) * depth.transmittance(h.t, ph.lambda) *
                   mPhotons->phase(h.slot, wo) * (here / atPhoton) * view(ph.lambda);
-        sum += mPhotons->fluxXyz(h.slot) * w;
+        const Vec3 term = mPhotons->fluxXyz(h.slot) * w;
+        sum += term;
+        groups.add(ph, term);
     }
     return sum;
 }

@@ -72,9 +72,11 @@ public:
     // L_b along `ray` over (0, tMax) as XYZ (W·m⁻²·sr⁻¹·nm⁻¹); `depth` has been marched along
     // the same ray and gives T at each photon's wavelength; `view` weights each photon by what
     // the camera path puts in front of this ray (view_weight.h). σs at the photons' projections
-    // is read through a ScatteringProbe of the calling thread, kept by the estimator.
+    // is read through a ScatteringProbe of the calling thread, kept by the estimator. `groups`,
+    // when active, receives the estimate split by light group (photon_groups.h).
     Vec3 estimate(const Ray& ray, float tMax, const RayOpticalDepth& depth,
-                  std::vector<BeamHit>* scratch, const ViewWeight& view = ViewWeight()) const;
+                  std::vector<BeamHit>* scratch, const ViewWeight& view = ViewWeight(),
+                  const PhotonGroups& groups = PhotonGroups()) const;
 
     // The 2D kernel at squared distance d2 from the centre of a disc of radius r (1/m²).
     float kernelValue(float d2, float r) const {

@@ -24,7 +24,12 @@ struct Photon {
     // The photon's time relative to the frame (s, motion blur): the medium it met was the one
     // at this time, and its event density is taken there (volume_estimate.h).
     float time = 0.f;
+    // The light the photon left (its index in the pass's lights), or kFromMedium for light
+    // emitted by a medium (fire): the light-group passes split the estimates by it
+    // (photon/photon_groups.h).
+    uint32_t light = kFromMedium;
 
+    static constexpr uint32_t kFromMedium = 0xffffffffu;
     bool reemitted() const { return lambdaIn > 0.f; }
 };
 

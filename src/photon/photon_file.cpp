@@ -15,7 +15,7 @@ namespace {
 
 constexpr char kMagic[8] = {'M', 'I', 'R', 'A', 'G', 'E', 'P', 'H'};
 constexpr size_t kFingerprintBytes = 16;
-constexpr size_t kPhotonBytes = 10 * sizeof(float);
+constexpr size_t kPhotonBytes = 10 * sizeof(float) + sizeof(uint32_t);
 // Magic, version, frame, fingerprint, 3 counts, 5 u64 and 3 f64 figures.
 constexpr size_t kHeaderBytes = 8 + 4 + 4 + kFingerprintBytes + 3 * 8 + 5 * 8 + 3 * 8;
 
@@ -38,6 +38,7 @@ struct Writer {
             const float f[10] = {p.p.x,  p.p.y,    p.p.z,   p.wi.x,     p.wi.y,
                                  p.wi.z, p.lambda, p.power, p.lambdaIn, p.time};
             bytes.append(reinterpret_cast<const char*>(f), sizeof f);
+            put(p.light);
         }
     }
 };
@@ -64,6 +65,7 @@ struct Reader {
             p.power = f[7];
             p.lambdaIn = f[8];
             p.time = f[9];
+            p.light = get<uint32_t>();
         }
         return list;
     }

@@ -20,7 +20,8 @@
 
 namespace mirage {
 
-constexpr uint32_t kPhotonFileVersion = 1;
+// 2: every photon carries the light it left (Photon::light).
+constexpr uint32_t kPhotonFileVersion = 2;
 
 struct PhotonFileHeader {
     uint32_t version = kPhotonFileVersion;

@@ -64,6 +64,7 @@ private:
 struct PhotonPath {
     bool capped = false;
     bool fromMedium = false;  // emitted by an emissive medium
+    uint32_t light = Photon::kFromMedium;  // the light it left (Photon::light)
     double power = 0.0;       // W the photon left its source with
     bool nonFinite = false;  // a photon with non-finite power or position was dropped
 };
@@ -119,6 +120,8 @@ bool emitPhoton(const PhotonSources& sources, const LightChooser& chooser, float
             return false;
     } else if (!sources.lights[source]->emitPhoton(sources.bounds, sampler, &em)) {
         return false;
+    } else {
+        path->light = uint32_t(source);
     }
     const float power = photonPower * em.weight;
     if (!std::isfinite(power)) path->nonFinite = true;
@@ -168,13 +171,14 @@ FlightEvent flyPhoton(const PhotonPassSettings& settings, const GeometryScene* g
 }
 
 // Appends a photon to `list` when it is finite; false (and the path ends) when it is not.
-// Stores ph at the walk's time (motion blur; 0 for a still pass).
+// Stores ph at the walk's time (motion blur; 0 for a still pass), tagged with its light.
 bool storePhoton(Photon ph, const PhotonWalk& walk, PhotonList* list, PhotonPath* path) {
     if (!finitePhoton(ph)) {
         path->nonFinite = true;
         return false;
     }
     ph.time = walk.timeOffset();
+    ph.light = path->light;
     list->push_back(ph);
     return true;
 }

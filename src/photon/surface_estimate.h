@@ -15,6 +15,7 @@
 #pragma once
 
 #include "geometry/material.h"
+#include "photon/photon_groups.h"
 #include "photon/photon_map.h"
 
 namespace mirage {
@@ -31,10 +32,12 @@ public:
 
     // L_r at x towards wo (XYZ, W·m⁻²·sr⁻¹·nm⁻¹), each photon's term multiplied by
     // transmittance(λ_p) (the camera segment's attenuation at the photon's wavelength).
-    // `ng` is the geometric normal; `buffer` holds k entries, k ≥ 2.
+    // `ng` is the geometric normal; `buffer` holds k entries, k ≥ 2. `groups`, when active,
+    // receives the estimate split by light group (photon_groups.h).
     template <typename T>
     Vec3 estimate(const Vec3& x, const Vec3& ng, const Vec3& wo, const Material& material, int k,
-                  float maxRadius, PhotonNeighbour* buffer, T&& transmittance) const;
+                  float maxRadius, PhotonNeighbour* buffer, T&& transmittance,
+                  const PhotonGroups& groups = PhotonGroups()) const;
 
 private:
     PhotonMap mMap;
@@ -44,7 +47,8 @@ private:
 template <typename T>
 Vec3 SurfacePhotons::estimate(const Vec3& x, const Vec3& ng, const Vec3& wo,
                               const Material& material, int k, float maxRadius,
-                              PhotonNeighbour* buffer, T&& transmittance) const {
+                              PhotonNeighbour* buffer, T&& transmittance,
+                              const PhotonGroups& groups) const {
     if (mMap.empty() || material.specular()) return Vec3(0.f);
     int found = mMap.nearest(x, k, maxRadius, buffer);
     if (found == 0) return Vec3(0.f);
@@ -52,15 +56,18 @@ Vec3 SurfacePhotons::estimate(const Vec3& x, const Vec3& ng, const Vec3& wo,
     const float r2 = found == k ? buffer[0].d2 : maxRadius * maxRadius;
     if (!(r2 > 0.f)) return Vec3(0.f);
     const float planeTolerance = 0.25f * std::sqrt(r2);
+    const float scale = (found == k ? float(k - 1) / float(k) : 1.f) / (kPi * r2);
+    const PhotonGroups scaledGroups = groups.scaled(scale);
     Vec3 sum(0.f);
     for (int i = 0; i < found; ++i) {
         const Photon& ph = mMap[buffer[i].index];
         if (dot(ph.wi, n) >= 0.f) continue;
         if (std::abs(dot(ph.p - x, n)) > planeTolerance) continue;
         float f = material.albedo(ph.lambda) * kInvPi;
-        sum += fluxXyz(buffer[i].index) * (f * transmittance(ph.lambda));
+        const Vec3 term = fluxXyz(buffer[i].index) * (f * transmittance(ph.lambda));
+        sum += term;
+        scaledGroups.add(ph, term);
     }
-    float scale = (found == k ? float(k - 1) / float(k) : 1.f) / (kPi * r2);
     return sum * scale;
 }
 

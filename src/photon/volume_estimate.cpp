@@ -139,22 +139,27 @@ float VolumePhotons::phase(size_t slot, const Vec3& wo) const {
 namespace {
 
 // Σ_k weight(k) p_k fluxXyz_k / ((4/3) π r³) over the k nearest photons to x.
+// Each photon's term goes to its light group too (photon_groups.h).
 template <typename Weight>
 Vec3 gather(const VolumePhotons& photons, const Vec3& x, const Vec3& wo, int k, float maxRadius,
-            PhotonNeighbour* buffer, Weight&& weight) {
+            PhotonNeighbour* buffer, const PhotonGroups& groups, Weight&& weight) {
     int found = photons.map().nearest(x, k, maxRadius, buffer);
     if (found == 0) return Vec3(0.f);
     // Fewer than k photons: the search sphere was the whole maxRadius ball. k coincident
     // photons would give r = 0; the density there is not resolvable, so the ball is kept at a
     // thousandth of maxRadius.
     float r = found == k ? std::max(std::sqrt(buffer[0].d2), 1e-3f * maxRadius) : maxRadius;
+    const float unbias = found == k ? float(k - 1) / float(k) : 1.f;  // see volume_estimate.h
+    const float norm = unbias / ((4.f / 3.f) * kPi * r * r * r);
+    const PhotonGroups normGroups = groups.scaled(norm);
     Vec3 sum(0.f);
     for (int i = 0; i < found; ++i) {
         uint32_t slot = buffer[i].index;
-        sum += photons.fluxXyz(slot) * (weight(slot) * photons.phase(slot, wo));
+        const Vec3 term = photons.fluxXyz(slot) * (weight(slot) * photons.phase(slot, wo));
+        sum += term;
+        normGroups.add(photons.map()[slot], term);
     }
-    float unbias = found == k ? float(k - 1) / float(k) : 1.f;  // see volume_estimate.h
-    return sum * (unbias / ((4.f / 3.f) * kPi * r * r * r));
+    return sum * norm;
 }
 
 }  // namespace
@@ -162,17 +167,19 @@ Vec3 gather(const VolumePhotons& photons, const Vec3& x, const Vec3& wo, int k, 
 Vec3 pointEstimate(const VolumePhotons& photons, const Vec3& x, const Vec3& wo, int k,
                    float maxRadius, PhotonNeighbour* buffer) {
     MIRAGE_CHECK(k >= 2);
-    return gather(photons, x, wo, k, maxRadius, buffer, [](uint32_t) { return 1.f; });
+    return gather(photons, x, wo, k, maxRadius, buffer, PhotonGroups(),
+                  [](uint32_t) { return 1.f; });
 }
 
 Vec3 pointEstimateAlongRay(const VolumePhotons& photons, const Ray& ray,
                            const RayOpticalDepth& depth, int k, float maxRadius, float step,
                            float u, PhotonNeighbour* buffer, ScatteringProbe& probe,
-                           const ViewWeight& view) {
+                           const ViewWeight& view, const PhotonGroups& groups) {
     MIRAGE_CHECK(k >= 2);
     if (depth.empty() || photons.size() == 0 || !(step > 0.f)) return Vec3(0.f);
     probe.setTimeOffset(depth.timeOffset());  // σs along the ray at the ray's time
     const Vec3 wo = -ray.d;
+    const PhotonGroups stepGroups = groups.scaled(step);
     Vec3 sum(0.f);
     // Points beyond the last medium's exit are not taken: σs = 0 there, even if photons inside
     // are within reach of the search.
@@ -182,7 +189,7 @@ Vec3 pointEstimateAlongRay(const VolumePhotons& photons, const Ray& ray,
         Vec3 x = ray.at(t);
         float greySigmaS = probe.grey() ? probe.sigmaS(x, 550.f) : 0.f;
         if (probe.grey() && greySigmaS == 0.f) continue;  // nothing in-scatters here
-        sum += gather(photons, x, wo, k, maxRadius, buffer, [&](uint32_t slot) {
+        sum += gather(photons, x, wo, k, maxRadius, buffer, stepGroups, [&](uint32_t slot) {
             const Photon& p = photons.map()[slot];
             float atPhoton = photons.sigmaS(slot);
             if (!(atPhoton > 0.f)) return 0.f;

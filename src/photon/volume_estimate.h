@@ -19,9 +19,10 @@
 
 #include "medium/medium.h"
 #include "medium/phase.h"
-#include "transport/ray_optical_depth.h"
+#include "photon/photon_groups.h"
 #include "photon/photon_map.h"
 #include "photon/view_weight.h"
+#include "transport/ray_optical_depth.h"
 
 namespace mirage {
 
@@ -114,10 +115,12 @@ Vec3 pointEstimate(const VolumePhotons& photons, const Vec3& x, const Vec3& wo, 
 // thin smoke and empty space (measured +15 % on the mean of smoke1.vdb against volpath). A
 // re-emitted photon is weighted likewise by the ratio of re-emission densities, Σ Γ σa,c(λi)
 // at x over the same at x_p (a chlorophyll plume re-emits where its chlorophyll is).
-// `view` weights each photon by what the camera path puts in front of this ray (view_weight.h).
+// `view` weights each photon by what the camera path puts in front of this ray (view_weight.h);
+// `groups`, when active, receives the estimate split by light group (photon_groups.h).
 Vec3 pointEstimateAlongRay(const VolumePhotons& photons, const Ray& ray,
                            const RayOpticalDepth& depth, int k, float maxRadius, float step,
                            float u, PhotonNeighbour* buffer, ScatteringProbe& probe,
-                           const ViewWeight& view = ViewWeight());
+                           const ViewWeight& view = ViewWeight(),
+                           const PhotonGroups& groups = PhotonGroups());
 
 }  // namespace mirage

@@ -11,7 +11,9 @@
 // denoiser wants the first hit), with the albedo of their BSDF's diffuse part (0).
 //
 // For deep output (film/deep.h) the same walk says where the ray's coverage builds up: the
-// mean drop of T at each collision in a visible medium, and the T left at an opaque surface.
+// mean drop of T at each collision in a visible medium, and the T left at an opaque surface;
+// for Cryptomatte (film/cryptomatte.h) the same, per medium and per surface, which the renderer
+// scales to the beauty's alpha (AovSample::scaleCoverage).
 #pragma once
 
 #include "render/integrator.h"

@@ -72,7 +72,7 @@ public:
         // The sample's passes: each chord's go to a scratch first, weighted as its radiance.
         AovSample* const aov = ts.aov;
         std::optional<AovSample> chordAov;
-        if (aov) chordAov.emplace(int(aov->group.size()));
+        if (aov) chordAov.emplace(*aov);  // the same parts, reset per chord
         auto inner = [&](const Ray& r) {
             if (aov) {
                 chordAov->reset();

@@ -76,9 +76,8 @@ Film renderPasses(const RenderScene& scene, Integrator& integrator, const Render
     const PixelWindow win = renderWindow(s);
     MIRAGE_CHECK(settings.noiseThreshold <= 0 ||
                  (win.width() == s.width && win.height() == s.height));
-    PassState state(resumed
-                        ? *checkpoint->initial
-                        : Film(win.width(), win.height(), aovLayout(scene, s, integrator.info())));
+    PassState state(resumed ? *checkpoint->initial
+                            : Film(win.width(), win.height(), aovLayout(scene, s)));
     const double before = resumed ? checkpoint->secondsDone : 0.0;
     if (resumed) {
         state.passes = checkpoint->passesDone;

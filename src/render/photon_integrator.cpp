@@ -143,6 +143,7 @@ struct PhotonThreadState {
     ScatteringProbe probe;
     std::vector<BeamHit> hits;
     std::vector<PhotonNeighbour> neighbours;
+    std::vector<Vec3> groupXyz;  // one estimate's light groups (photon_groups.h)
     double estimateSeconds = 0;
     uint64_t estimates = 0;
 };
@@ -162,6 +163,9 @@ public:
                     "a [[volume]] with holdout = true needs the single or volpath "
                     "integrator: photon estimates do not tell media apart");
         mMedia = scene.mediaPointers();
+        mSlotOfLight.clear();
+        for (size_t i = 0; i < scene.lights.size(); ++i)
+            mSlotOfLight.push_back(scene.lightGroupSlot(i));
         mCurved = photonsCurve(mSettings.field.get(), scene.bounds());
         // Curved light: where paths curve there are no (straight) shadow rays, so the maps hold
         // the first interaction and the light arriving straight at diffuse surfaces too, and the
@@ -194,8 +198,9 @@ public:
         PhotonThreadState& pt = mThreads->local();
         auto t0 = Clock::now();
         pt.depth.march(ray, ray.tMax);
-        out.addXyz(volumeEstimate(ray, ray.tMax, u, pt, ts.photonView), LightPath::VolumeIndirect,
-                   kUnplaced);
+        const PhotonGroups groups = groupsOf(out, pt);
+        out.addXyz(volumeEstimate(ray, ray.tMax, u, pt, ts.photonView, groups),
+                   LightPath::VolumeIndirect, kUnplaced, groupParts(groups, pt));
         pt.estimateSeconds += secondsSince(t0);
         ++pt.estimates;
         return out;
@@ -313,14 +318,26 @@ private:
         return line;
     }
 
+    // An estimate's split by light group, into pt.groupXyz (zeroed): active when the render
+    // asks for light-group passes (the sample then carries a slot per group).
+    PhotonGroups groupsOf(const RadianceSample& out, PhotonThreadState& pt) const {
+        if (!out.aov || out.aov->groupXyz.empty()) return PhotonGroups();
+        pt.groupXyz.assign(out.aov->groupXyz.size(), Vec3(0.f));
+        return PhotonGroups(&mSlotOfLight, &pt.groupXyz);
+    }
+    static const std::vector<Vec3>* groupParts(const PhotonGroups& groups,
+                                               const PhotonThreadState& pt) {
+        return groups.active() ? &pt.groupXyz : nullptr;
+    }
+
     // The volume photons' in-scattered radiance along `ray` over (0, tEnd), XYZ: beam or point
     // estimate; pt.depth has been marched along the ray.
     Vec3 volumeEstimate(const Ray& ray, float tEnd, float u, PhotonThreadState& pt,
-                        const ViewWeight& view) const {
-        if (mBeam) return mBeam->estimate(ray, tEnd, pt.depth, &pt.hits, view);
+                        const ViewWeight& view, const PhotonGroups& groups) const {
+        if (mBeam) return mBeam->estimate(ray, tEnd, pt.depth, &pt.hits, view, groups);
         pt.neighbours.resize(size_t(mSettings.kOrDefault()));
         return pointEstimateAlongRay(*mPhotons, ray, pt.depth, mSettings.kOrDefault(), mMaxRadius,
-                                     mStep, u, pt.neighbours.data(), pt.probe, view);
+                                     mStep, u, pt.neighbours.data(), pt.probe, view, groups);
     }
 
     // The photon part with surfaces (see the top of the file), XYZ, into *out: the volume
@@ -341,9 +358,11 @@ private:
             std::optional<SurfaceHit> hit = scene.geometry->intersect(ray);
             const float tEnd = hit ? hit->t : ray.tMax;
             pt.depth.march(ray, tEnd);
-            if (volume)
-                out->addXyz(volumeEstimate(ray, tEnd, u, pt, view), LightPath::VolumeIndirect,
-                            kUnplaced);
+            if (volume) {
+                const PhotonGroups groups = groupsOf(*out, pt);
+                out->addXyz(volumeEstimate(ray, tEnd, u, pt, view, groups),
+                            LightPath::VolumeIndirect, kUnplaced, groupParts(groups, pt));
+            }
             if (!hit || scene.geometry->holdout(*hit)) break;  // a holdout: nothing behind
             const Material& mat = scene.geometry->materialAt(*hit);
             if (!mat.specular()) {
@@ -352,12 +371,14 @@ private:
                     return pt.depth.transmittance(hit->t, lambda) * view(lambda);
                 };
                 const Vec3 wo = -ray.d;
-                const Vec3 caustic = mCaustic->estimate(hit->p, hit->ng, wo, mat, kSurface,
-                                                        mMaxRadius, pt.neighbours.data(), T);
+                const PhotonGroups groups = groupsOf(*out, pt);
+                const Vec3 caustic =
+                    mCaustic->estimate(hit->p, hit->ng, wo, mat, kSurface, mMaxRadius,
+                                       pt.neighbours.data(), T, groups);
                 const Vec3 global = mGlobal->estimate(hit->p, hit->ng, wo, mat, kSurface,
-                                                      mMaxRadius, pt.neighbours.data(), T);
+                                                      mMaxRadius, pt.neighbours.data(), T, groups);
                 out->addXyz(caustic, LightPath::Caustic, global, LightPath::SurfaceIndirect,
-                            DeepAt{viewT + hit->t, true});
+                            DeepAt{viewT + hit->t, true}, groupParts(groups, pt));
                 break;
             }
             attenuateView(pt.depth, tEnd, &view);
@@ -403,6 +424,7 @@ private:
     int mPass = 0;             // the pass whose maps are built
     float mRadiusScale = 1.f;  // its disc radii over pass 0's
     std::vector<const Medium*> mMedia;
+    std::vector<int> mSlotOfLight;  // each light's group slot (Photon::light → film/aov.h)
     PhotonPassStats mPassStats;  // summed over passes
     std::unique_ptr<VolumePhotons> mPhotons;
     // Pass 0's volume map and beam radii (unscaled), the later passes' source of radii.

@@ -71,19 +71,23 @@ struct RadianceSample {
         for (size_t g = 0; g < aov->group.size(); ++g) aov->group[g] += beta * split[g];
     }
     // A photon estimate (XYZ); two of them at one surface, summed before they are added.
-    // Photons do not record the light they came from: the photon integrator has no light
-    // groups (the render refuses them, render/renderer.cpp).
-    void addXyz(const Vec3& c, LightPath p, DeepAt at) {
+    // `groups`: the estimate split by light group (photon/photon_groups.h), when the render
+    // asks for light groups (groupSlots() entries), else null.
+    void addXyz(const Vec3& c, LightPath p, DeepAt at, const std::vector<Vec3>* groups) {
         xyz += c;
         if (deep) deep->radiance.push_back({at, SampledSpectrum(0.f), c});
-        if (aov) aov->addPathXyz(c, p);
+        if (!aov) return;
+        aov->addPathXyz(c, p);
+        if (groups) aov->addGroupXyz(*groups);
     }
-    void addXyz(const Vec3& a, LightPath pa, const Vec3& b, LightPath pb, DeepAt at) {
+    void addXyz(const Vec3& a, LightPath pa, const Vec3& b, LightPath pb, DeepAt at,
+                const std::vector<Vec3>* groups) {
         xyz += a + b;
         if (deep) deep->radiance.push_back({at, SampledSpectrum(0.f), a + b});
         if (!aov) return;
         aov->addPathXyz(a, pa);
         aov->addPathXyz(b, pb);
+        if (groups) aov->addGroupXyz(*groups);
     }
     // The path's estimate from what it gathered (PathThroughput::estimate), for every part.
     void finish(const PathThroughput& path) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "film/aov.h"
 #include "geometry/geometry_scene.h"
 #include "light/light.h"
 #include "medium/medium.h"
@@ -23,6 +24,8 @@ struct RenderScene {
     // Light groups (the lightgroup_* passes, film/aov.h): their names, and each light's group
     // as an index into them. A light without a group (and every light of a scene that names
     // none) is in the group "default".
+    // What Cryptomatte calls the volumes and shapes ([[volume]] and [[shape]] name).
+    CryptoObjects cryptoObjects;
     std::vector<std::string> lightGroups;
     std::vector<int> lightGroupIndex;  // per light; empty: all in "default"
 

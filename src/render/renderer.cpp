@@ -33,7 +33,7 @@ uint64_t renderTile(const RenderScene& scene, const Integrator& integrator, cons
                     Film* film, DeepFilm* deepFilm) {
     const PixelWindow win = renderWindow(s);
     const AovLayout& layout = film->aovs();
-    AovSample aov(layout.groupSlots());
+    AovSample aov(layout);
     ts.aov = layout.empty() ? nullptr : &aov;
     ts.lightSplit.assign(size_t(layout.groupSlots()), SampledSpectrum(0.f));
     DeepSample deep;
@@ -73,6 +73,7 @@ uint64_t renderTile(const RenderScene& scene, const Integrator& integrator, cons
                 if (walkCameraRay) {
                     Sampler data(SamplerKind::Random, dataSeed, pixel, uint64_t(i));
                     cameraRayData(scene, ray, data, ts, ts.aov, ts.deep);
+                    if (layout.coverage()) aov.scaleCoverage(rs.alpha);
                 }
                 const bool kept =
                     film->addSample(x - win.x0, y - win.y0, rs.L, w, rs.alpha, rs.xyz, ts.aov);
@@ -90,16 +91,9 @@ uint64_t renderTile(const RenderScene& scene, const Integrator& integrator, cons
 
 }  // namespace
 
-AovLayout aovLayout(const RenderScene& scene, const RenderSettings& s, const IntegratorInfo& info) {
-    AovLayout layout(s.aovs, scene.lightGroupNames());
-    if (layout.groupSlots() > 0 && info.photonPass)
-        throw MirageError(
-            "light-group passes (lightgroup_*) need an integrator without a photon "
-            "pass: photons do not record which light they came from; the " +
-            info.name + " integrator has one (use single or volpath)");
-    return layout;
+AovLayout aovLayout(const RenderScene& scene, const RenderSettings& s) {
+    return AovLayout(s.aovs, scene.lightGroupNames(), scene.cryptoObjects);
 }
-
 Film render(const RenderScene& scene, Integrator& integrator, const RenderSettings& s,
             RenderStats* stats, TileCheckpoint* checkpoint, const PassSamples& pass,
             DeepFilm* deep) {
@@ -109,9 +103,9 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
     const int tiles = tileCount(s);
     Film film = checkpoint && checkpoint->initial
                     ? *checkpoint->initial
-                    : Film(win.width(), win.height(), aovLayout(scene, s, integrator.info()));
+                    : Film(win.width(), win.height(), aovLayout(scene, s));
     MIRAGE_CHECK(film.width() == win.width() && film.height() == win.height());
-    MIRAGE_CHECK(film.aovs().stride() == aovLayout(scene, s, integrator.info()).stride());
+    MIRAGE_CHECK(film.aovs().stride() == aovLayout(scene, s).stride());
     MIRAGE_CHECK(!pass.pixels || pass.pixels->size() == size_t(s.width) * size_t(s.height));
     // Deep pixels are numbered in the whole frame; the command refuses deep with a region.
     MIRAGE_CHECK(!deep || (win.width() == s.width && win.height() == s.height));

@@ -47,9 +47,9 @@ struct RenderSettings {
     DeepSettings deep;
 };
 
-// The passes `s` asks for, with the scene's light groups. Throws MirageError for an unknown
-// pass, and for light groups with an integrator whose photons do not record their light.
-AovLayout aovLayout(const RenderScene& scene, const RenderSettings& s, const IntegratorInfo& info);
+// The passes `s` asks for, with the scene's light groups (every integrator fills every pass).
+// Throws MirageError for an unknown or repeated pass.
+AovLayout aovLayout(const RenderScene& scene, const RenderSettings& s);
 
 struct RenderStats {
     double seconds = 0;

@@ -16,6 +16,7 @@
 
 #include "core/text.h"
 #include "film/color.h"
+#include "scene/output_loader.h"
 
 namespace mirage {
 
@@ -139,7 +140,9 @@ std::unique_ptr<GeometryScene> readGeometry(
         } else {
             t.fail("type", "unknown shape type '" + type + "'; expected mesh, sphere or quad");
         }
-        geometry->setHoldout(int(geometry->shapeCount()) - 1, t.getBool("holdout", false));
+        const int shape = int(geometry->shapeCount()) - 1;
+        geometry->setHoldout(shape, t.getBool("holdout", false));
+        geometry->setName(shape, readObjectName(t, "shape" + std::to_string(shape)));
         t.finish();
     }
     if (geometry->empty()) return nullptr;

@@ -38,7 +38,7 @@ void applyFrameSettings(Scene& scene, const std::string& input, const FrameSetti
         if (std::find(s.aovs.begin(), s.aovs.end(), name) == s.aovs.end()) s.aovs.push_back(name);
     if (!cli.aovs.empty()) {
         try {
-            AovLayout(s.aovs, scene.render.lightGroupNames());
+            AovLayout(s.aovs, scene.render.lightGroupNames(), scene.render.cryptoObjects);
         } catch (const MirageError& e) {
             throw MirageError(std::string("--aov: ") + e.what());
         }
@@ -116,7 +116,7 @@ RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
     if (scene.refraction)
         frame.integrator =
             makeCurvedCameraIntegrator(std::move(frame.integrator), scene.refraction);
-    aovLayout(scene.render, s, frame.integrator->info());  // its errors before the photon pass
+    aovLayout(scene.render, s);  // its errors before the photon pass
     if (!s.deep.path.empty()) {
         // A curved camera ray is many chords, each its own straight ray for the integrator.
         if (scene.refraction)

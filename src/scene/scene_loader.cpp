@@ -267,6 +267,7 @@ static void readSettings(const TableReader& top,
         scene.output.fps = o->getNumber("fps", 24.0, 1e-3, 1e6);
         // Checked once the lights (and their groups) are known: checkAovs.
         scene.settings.aovs = o->getStrings("aovs");
+        readCryptomatte(*o, &scene);
         scene.output.multipart = o->getBool("multipart", false);
         readDeepSettings(*o, resolve, &scene);
         o->finish();
@@ -421,6 +422,8 @@ void readVolume(const TableReader& v, const Resolve& resolve, const std::string&
     if (!boxed)
         rec.velocity = readVelocity(v, rec.file, fileGridNames(rec.file), scene->shutter.blurs());
     const bool holdout = v.getBool("holdout", false);
+    scene->render.cryptoObjects.volumes.push_back(
+        readObjectName(v, "volume" + std::to_string(scene->render.media.size())));
     v.finish();
     if (boxed) {
         scene->render.media.push_back(std::make_unique<Medium>(shader, box, xf, rec.densityScale));
@@ -492,8 +495,10 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
         scene.shutter = readShutter(*c);
     for (const auto& v : top.tables("volume")) readVolume(v, resolve, dir, options, &scene);
     readLights(top, color, resolve, &scene.render);
-    checkAovs(top, scene);
     scene.render.geometry = readGeometry(top, resolve, scene.render.media.size(), color);
+    for (size_t i = 0; scene.render.geometry && i < scene.render.geometry->shapeCount(); ++i)
+        scene.render.cryptoObjects.shapes.push_back(scene.render.geometry->shape(int(i)).name);
+    checkAovs(top, scene);
     confineInteriorMedia(&scene);
     scene.render.camera = readCamera(top, options.frame, scene);
     setShutterSeconds(&scene);

@@ -116,11 +116,18 @@ TEST(Aov, LightPathPassesSumToTheBeautyWithEveryIntegrator) {
     }
 }
 
+// With photons too: each photon carries the light it left, and the photon estimates split by
+// it (photon/photon_groups.h). `auto` picks the photon integrator for this scene's fire.
 TEST(Aov, LightGroupsSumToTheBeauty) {
-    for (const char* integrator : {"single", "volpath"}) {
+    for (const char* integrator : {"single", "volpath", "photon", "auto"}) {
         const Image image = renderAovScene(integrator, kGroupAovs);
         expectSumToBeauty(image, {"lightgroup_emission", "lightgroup_key", "lightgroup_fill"},
                           integrator);
+        for (const char* group : {"lightgroup_emission", "lightgroup_key", "lightgroup_fill"}) {
+            double total = 0;
+            for (float v : findLayer(image, group)->pixels) total += v;
+            EXPECT_GT(total, 0.0) << integrator << " " << group;
+        }
     }
 }
 
@@ -232,9 +239,6 @@ TEST(Aov, BadInputNamesTheLine) {
     e = error("single", "\"lightgroup_rim\"");
     EXPECT_NE(e.find("lightgroup_key"), std::string::npos) << e;
     EXPECT_TRUE(std::regex_search(e, line)) << e;
-    // Light groups with photons, which do not know their light.
-    e = error("photon", kGroupAovs);
-    EXPECT_NE(e.find("photon"), std::string::npos) << e;
 }
 
 // Two scenes the fire scene above does not cover. Grey fog under one white sun is the scene
@@ -268,4 +272,82 @@ TEST(Aov, GreyFogAndADomeKeepThePassesSummingToTheBeauty) {
             expectSumToBeauty(image, names, what);
             expectSumToBeauty(image, {"lightgroup_emission", "lightgroup_default"}, what);
         }
+}
+
+// The variance pass against its definition: a pixel of n samples whose XYZ are known has, per
+// working-space channel r = Σ_c M_rc X_c, the variance of its mean s²_r / n, s²_r the unbiased
+// sample variance of the samples' r (computed here from the samples themselves).
+TEST(Aov, VariancePassIsTheVarianceOfThePixelMean) {
+    ColorPipeline color;
+    Film film(1, 1, AovLayout({"variance"}, {}));
+    const std::vector<Vec3> samples = {Vec3(0.2f, 0.5f, 0.1f), Vec3(1.5f, 0.3f, 0.9f),
+                                       Vec3(0.7f, 0.7f, 0.2f), Vec3(0.1f, 2.0f, 0.4f),
+                                       Vec3(0.9f, 0.2f, 1.3f)};
+    const SampledWavelengths w = SampledWavelengths::sampleVisible(0.5f);
+    AovSample aov;
+    for (const Vec3& s : samples)
+        ASSERT_TRUE(film.addSample(0, 0, SampledSpectrum(0.f), w, 1.f, s, &aov));
+    const Image image = film.develop(color);
+    const ImageLayer* variance = findLayer(image, "variance");
+    ASSERT_TRUE(variance);
+    EXPECT_EQ(variance->channels, (std::vector<std::string>{"R", "G", "B"}));
+    EXPECT_FALSE(variance->convertColor);
+    const Mat3& M = color.xyzToWorking();
+    const double n = double(samples.size());
+    for (int r = 0; r < 3; ++r) {
+        std::vector<double> v;
+        for (const Vec3& s : samples) v.push_back(M.apply(Vec3d(s))[r]);
+        double mean = 0, s2 = 0;
+        for (double x : v) mean += x / n;
+        for (double x : v) s2 += (x - mean) * (x - mean) / (n - 1);
+        EXPECT_NEAR(variance->pixels[size_t(r)], s2 / n, 1e-6 * s2 / n) << r;
+    }
+}
+
+// On grey fog the variance of a pixel's mean falls as 1/N in its samples: four times the
+// samples, a quarter of the variance (the image mean of the per-pixel estimates; each is a
+// sample variance over ≥ 16 samples, so their mean over 64 pixels is within ~±15 %).
+TEST(Aov, VariancePassFallsAsOneOverSamples) {
+    const std::string dir = test::tempDir();
+    writeProceduralAsset("fog-sphere", dir + "/fog.vdb", 16, 1);
+    auto meanVariance = [&](int spp) {
+        const std::string path = dir + "/variance_" + std::to_string(spp) + ".toml";
+        std::ofstream(path) << "[film]\nresolution = [8, 8]\nspp = " << spp
+                            << "\nseed = 9\n[render]\nintegrator = \"volpath\"\n"
+                               "[camera]\nposition = [0.0, 0.0, 2.2]\nlook_at = [0, 0, 0]\n"
+                               "fov = 30.0\n[[volume]]\nfile = \"fog.vdb\"\nshader = \"smoke\"\n"
+                               "density_scale = 4.0\n[[light]]\ntype = \"distant\"\n"
+                               "direction = [-1, -1, 0.3]\n[output]\naovs = [\"variance\"]\n";
+        ColorPipeline color;
+        Scene scene = loadScene(path, {}, color);
+        scene.settings.progress = Progress::Mode::Quiet;
+        const Image image = renderFrame(scene, "", color).image;
+        double sum = 0;
+        for (float v : findLayer(image, "variance")->pixels) sum += v;
+        return sum;
+    };
+    const double v16 = meanVariance(16), v64 = meanVariance(64);
+    ASSERT_GT(v64, 0.0);
+    EXPECT_NEAR(v16 / v64, 4.0, 0.6);
+}
+
+// `mirage info` lists what the render writes beside the beauty, and says "none" or "off" for
+// what a scene does not ask for.
+TEST(Aov, InfoListsPassesGroupsCryptomatteHoldoutsAndDeep) {
+    const std::string dir = test::tempDir();
+    std::string out;
+    const std::string asks =
+        writeAovScene(dir, "single", std::string(kGroupAovs) + ", \"variance\"",
+                      "cryptomatte = [\"volume\"]\ndeep = \"deep.exr\"\n");
+    ASSERT_EQ(0, test::runMirage("info '" + asks + "'", &out)) << out;
+    for (const std::string& line : std::vector<std::string>{
+             "passes: lightgroup_emission, lightgroup_key, lightgroup_fill, variance, "
+             "crypto_volume",
+             "light groups: key, fill, and emission", "; light group 'key'",
+             "cryptomatte: layers crypto_volume00–02, 6 ranks, of the volumes volume0, volume1",
+             "holdouts: none", "deep: " + dir + "/deep.exr"})
+        EXPECT_NE(out.find(line), std::string::npos) << line << "\n" << out;
+    ASSERT_EQ(0, test::runMirage("info '" + writeAovScene(dir, "volpath", "") + "'", &out)) << out;
+    for (const char* line : {"passes: none", "deep: off", "holdouts: none"})
+        EXPECT_NE(out.find(line), std::string::npos) << line << "\n" << out;
 }

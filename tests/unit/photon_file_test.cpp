@@ -31,6 +31,7 @@ PhotonPassResult samplePass() {
         p.power = 1e-6f * float(i + 1);
         p.lambdaIn = i == 2 ? 380.f : 0.f;
         p.time = -0.01f * i;
+        p.light = i == 3 ? Photon::kFromMedium : uint32_t(i);
         r.maps.volume.push_back(p);
         if (i < 2) r.maps.surfaceGlobal.push_back(p);
         if (i == 4) r.maps.surfaceCaustic.push_back(p);
@@ -123,7 +124,7 @@ TEST(PhotonFile, TruncatedCorruptAndForeignFilesAreRefusedWithTheirReason) {
     std::string version = bytes;
     version[8] = 9;  // the format version's low byte
     writeBytes(bad, version);
-    EXPECT_NE(refusal(bad).find("format version 9, this mirage reads version 1"), std::string::npos)
+    EXPECT_NE(refusal(bad).find("format version 9, this mirage reads version 2"), std::string::npos)
         << refusal(bad);
 
     writeBytes(bad, "P3\n2 2\n255\n" + bytes);

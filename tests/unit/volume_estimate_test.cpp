@@ -469,3 +469,58 @@ TEST(RayOpticalDepth, MarchBiasOnSharpSmokeIsBelowThePhotonNoise) {
         EXPECT_LT(worst, finalPresetNoise) << "sigma_t " << sigmaT;
     }
 }
+
+// Light groups (photon/photon_groups.h): each photon's term goes to the group of the light it
+// left. The beam estimate is a sum over photons given their radii, so a group's part equals
+// the estimate of that group's photons alone, with the same radii; the point estimate's k
+// nearest depend on all photons, so there the groups are checked to sum to it.
+TEST(PhotonGroups, EstimatesSplitExactlyByTheLightOfEachPhoton) {
+    auto m = boxMedium(0.1f, 0.9f, 0.3f);
+    PhotonList all = uniformPhotons(20000, Bounds3{Vec3(0.f), Vec3(1.f)}, 1e-3f, 11);
+    // Light 0 → slot 2, light 1 → slot 1, a medium's photons → slot 0 (emission).
+    const std::vector<int> slotOfLight = {2, 1};
+    std::vector<PhotonList> bySlot(3);
+    for (size_t i = 0; i < all.size(); ++i) {
+        all[i].light = i % 3 == 0 ? 0u : i % 3 == 1 ? 1u : Photon::kFromMedium;
+        bySlot[i % 3 == 0 ? 2 : i % 3 == 1 ? 1 : 0].push_back(all[i]);
+    }
+    const float r = 0.04f;
+    VolumePhotons photons(all, {m.get()});
+    BeamEstimator beam(photons, std::vector<float>(photons.size(), r));
+    RayOpticalDepth depth({m.get()});
+    ScatteringProbe probe({m.get()});
+    std::vector<BeamHit> hits;
+    std::vector<PhotonNeighbour> buffer(16);
+    for (int i = 0; i < 20; ++i) {
+        Sampler s(9, uint64_t(i), 0);
+        // Through the box: entering it within [0.2, 0.8]² of its x = 0 face.
+        const float y = 0.3f + 0.4f * s.get1D(), z = 0.3f + 0.4f * s.get1D();
+        const Ray ray{Vec3(-1.f, y, z),
+                      normalize(Vec3(1.f, 0.2f * (s.get1D() - 0.5f), 0.2f * (s.get1D() - 0.5f))),
+                      kInfinity};
+        depth.march(ray, kInfinity);
+        std::vector<Vec3> groups(3, Vec3(0.f));
+        const Vec3 total = beam.estimate(ray, kInfinity, depth, &hits, ViewWeight(),
+                                         PhotonGroups(&slotOfLight, &groups));
+        ASSERT_GT(total.y, 0.f);
+        Vec3 sum(0.f);
+        for (size_t g = 0; g < 3; ++g) {
+            VolumePhotons alone(bySlot[g], {m.get()});
+            BeamEstimator beamAlone(alone, std::vector<float>(alone.size(), r));
+            const Vec3 expected = beamAlone.estimate(ray, kInfinity, depth, &hits);
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(groups[g][c], expected[c], 1e-5f * total[c]) << "ray " << i;
+            sum += groups[g];
+        }
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c], total[c], 1e-5f * total[c]);
+        // The marched point estimate: its groups sum to it.
+        std::fill(groups.begin(), groups.end(), Vec3(0.f));
+        const Vec3 point =
+            pointEstimateAlongRay(photons, ray, depth, 16, 0.2f, 0.05f, 0.5f, buffer.data(), probe,
+                                  ViewWeight(), PhotonGroups(&slotOfLight, &groups));
+        ASSERT_GT(point.y, 0.f);
+        const Vec3 pointSum = groups[0] + groups[1] + groups[2];
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(pointSum[c], point[c], 1e-5f * point[c]);
+        for (size_t g = 0; g < 3; ++g) EXPECT_GT(groups[g].y, 0.f);
+    }
+}

@@ -85,7 +85,7 @@ FarmPlan makePlan(const FarmOptions& o) {
     const std::vector<int> all = parseFrameRange(o.frames);
     ColorPipeline color;
     Scene scene = loadScene(o.input, LoadOptions{all.front(), o.overrides}, color);
-    applyFrameSettings(scene, o.input, FrameSettings{o.resolution, o.spp, o.seed, true});
+    applyFrameSettings(scene, o.input, FrameSettings{o.resolution, o.spp, o.seed, true, {}});
     const std::string integrator = o.integrator.empty() ? scene.integrator : o.integrator;
     p.photons = integratorInfo(integrator).photonPass;
     for (int t = 0; t < p.tiles.count(); ++t)

@@ -50,12 +50,14 @@ float ScatteringProbe::reemissionDensity(const Vec3& worldP, float lambdaInNm) {
     return density;
 }
 
-VolumePhotons::VolumePhotons(PhotonList photons, const std::vector<const Medium*>& media)
+VolumePhotons::VolumePhotons(PhotonList photons, const std::vector<const Medium*>& media,
+                             const std::optional<Vec3>& xyzPerWatt)
     : mMap(std::move(photons)), mMedia(media) {
     const size_t n = mMap.size();
     mFluxXyz.resize(n);
     for (size_t i = 0; i < n; ++i)
-        mFluxXyz[i] = cieXyz(mMap[i].lambda) * (mMap[i].power / kCieYIntegral);
+        mFluxXyz[i] = xyzPerWatt ? *xyzPerWatt * mMap[i].power
+                                 : cieXyz(mMap[i].lambda) * (mMap[i].power / kCieYIntegral);
     mSigmaS.resize(n);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1024),
                       [&](const tbb::blocked_range<size_t>& r) {

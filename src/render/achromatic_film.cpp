@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "spectrum/spectrum.h"
+#include "spectrum/spectrum_sampling.h"
 
 namespace mirage {
 
@@ -70,7 +71,9 @@ std::optional<AchromaticFilm> AchromaticFilm::forScene(const RenderScene& scene,
     std::string why;
     Spectrum shape = *commonLightShape(scene, &why);
     const Vec3d xyz = spectrumToXyz(shape);
-    return AchromaticFilm(std::move(shape), Vec3(float(xyz.x), float(xyz.y), float(xyz.z)));
+    const Vec3d perWatt = xyz / SpectrumSampler(shape).integral();
+    return AchromaticFilm(std::move(shape), Vec3(float(xyz.x), float(xyz.y), float(xyz.z)),
+                          Vec3(float(perWatt.x), float(perWatt.y), float(perWatt.z)));
 }
 
 void AchromaticFilm::apply(const SampledWavelengths& w, RadianceSample* rs) const {
@@ -87,7 +90,7 @@ void AchromaticFilm::apply(const SampledWavelengths& w, RadianceSample* rs) cons
 bool sampledColour(const RenderScene& scene, std::string* why) {
     const std::string part = spectralPart(scene);
     *why = part.empty() ? "grey media, one light colour: single and volpath add each sample's "
-                          "exact XYZ, no colour noise (photon: 4 wavelengths per sample)"
+                          "exact XYZ, photons carry the light's XYZ: no colour noise"
                         : "4 wavelengths per sample (" + part + ")";
     return !part.empty();
 }

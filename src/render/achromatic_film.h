@@ -12,6 +12,11 @@
 // chromaticity. G is read back from the sample as the least-squares ratio Σ L_i S_i / Σ S_i²,
 // exact when L = G S; S > 0 over the visible range is required, so that the ratio exists for
 // every draw of the wavelengths.
+//
+// The photon mapper's photons each carry one wavelength λ drawn ∝ S (light/light.h), so a
+// photon's flux XYZ, Φ cmf(λ)/∫ȳ, is colour noise on such a scene too. Nothing a photon meets
+// depends on λ, so the same conditional expectation replaces it by Φ E[cmf(λ)]/∫ȳ =
+// Φ XYZ[S]/∫S dλ (xyzPerWatt): the photon map is filmed in the lights' exact colour.
 #pragma once
 
 #include <optional>
@@ -33,15 +38,22 @@ public:
 
     const Spectrum& shape() const { return mShape; }
     Vec3 xyz() const { return mXyz; }
+    // The film's XYZ for one watt of the lights' light, its wavelength drawn ∝ S over the
+    // visible range: XYZ[S]/∫S dλ (1/nm), ∫ by the trapezoids the lights sample λ with
+    // (spectrum/spectrum_sampling.h). A photon of power Φ adds Φ × this (above).
+    Vec3 xyzPerWatt() const { return mXyzPerWatt; }
 
 private:
-    AchromaticFilm(Spectrum shape, Vec3 xyz) : mShape(std::move(shape)), mXyz(xyz) {}
-    Spectrum mShape;  // the lights' common spectral shape (any scale)
-    Vec3 mXyz;        // its XYZ, in the film's normalisation
+    AchromaticFilm(Spectrum shape, Vec3 xyz, Vec3 xyzPerWatt)
+        : mShape(std::move(shape)), mXyz(xyz), mXyzPerWatt(xyzPerWatt) {}
+    Spectrum mShape;   // the lights' common spectral shape (any scale)
+    Vec3 mXyz;         // its XYZ, in the film's normalisation
+    Vec3 mXyzPerWatt;  // mXyz / ∫ mShape dλ
 };
 
 // Whether the scene's colour is sampled at each sample's wavelengths, and why (for `mirage
-// info`): false when it is achromatic (above), and then single and volpath film it exactly.
+// info`): false when it is achromatic (above), and then single, volpath and the photon mapper
+// film it exactly.
 bool sampledColour(const RenderScene& scene, std::string* why);
 
 }  // namespace mirage

@@ -43,6 +43,14 @@
 // Transmittance from the camera to each photon is the deterministic march of
 // transport/ray_optical_depth.h at the photon's wavelength, done once per camera ray.
 //
+// Colour. Where nothing in the scene is spectral (render/achromatic_film.h: grey media, no
+// surfaces or emission, one light colour) and no refraction field bends paths by wavelength,
+// nothing a photon meets depends on its wavelength: each photon's flux is then the lights'
+// exact XYZ times its power (AchromaticFilm::xyzPerWatt, the expectation of its wavelength's
+// colour), and the single-scattered part is filmed exactly by the renderer, so the image has
+// no colour noise. The photons still draw their wavelength, so every other number of a photon's
+// walk, and its power, are the spectral map's.
+//
 // Light emitted by the media themselves (fire) reaches the camera directly through the single-
 // scatter integrator; the photon pass emits it too (photon/medium_emitter.h) and stores every
 // scattering of it, the first included, so its scattered part comes from the photons.
@@ -71,6 +79,7 @@
 #include "photon/beam_estimate.h"
 #include "photon/photon_pass.h"
 #include "photon/surface_estimate.h"
+#include "render/achromatic_film.h"
 #include "render/integrator.h"
 #include "transport/path_vertex.h"
 
@@ -167,6 +176,9 @@ public:
         for (size_t i = 0; i < scene.lights.size(); ++i)
             mSlotOfLight.push_back(scene.lightGroupSlot(i));
         mCurved = photonsCurve(mSettings.field.get(), scene.bounds());
+        mXyzPerWatt.reset();
+        if (const auto achromatic = AchromaticFilm::forScene(scene, *this))
+            mXyzPerWatt = achromatic->xyzPerWatt();
         // Curved light: where paths curve there are no (straight) shadow rays, so the maps hold
         // the first interaction and the light arriving straight at diffuse surfaces too, and the
         // single-scatter part keeps only emission (Gutierrez et al. 2005). Nothing is counted
@@ -177,6 +189,13 @@ public:
         mThreads = std::make_unique<tbb::enumerable_thread_specific<PhotonThreadState>>(
             [this] { return PhotonThreadState(mMedia); });
         buildPass(scene, 0);
+    }
+
+    // The radiance is the light's spectrum times what the scene does to it (the renderer may
+    // film it exactly, and the photons carry the light's colour: the top of the file), unless
+    // a refraction field bends photons or camera chords by wavelength.
+    bool lightShapedRadiance() const override {
+        return !mSettings.field && mSingle->lightShapedRadiance();
     }
 
     // Pass p of a render in passes: its own photon map and radii (see the top of the file).
@@ -249,7 +268,7 @@ private:
         auto t0 = Clock::now();
         mGlobal = std::make_unique<SurfacePhotons>(std::move(lists.surfaceGlobal));
         mCaustic = std::make_unique<SurfacePhotons>(std::move(lists.surfaceCaustic));
-        mPhotons = std::make_unique<VolumePhotons>(std::move(lists.volume), mMedia);
+        mPhotons = std::make_unique<VolumePhotons>(std::move(lists.volume), mMedia, mXyzPerWatt);
         mStats.photonMapBuildSeconds += secondsSince(t0);
         // Coincident photons must not get a zero disc (PhotonMap::photonRadii).
         const float minRadius = 1e-4f * mMaxRadius;
@@ -305,6 +324,7 @@ private:
             (unsigned long long)mPassStats.fromMedia, mPassStats.mediumPower);
         std::string line = buf;
         if (mCurved) line += " | photons on curved paths (direct light from the photon maps)";
+        if (mXyzPerWatt) line += " | photons carry the light's XYZ (grey scene)";
         if (mPass > 0) {
             char progressive[160];
             std::snprintf(progressive, sizeof progressive,
@@ -420,12 +440,14 @@ private:
 
     PhotonIntegratorSettings mSettings;
     std::unique_ptr<Integrator> mSingle;
-    bool mCurved = false;      // photons on curved paths, direct light from the maps
+    bool mCurved = false;  // photons on curved paths, direct light from the maps
+    // The lights' XYZ per watt on an achromatic scene (the top of the file), else nothing.
+    std::optional<Vec3> mXyzPerWatt;
     int mPass = 0;             // the pass whose maps are built
     float mRadiusScale = 1.f;  // its disc radii over pass 0's
     std::vector<const Medium*> mMedia;
     std::vector<int> mSlotOfLight;  // each light's group slot (Photon::light → film/aov.h)
-    PhotonPassStats mPassStats;  // summed over passes
+    PhotonPassStats mPassStats;     // summed over passes
     std::unique_ptr<VolumePhotons> mPhotons;
     // Pass 0's volume map and beam radii (unscaled), the later passes' source of radii.
     std::unique_ptr<VolumePhotons> mFirstPhotons;

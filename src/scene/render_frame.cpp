@@ -86,7 +86,8 @@ void applyQualityPreset(Scene& scene, const QualityPreset& preset, const std::st
         scene.photon.photons = scene.statedPhotons > 0
                                    ? uint64_t(scaled(double(scene.statedPhotons)))
                                    : preset.photons;
-    if (photon && !overridden("render.k")) scene.photon.k = preset.k;
+    // k is a bandwidth, not an amount of work: a k the scene states (nonzero) stands.
+    if (photon && !overridden("render.k") && scene.photon.k == 0) scene.photon.k = preset.k;
 }
 
 PhotonIntegratorSettings photonSettingsFor(const Scene& scene) {

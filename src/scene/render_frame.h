@@ -46,8 +46,9 @@ const std::vector<QualityPreset>& qualityPresets();
 // Throws MirageError naming the presets for an unknown name.
 const QualityPreset& qualityPreset(const std::string& name);
 // Sets the preset's values on `scene` for `integrator`, except the keys that an explicit
-// --set in `overrides` names (film.spp, render.photons, render.k): those win. Where the scene
-// file states film.spp or render.photons, that is what the scene needs for a clean picture
+// --set in `overrides` names (film.spp, render.photons, render.k): those win, and so does a k
+// the scene file states (the bandwidth its author chose). Where the scene file states
+// film.spp or render.photons, that is what the scene needs for a clean picture
 // (the preview preset) and the preset scales it (draft ¼, preview 1, final 4: the final
 // preset is the 4× render the noise checks compare against); elsewhere the preset's own
 // measured values apply. A curved-camera scene that asks for 4 samples gets 1, 4 or 16.

@@ -89,9 +89,11 @@ void AchromaticFilm::apply(const SampledWavelengths& w, RadianceSample* rs) cons
 
 bool sampledColour(const RenderScene& scene, std::string* why) {
     const std::string part = spectralPart(scene);
-    *why = part.empty() ? "grey media, one light colour: single and volpath add each sample's "
-                          "exact XYZ, photons carry the light's XYZ: no colour noise"
-                        : "4 wavelengths per sample (" + part + ")";
+    *why = part.empty()
+               ? "grey media, one light colour: single and volpath add each sample's "
+                 "exact XYZ, photons carry the light's XYZ (without a [refraction] field): "
+                 "no colour noise"
+               : "4 wavelengths per sample (" + part + ")";
     return !part.empty();
 }
 

@@ -90,6 +90,38 @@ TEST(KilledRenderCli, ResumeRefusesAPartialFileFromOtherSettings) {
     EXPECT_NE(out.find("scene file or one of its grid files changed"), std::string::npos) << out;
 }
 
+// A Cryptomatte's IDs are hashes of the objects' names: a volume renamed between runs would
+// resume its samples under another ID, so the names are in the fingerprint, and so is the
+// list of passes; a refusal names what changed.
+TEST(KilledRenderCli, ResumeRefusesAPartialFileWithOtherCryptomatteNames) {
+    const std::string dir = test::tempDir();
+    const std::string scene = writeScene(dir, "single");
+    auto named = [&](const std::string& name) {
+        std::ifstream in(scene);
+        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        const std::string volume = "[[volume]]\n";
+        text.insert(text.find(volume) + volume.size(), "name = \"" + name + "\"\n");
+        std::ofstream(dir + "/named.toml") << text << "[output]\ncryptomatte = [\"volume\"]\n";
+        return dir + "/named.toml";
+    };
+    const std::string target = dir + "/frame.exr";
+    std::string out;
+    int rc = render("'" + named("fog") + "' -q -o '" + target + "'", &out,
+                    "MIRAGE_TEST_STOP_AFTER_TILES=2");
+    ASSERT_EQ(rc, 130) << out;
+    rc = render("'" + named("mist") + "' -q --resume -o '" + target + "'", &out);
+    EXPECT_EQ(rc, 1) << out;
+    EXPECT_NE(out.find("--resume refused"), std::string::npos) << out;
+    EXPECT_NE(out.find("crypto_volumes was 'fog', now 'mist'"), std::string::npos) << out;
+    EXPECT_TRUE(fs::exists(target + ".partial")) << "a refused resume keeps the partial file";
+
+    // Another pass beside the Cryptomatte.
+    rc = render("'" + named("fog") + "' -q --resume --aov depth -o '" + target + "'", &out);
+    EXPECT_EQ(rc, 1) << out;
+    EXPECT_NE(out.find("aovs was 'crypto_volume', now 'crypto_volume, depth'"), std::string::npos)
+        << out;
+}
+
 // Motion blur: the camera's keys and a turntable's rate move the camera within the shutter, so
 // they are in the fingerprint; a refusal names them.
 TEST(KilledRenderCli, ResumeRefusesAPartialFileWithOtherCameraMotion) {
@@ -142,13 +174,13 @@ TEST(KilledRenderCli, SigtermStopsTheRenderWithExit143AndNoFinalFile) {
     // MIRAGE_PARTIAL_INTERVAL=0). The wait is bounded at 120 s so that a broken partial writer
     // fails the test instead of hanging it; tiles in flight finish before the exit.
     std::string out;
-    int rc = test::runCommand(
-        "MIRAGE_PARTIAL_INTERVAL=0 '" + test::mirageBinary() + "' render '" + scene +
-            "' -q --spp 65536 --set film.tile_size=4 --threads 2 -o '" + target +
-            "' & pid=$!; i=0; while [ ! -e '" + target +
-            ".partial' ] && [ $i -lt 1200 ]; do sleep 0.1; i=$((i+1)); done; "
-            "kill -TERM $pid; wait $pid",
-        &out);
+    int rc =
+        test::runCommand("MIRAGE_PARTIAL_INTERVAL=0 '" + test::mirageBinary() + "' render '" +
+                             scene + "' -q --spp 65536 --set film.tile_size=4 --threads 2 -o '" +
+                             target + "' & pid=$!; i=0; while [ ! -e '" + target +
+                             ".partial' ] && [ $i -lt 1200 ]; do sleep 0.1; i=$((i+1)); done; "
+                             "kill -TERM $pid; wait $pid",
+                         &out);
     EXPECT_EQ(rc, 143) << out;
     EXPECT_FALSE(fs::exists(target)) << "a killed frame must not leave a final EXR";
     EXPECT_TRUE(fs::exists(target + ".partial")) << "the finished tiles are kept for --resume";

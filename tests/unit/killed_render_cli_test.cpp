@@ -34,8 +34,32 @@ std::string writeScene(const std::string& dir, const std::string& integrator = "
     return dir + "/scene.toml";
 }
 
+// The scene file `path` with `line` inserted after its first `section` header and `tail`
+// appended, written as `out`; returns `out`.
+std::string editedScene(const std::string& path, const std::string& section,
+                        const std::string& line, const std::string& tail, const std::string& out) {
+    std::ifstream in(path);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.insert(text.find(section) + section.size(), line);
+    std::ofstream(out) << text << tail;
+    return out;
+}
+
 int render(const std::string& args, std::string* out, const std::string& env = "") {
     return test::runCommand(env + " '" + test::mirageBinary() + "' render " + args, out);
+}
+
+// Stops a render of `first` (the scene and its options) after two tiles, then resumes it as
+// `second`, which must be refused; returns the refusal's output.
+std::string refusedResume(const std::string& first, const std::string& second,
+                          const std::string& target) {
+    std::string out;
+    EXPECT_EQ(render(first + " -q -o '" + target + "'", &out, "MIRAGE_TEST_STOP_AFTER_TILES=2"),
+              130)
+        << out;
+    EXPECT_EQ(render(second + " -q --resume -o '" + target + "'", &out), 1) << out;
+    EXPECT_NE(out.find("--resume refused"), std::string::npos) << out;
+    return out;
 }
 
 }  // namespace
@@ -97,27 +121,17 @@ TEST(KilledRenderCli, ResumeRefusesAPartialFileWithOtherCryptomatteNames) {
     const std::string dir = test::tempDir();
     const std::string scene = writeScene(dir, "single");
     auto named = [&](const std::string& name) {
-        std::ifstream in(scene);
-        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        const std::string volume = "[[volume]]\n";
-        text.insert(text.find(volume) + volume.size(), "name = \"" + name + "\"\n");
-        std::ofstream(dir + "/named.toml") << text << "[output]\ncryptomatte = [\"volume\"]\n";
-        return dir + "/named.toml";
+        return editedScene(scene, "[[volume]]\n", "name = \"" + name + "\"\n",
+                           "[output]\ncryptomatte = [\"volume\"]\n", dir + "/" + name + ".toml");
     };
     const std::string target = dir + "/frame.exr";
-    std::string out;
-    int rc = render("'" + named("fog") + "' -q -o '" + target + "'", &out,
-                    "MIRAGE_TEST_STOP_AFTER_TILES=2");
-    ASSERT_EQ(rc, 130) << out;
-    rc = render("'" + named("mist") + "' -q --resume -o '" + target + "'", &out);
-    EXPECT_EQ(rc, 1) << out;
-    EXPECT_NE(out.find("--resume refused"), std::string::npos) << out;
+    std::string out = refusedResume("'" + named("fog") + "'", "'" + named("mist") + "'", target);
     EXPECT_NE(out.find("crypto_volumes was 'fog', now 'mist'"), std::string::npos) << out;
     EXPECT_TRUE(fs::exists(target + ".partial")) << "a refused resume keeps the partial file";
 
     // Another pass beside the Cryptomatte.
-    rc = render("'" + named("fog") + "' -q --resume --aov depth -o '" + target + "'", &out);
-    EXPECT_EQ(rc, 1) << out;
+    EXPECT_EQ(render("'" + named("fog") + "' -q --resume --aov depth -o '" + target + "'", &out), 1)
+        << out;
     EXPECT_NE(out.find("aovs was 'crypto_volume', now 'crypto_volume, depth'"), std::string::npos)
         << out;
 }
@@ -128,36 +142,24 @@ TEST(KilledRenderCli, ResumeRefusesAPartialFileWithOtherCameraMotion) {
     const std::string dir = test::tempDir();
     const std::string scene = writeScene(dir, "single");
     auto keyed = [&](const std::string& keyX) {
-        std::ifstream in(scene);
-        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        const std::string camera = "[camera]\n";
-        text.insert(text.find(camera) + camera.size(), "shutter = [-0.25, 0.25]\n");
-        std::ofstream(dir + "/keyed.toml")
-            << text << "[[camera.key]]\nframe = 0\nposition = [0, 1, 4]\n"
-            << "[[camera.key]]\nframe = 1\nposition = [" << keyX << ", 1, 4]\n";
-        return dir + "/keyed.toml";
+        return editedScene(scene, "[camera]\n", "shutter = [-0.25, 0.25]\n",
+                           "[[camera.key]]\nframe = 0\nposition = [0, 1, 4]\n"
+                           "[[camera.key]]\nframe = 1\nposition = [" +
+                               keyX + ", 1, 4]\n",
+                           dir + "/keyed" + keyX + ".toml");
     };
-    const std::string target = dir + "/frame.exr";
-    std::string out;
-    int rc = render("'" + keyed("0.5") + "' -q -o '" + target + "'", &out,
-                    "MIRAGE_TEST_STOP_AFTER_TILES=2");
-    ASSERT_EQ(rc, 130) << out;
-    rc = render("'" + keyed("0.7") + "' -q --resume -o '" + target + "'", &out);
-    EXPECT_EQ(rc, 1) << out;
-    EXPECT_NE(out.find("--resume refused"), std::string::npos) << out;
+    std::string out =
+        refusedResume("'" + keyed("0.5") + "'", "'" + keyed("0.7") + "'", dir + "/frame.exr");
     EXPECT_NE(out.find("camera_keys was"), std::string::npos) << out;
 
     // A turntable's rate: the same first frame (numbered .0001), turning at another speed within
     // the shutter.
     const std::string turn = dir + "/turn.exr";
-    rc = render("'" + scene + "' -q --turntable 24 --shutter 0.5 -o '" + turn + "'", &out,
-                "MIRAGE_TEST_STOP_AFTER_TILES=2");
-    ASSERT_EQ(rc, 130) << out;
-    rc = render("'" + scene + "' -q --resume --turntable 48 --shutter 0.5 -o '" + turn + "'", &out);
-    EXPECT_EQ(rc, 1) << out;
+    out = refusedResume("'" + scene + "' --turntable 24 --shutter 0.5",
+                        "'" + scene + "' --turntable 48 --shutter 0.5", turn);
     EXPECT_NE(out.find("turntable was"), std::string::npos) << out;
     // And the shutter given on the command line.
-    rc =
+    int rc =
         render("'" + scene + "' -q --resume --turntable 24 --shutter 0.25 -o '" + turn + "'", &out);
     EXPECT_EQ(rc, 1) << out;
     EXPECT_NE(out.find("shutter_seconds was"), std::string::npos) << out;

@@ -2,6 +2,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include "core/error.h"
 #include "core/fnv1a.h"
 #include "core/text.h"
+#include "film/aov.h"
 #include "scene/scene.h"
 
 namespace mirage {
@@ -71,6 +73,10 @@ std::string joinOverrides(const std::vector<std::string>& overrides, bool photon
         sets += (sets.empty() ? "" : " ") + o;
     }
     return sets;
+}
+
+bool hasAov(const std::vector<std::string>& aovs, const std::string& name) {
+    return std::find(aovs.begin(), aovs.end(), name) != aovs.end();
 }
 
 std::string shutterText(const Scene& scene) {
@@ -162,7 +168,12 @@ FrameFingerprint frameFingerprint(const Scene& scene, const std::string& input,
                       scene.passes.sppPerPass, scene.passes.noiseThreshold);
     m["passes"] = passes;
     m["version"] = MIRAGE_VERSION;
+    // The passes, and the names a Cryptomatte hashes into its objects' IDs: a volume renamed
+    // between runs would otherwise resume under another ID (a refusal names the change).
     if (!s.aovs.empty()) m["aovs"] = joinList(s.aovs);
+    const CryptoObjects& crypto = scene.render.cryptoObjects;
+    if (hasAov(s.aovs, cryptomattePass("volume"))) m["crypto_volumes"] = joinList(crypto.volumes);
+    if (hasAov(s.aovs, cryptomattePass("shape"))) m["crypto_shapes"] = joinList(crypto.shapes);
     m["set"] = joinOverrides(overrides, false);
     return fingerprintOf(m, scene, input);
 }

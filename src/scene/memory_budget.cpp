@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/progress.h"
+#include "film/aov.h"
 #include "photon/photon_pass.h"
 #include "scene/scene.h"
 
@@ -68,6 +69,30 @@ uint64_t currentMemoryBytes() {
     return n == 2 ? resident * uint64_t(::sysconf(_SC_PAGESIZE)) : 0;
 }
 
+namespace {
+
+// The float channels a pass develops into (film/film.cpp): alpha and depth one, a Cryptomatte
+// three RGBA layers of rank pairs, the others three.
+uint64_t developedChannels(const AovPass& pass) {
+    switch (pass.kind) {
+        case AovKind::Alpha:
+        case AovKind::Depth:
+            return 1;
+        case AovKind::Cryptomatte:
+            return 12;
+        default:
+            return 3;
+    }
+}
+
+}  // namespace
+
+uint64_t passBytesPerPixel(const AovLayout& layout) {
+    uint64_t channels = 0;
+    for (const AovPass& pass : layout.passes()) channels += developedChannels(pass);
+    return uint64_t(layout.stride()) * kBytesPerPassSum + channels * kBytesPerPassChannel;
+}
+
 MemoryEstimate estimateFrameMemory(const Scene& scene, const std::string& integrator) {
     MemoryEstimate e;
     // Grids as loaded (NanoVDB buffers; a grid shared by two media counted once).
@@ -85,6 +110,15 @@ MemoryEstimate estimateFrameMemory(const Scene& scene, const std::string& integr
     uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
     e.items.push_back({"film (" + std::to_string(s.width) + "x" + std::to_string(s.height) + ")",
                        pixels * kBytesPerPixel});
+    const AovLayout layout(s.aovs, scene.render.lightGroupNames(), scene.render.cryptoObjects);
+    if (!layout.empty())
+        e.items.push_back({"passes (" + std::to_string(layout.passes().size()) + ", " +
+                               std::to_string(layout.stride()) + " sums per pixel)",
+                           pixels * passBytesPerPixel(layout)});
+    if (!s.deep.path.empty())
+        e.items.push_back(
+            {"deep samples (" + std::to_string(kDeepSamplesPlanned) + " per pixel planned)",
+             pixels * kDeepBytesPerPixel});
 
     if (integratorInfo(integrator).photonPass && scene.photon.photons > 0) {
         // Pilot: how many photons a photon emitted leaves stored in this scene (absorbed or

@@ -16,6 +16,7 @@
 
 namespace mirage {
 
+class AovLayout;
 struct Scene;
 
 // "4G", "512M", "1.5G", "64k", "2T" (binary multiples: k = 1024) or plain bytes. Throws
@@ -41,6 +42,18 @@ constexpr uint64_t kBytesPerStoredPhoton = 112;
 // Per pixel: the film's sums (Film::Pixel, 40 B), the developed image (16 B), the output copy
 // (16 B), the partial file's staging record (56 B) and a resumed film's copy (40 B).
 constexpr uint64_t kBytesPerPixel = 168;
+// Render passes (docs/aovs.md), per pixel: per double of the passes' sums (AovLayout::stride)
+// the film's sum, its staging record in the partial file (two floats) and a resumed film's
+// copy; per channel of a developed pass (a Cryptomatte's rank tables: 12) the float layer and
+// its output copy.
+constexpr uint64_t kBytesPerPassSum = 24;
+constexpr uint64_t kBytesPerPassChannel = 8;
+// Deep output, per pixel: the deep film's list (24 B) and its samples (film/deep.h DeepPoint,
+// 24 B each), whose number only the render knows: planned at 32 (a dense smoke gives tens).
+constexpr uint64_t kDeepSamplesPlanned = 32;
+constexpr uint64_t kDeepBytesPerPixel = 24 + kDeepSamplesPlanned * 24;
+// The bytes per pixel of the passes `layout` holds.
+uint64_t passBytesPerPixel(const AovLayout& layout);
 
 // Estimates the memory of rendering `scene` with `integrator` (its grids already loaded).
 // Runs a pilot photon pass for the photon integrator (a few thousand photons, well under 1 s).

@@ -34,8 +34,32 @@ std::string writeScene(const std::string& dir, const std::string& integrator = "
     return dir + "/scene.toml";
 }
 
+// The scene file `path` with `line` inserted after its first `section` header and `tail`
+// appended, written as `out`; returns `out`.
+std::string editedScene(const std::string& path, const std::string& section,
+                        const std::string& line, const std::string& tail, const std::string& out) {
+    std::ifstream in(path);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.insert(text.find(section) + section.size(), line);
+    std::ofstream(out) << text << tail;
+    return out;
+}
+
 int render(const std::string& args, std::string* out, const std::string& env = "") {
     return test::runCommand(env + " '" + test::mirageBinary() + "' render " + args, out);
+}
+
+// Stops a render of `first` (the scene and its options) after two tiles, then resumes it as
+// `second`, which must be refused; returns the refusal's output.
+std::string refusedResume(const std::string& first, const std::string& second,
+                          const std::string& target) {
+    std::string out;
+    EXPECT_EQ(render(first + " -q -o '" + target + "'", &out, "MIRAGE_TEST_STOP_AFTER_TILES=2"),
+              130)
+        << out;
+    EXPECT_EQ(render(second + " -q --resume -o '" + target + "'", &out), 1) << out;
+    EXPECT_NE(out.find("--resume refused"), std::string::npos) << out;
+    return out;
 }
 
 }  // namespace
@@ -90,42 +114,52 @@ TEST(KilledRenderCli, ResumeRefusesAPartialFileFromOtherSettings) {
     EXPECT_NE(out.find("scene file or one of its grid files changed"), std::string::npos) << out;
 }
 
+// A Cryptomatte's IDs are hashes of the objects' names: a volume renamed between runs would
+// resume its samples under another ID, so the names are in the fingerprint, and so is the
+// list of passes; a refusal names what changed.
+TEST(KilledRenderCli, ResumeRefusesAPartialFileWithOtherCryptomatteNames) {
+    const std::string dir = test::tempDir();
+    const std::string scene = writeScene(dir, "single");
+    auto named = [&](const std::string& name) {
+        return editedScene(scene, "[[volume]]\n", "name = \"" + name + "\"\n",
+                           "[output]\ncryptomatte = [\"volume\"]\n", dir + "/" + name + ".toml");
+    };
+    const std::string target = dir + "/frame.exr";
+    std::string out = refusedResume("'" + named("fog") + "'", "'" + named("mist") + "'", target);
+    EXPECT_NE(out.find("crypto_volumes was 'fog', now 'mist'"), std::string::npos) << out;
+    EXPECT_TRUE(fs::exists(target + ".partial")) << "a refused resume keeps the partial file";
+
+    // Another pass beside the Cryptomatte.
+    EXPECT_EQ(render("'" + named("fog") + "' -q --resume --aov depth -o '" + target + "'", &out), 1)
+        << out;
+    EXPECT_NE(out.find("aovs was 'crypto_volume', now 'crypto_volume, depth'"), std::string::npos)
+        << out;
+}
+
 // Motion blur: the camera's keys and a turntable's rate move the camera within the shutter, so
 // they are in the fingerprint; a refusal names them.
 TEST(KilledRenderCli, ResumeRefusesAPartialFileWithOtherCameraMotion) {
     const std::string dir = test::tempDir();
     const std::string scene = writeScene(dir, "single");
     auto keyed = [&](const std::string& keyX) {
-        std::ifstream in(scene);
-        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        const std::string camera = "[camera]\n";
-        text.insert(text.find(camera) + camera.size(), "shutter = [-0.25, 0.25]\n");
-        std::ofstream(dir + "/keyed.toml")
-            << text << "[[camera.key]]\nframe = 0\nposition = [0, 1, 4]\n"
-            << "[[camera.key]]\nframe = 1\nposition = [" << keyX << ", 1, 4]\n";
-        return dir + "/keyed.toml";
+        return editedScene(scene, "[camera]\n", "shutter = [-0.25, 0.25]\n",
+                           "[[camera.key]]\nframe = 0\nposition = [0, 1, 4]\n"
+                           "[[camera.key]]\nframe = 1\nposition = [" +
+                               keyX + ", 1, 4]\n",
+                           dir + "/keyed" + keyX + ".toml");
     };
-    const std::string target = dir + "/frame.exr";
-    std::string out;
-    int rc = render("'" + keyed("0.5") + "' -q -o '" + target + "'", &out,
-                    "MIRAGE_TEST_STOP_AFTER_TILES=2");
-    ASSERT_EQ(rc, 130) << out;
-    rc = render("'" + keyed("0.7") + "' -q --resume -o '" + target + "'", &out);
-    EXPECT_EQ(rc, 1) << out;
-    EXPECT_NE(out.find("--resume refused"), std::string::npos) << out;
+    std::string out =
+        refusedResume("'" + keyed("0.5") + "'", "'" + keyed("0.7") + "'", dir + "/frame.exr");
     EXPECT_NE(out.find("camera_keys was"), std::string::npos) << out;
 
     // A turntable's rate: the same first frame (numbered .0001), turning at another speed within
     // the shutter.
     const std::string turn = dir + "/turn.exr";
-    rc = render("'" + scene + "' -q --turntable 24 --shutter 0.5 -o '" + turn + "'", &out,
-                "MIRAGE_TEST_STOP_AFTER_TILES=2");
-    ASSERT_EQ(rc, 130) << out;
-    rc = render("'" + scene + "' -q --resume --turntable 48 --shutter 0.5 -o '" + turn + "'", &out);
-    EXPECT_EQ(rc, 1) << out;
+    out = refusedResume("'" + scene + "' --turntable 24 --shutter 0.5",
+                        "'" + scene + "' --turntable 48 --shutter 0.5", turn);
     EXPECT_NE(out.find("turntable was"), std::string::npos) << out;
     // And the shutter given on the command line.
-    rc =
+    int rc =
         render("'" + scene + "' -q --resume --turntable 24 --shutter 0.25 -o '" + turn + "'", &out);
     EXPECT_EQ(rc, 1) << out;
     EXPECT_NE(out.find("shutter_seconds was"), std::string::npos) << out;
@@ -142,13 +176,13 @@ TEST(KilledRenderCli, SigtermStopsTheRenderWithExit143AndNoFinalFile) {
     // MIRAGE_PARTIAL_INTERVAL=0). The wait is bounded at 120 s so that a broken partial writer
     // fails the test instead of hanging it; tiles in flight finish before the exit.
     std::string out;
-    int rc = test::runCommand(
-        "MIRAGE_PARTIAL_INTERVAL=0 '" + test::mirageBinary() + "' render '" + scene +
-            "' -q --spp 65536 --set film.tile_size=4 --threads 2 -o '" + target +
-            "' & pid=$!; i=0; while [ ! -e '" + target +
-            ".partial' ] && [ $i -lt 1200 ]; do sleep 0.1; i=$((i+1)); done; "
-            "kill -TERM $pid; wait $pid",
-        &out);
+    int rc =
+        test::runCommand("MIRAGE_PARTIAL_INTERVAL=0 '" + test::mirageBinary() + "' render '" +
+                             scene + "' -q --spp 65536 --set film.tile_size=4 --threads 2 -o '" +
+                             target + "' & pid=$!; i=0; while [ ! -e '" + target +
+                             ".partial' ] && [ $i -lt 1200 ]; do sleep 0.1; i=$((i+1)); done; "
+                             "kill -TERM $pid; wait $pid",
+                         &out);
     EXPECT_EQ(rc, 143) << out;
     EXPECT_FALSE(fs::exists(target)) << "a killed frame must not leave a final EXR";
     EXPECT_TRUE(fs::exists(target + ".partial")) << "the finished tiles are kept for --resume";

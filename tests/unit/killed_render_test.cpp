@@ -15,6 +15,7 @@
 #include "photon/photon_pass.h"
 #include "render/renderer.h"
 #include "scene/memory_budget.h"
+#include "scene/scene.h"
 #include "test_support.h"
 
 using namespace mirage;
@@ -203,6 +204,36 @@ TEST(MemoryBudget, RefusesAnEstimateOverBudgetNamingWhatDominates) {
         EXPECT_NE(m.find("1.00 GiB"), std::string::npos) << m;
     }
     EXPECT_GT(currentMemoryBytes(), 0u);
+}
+
+// The passes' sums, their developed layers and deep samples are memory per pixel the film
+// estimate alone leaves out: each adds its known bytes per pixel.
+TEST(MemoryBudget, PassesAndDeepSamplesRaiseTheEstimateByTheirBytesPerPixel) {
+    Scene scene;
+    scene.settings.width = 40;
+    scene.settings.height = 30;
+    const uint64_t pixels = 40 * 30;
+    auto bytesOf = [&](const std::string& prefix) {
+        uint64_t bytes = 0;
+        for (const MemoryItem& i : estimateFrameMemory(scene, "single").items)
+            if (i.what.rfind(prefix, 0) == 0) bytes += i.bytes;
+        return bytes;
+    };
+    EXPECT_EQ(bytesOf("film"), pixels * kBytesPerPixel);
+    EXPECT_EQ(bytesOf("passes"), 0u);
+    EXPECT_EQ(bytesOf("deep"), 0u);
+
+    scene.render.cryptoObjects.volumes = {"fire", "fog"};
+    scene.settings.aovs = {"volume_direct", "depth", "crypto_volume"};
+    // Sums: 3 (XYZ) + 2 (depth and its count) + 2 (one coverage per volume) doubles, each kept
+    // by the film, the partial file's record and a resumed copy (8 + 8 + 8 B); channels: 3 + 1
+    // + 12 (three RGBA rank layers) floats, each developed and copied for output (4 + 4 B).
+    EXPECT_EQ(bytesOf("passes"), pixels * (7 * 24 + 16 * 8));
+    EXPECT_EQ(bytesOf("film"), pixels * kBytesPerPixel);
+
+    // Deep output: each pixel's list (24 B) and 32 planned samples of 24 B.
+    scene.settings.deep.path = "deep.exr";
+    EXPECT_EQ(bytesOf("deep"), pixels * (24 + 32 * 24));
 }
 
 TEST(Interrupt, PhotonPassStopsBetweenBlocks) {

@@ -86,7 +86,9 @@ void applyQualityPreset(Scene& scene, const QualityPreset& preset, const std::st
         scene.photon.photons = scene.statedPhotons > 0
                                    ? uint64_t(scaled(double(scene.statedPhotons)))
                                    : preset.photons;
-    if (photon && !overridden("render.k")) scene.photon.k = preset.k;
+    // A stated k is the estimate's width the scene needs (fire_smoke.toml's smoke catches few
+    // photons): kept, so that the final preset is the same estimator with 4× the photons.
+    if (photon && !overridden("render.k") && scene.statedK == 0) scene.photon.k = preset.k;
 }
 
 PhotonIntegratorSettings photonSettingsFor(const Scene& scene) {

@@ -72,10 +72,12 @@ struct Scene {
     // [render] photons, estimate (beam | point), k, max_radius: the photon integrator's
     // settings (its seed and progress mode come from the render settings).
     PhotonIntegratorSettings photon;
-    // film.spp and render.photons as the scene file states them (0: not stated): what the
-    // scene needs at the preview preset, which the quality presets scale (render_frame.h).
+    // film.spp, render.photons and render.k as the scene file states them (0: not stated):
+    // what the scene needs at the preview preset, which the quality presets scale (spp,
+    // photons) or keep (k) (render_frame.h).
     int statedSpp = 0;
     uint64_t statedPhotons = 0;
+    int statedK = 0;
     int majorantResolution = 64;
     ShutterFrames shutter;  // [camera] shutter (frames); render.camera holds it in seconds
     std::vector<VolumeRecord> volumes;

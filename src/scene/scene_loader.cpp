@@ -245,6 +245,7 @@ static void readSettings(const TableReader& top,
                     "unknown photon estimate '" + estimate + "'; expected beam or point");
         scene.photon.estimate = estimate == "beam" ? PhotonEstimate::Beam : PhotonEstimate::Point;
         scene.photon.k = int(r->getInt("k", 0, 0, 1 << 16));
+        if (r->has("k")) scene.statedK = scene.photon.k;
         if (scene.photon.k == 1)
             r->fail("k", "expected 0 (the default for the estimate) or at least 2 photons: a "
                          "density from one neighbour has no finite mean");

@@ -67,8 +67,9 @@ Command addRenderCommand(CLI::App& app) {
         ->add_option("--quality", o->quality,
                      "draft, preview or final: samples per pixel and, for photon, photons and "
                      "k, measured on the speed-accuracy curves (docs/performance.md); a scene "
-                     "that states film.spp or render.photons gets them scaled by 1/4, 1 or 4; "
-                     "--spp and --set film.spp/render.photons/render.k still win")
+                     "that states film.spp or render.photons gets them scaled by 1/4, 1 or 4, "
+                     "and keeps a stated render.k; --spp and --set "
+                     "film.spp/render.photons/render.k still win")
         ->check(CLI::IsMember({"draft", "preview", "final"}));
     render->add_flag("--float", o->floatExr,
                      "Write 32-bit float EXR instead of half (overrides "

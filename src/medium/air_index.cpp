@@ -33,9 +33,8 @@ const std::array<LayerBase, kLayers + 1>& layerBases() {
         for (int i = 0; i < kLayers; ++i) {
             const double dH = kBase[i + 1] - kBase[i];
             const double T = b[i].T + kLapse[i] * dH;
-            const double P = kLapse[i] == 0
-                                 ? b[i].P * std::exp(-kHydro * dH / b[i].T)
-                                 : b[i].P * std::pow(b[i].T / T, kHydro / kLapse[i]);
+            const double P = kLapse[i] == 0 ? b[i].P * std::exp(-kHydro * dH / b[i].T)
+                                            : b[i].P * std::pow(b[i].T / T, kHydro / kLapse[i]);
             b[i + 1] = {T, P};
         }
         return b;
@@ -48,6 +47,12 @@ std::pair<double, double> smootherstep(double t) {
     if (t <= 0) return {0.0, 0.0};
     if (t >= 1) return {1.0, 0.0};
     return {t * t * t * (t * (6 * t - 15) + 10), 30 * t * t * (t - 1) * (t - 1)};
+}
+
+// dH/dz = (r0 / (r0 + z))², the geopotential height's slope at geometric height z.
+double geopotentialSlope(double z) {
+    const double q = air::kEarthRadius / (air::kEarthRadius + z);
+    return q * q;
 }
 
 }  // namespace
@@ -90,11 +95,15 @@ AtmosphereIndexField::AtmosphereIndexField(AtmosphereSettings settings)
     : mSettings(std::move(settings)) {}
 
 void AtmosphereIndexField::temperature(double z, double* T, double* dTdz) const {
-    const double H = geopotentialHeight(z);
-    const double dHdz = std::pow(air::kEarthRadius / (air::kEarthRadius + z), 2);
-    const AtmosphereSample s = usStandardAtmosphere1976(H);
-    *T = s.temperature;
-    *dTdz = s.dTdH * dHdz;
+    addLayers(z, usStandardAtmosphere1976(geopotentialHeight(z)), geopotentialSlope(z), T, dTdz);
+}
+
+// The 1976 sample at z is passed in: eval needs it for the pressure too, and its power law is
+// the field's costliest part (a curved camera ray evaluates the field thousands of times).
+void AtmosphereIndexField::addLayers(double z, const AtmosphereSample& std1976, double dHdz,
+                                     double* T, double* dTdz) const {
+    *T = std1976.temperature;
+    *dTdz = std1976.dTdH * dHdz;
     // Each layer is the difference of two blended steps: up at the base, down at the top.
     for (const InversionLayer& l : mSettings.inversions) {
         const auto up = smootherstep((z - l.base) / l.blend + 0.5);
@@ -104,14 +113,12 @@ void AtmosphereIndexField::temperature(double z, double* T, double* dTdz) const 
     }
 }
 
-void AtmosphereIndexField::eval(const Vec3d& x, double lambdaNm, double* n,
-                                Vec3d* gradient) const {
+void AtmosphereIndexField::eval(const Vec3d& x, double lambdaNm, double* n, Vec3d* gradient) const {
     const double z = x.y - mSettings.groundHeight;
-    const double H = geopotentialHeight(z);
-    const double dHdz = std::pow(air::kEarthRadius / (air::kEarthRadius + z), 2);
-    const AtmosphereSample std1976 = usStandardAtmosphere1976(H);
+    const double dHdz = geopotentialSlope(z);
+    const AtmosphereSample std1976 = usStandardAtmosphere1976(geopotentialHeight(z));
     double T, dTdz;
-    temperature(z, &T, &dTdz);
+    addLayers(z, std1976, dHdz, &T, &dTdz);
     // n − 1 = K P / T, so d(n−1)/dz = (n−1)(P'/P − T'/T), with the hydrostatic
     // P'/P = −g0 M / (R T_1976) · dH/dz of the standard atmosphere's own pressure.
     const double nm1 = airIndex(std1976.pressure, T, lambdaNm) - 1.0;
@@ -135,8 +142,7 @@ double AtmosphereIndexField::gradientBound(const Vec3d& lo, const Vec3d& hi) con
     for (double Hb : kBase)
         if (Hb > H0 && Hb < H1)
             tStdMin = std::min(tStdMin, usStandardAtmosphere1976(Hb).temperature);
-    const double dHdzMax =
-        std::pow(air::kEarthRadius / (air::kEarthRadius + std::min(z0, 0.0)), 2);
+    const double dHdzMax = geopotentialSlope(std::min(z0, 0.0));
     double coldest = 0, dTmax = 6.5e-3 * dHdzMax;  // every 1976 lapse rate is ≤ 6.5 K/km
     for (const InversionLayer& l : mSettings.inversions) {
         coldest += std::min(0.0, l.deltaT);

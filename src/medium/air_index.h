@@ -85,6 +85,9 @@ public:
     void temperature(double z, double* T, double* dTdz) const;
 
 private:
+    // T and dT/dz at z from the 1976 sample there and dH/dz: the layers added.
+    void addLayers(double z, const AtmosphereSample& std1976, double dHdz, double* T,
+                   double* dTdz) const;
     AtmosphereSettings mSettings;
 };
 

@@ -86,7 +86,8 @@ void applyQualityPreset(Scene& scene, const QualityPreset& preset, const std::st
         scene.photon.photons = scene.statedPhotons > 0
                                    ? uint64_t(scaled(double(scene.statedPhotons)))
                                    : preset.photons;
-    // k is a bandwidth, not an amount of work: a k the scene states (nonzero) stands.
+    // A stated k (nonzero) is the estimate's width the scene needs (fire_smoke.toml's smoke catches
+    // few photons): kept, so that the final preset is the same estimator with 4× the photons.
     if (photon && !overridden("render.k") && scene.photon.k == 0) scene.photon.k = preset.k;
 }
 

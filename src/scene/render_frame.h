@@ -51,7 +51,8 @@ const QualityPreset& qualityPreset(const std::string& name);
 // film.spp or render.photons, that is what the scene needs for a clean picture
 // (the preview preset) and the preset scales it (draft ¼, preview 1, final 4: the final
 // preset is the 4× render the noise checks compare against); elsewhere the preset's own
-// measured values apply. A curved-camera scene that asks for 4 samples gets 1, 4 or 16.
+// measured values apply. A curved-camera scene that asks for 16 samples gets 4, 16 or 64. A
+// stated render.k is kept at every preset.
 void applyQualityPreset(Scene& scene, const QualityPreset& preset, const std::string& integrator,
                         const std::vector<std::string>& overrides);
 

@@ -73,7 +73,8 @@ struct Scene {
     // settings (its seed and progress mode come from the render settings).
     PhotonIntegratorSettings photon;
     // film.spp and render.photons as the scene file states them (0: not stated): what the
-    // scene needs at the preview preset, which the quality presets scale (render_frame.h).
+    // scene needs at the preview preset, which the quality presets scale (render_frame.h; a
+    // stated render.k, nonzero, is kept).
     int statedSpp = 0;
     uint64_t statedPhotons = 0;
     int majorantResolution = 64;

@@ -10,6 +10,7 @@
 
 #include "film/color.h"
 #include "film/image_io.h"
+#include "scene/render_frame.h"
 #include "scene/toml_reader.h"
 #include "test_support.h"
 
@@ -368,4 +369,34 @@ TEST(SceneLoad, BoxVolumeAndComponentConcentrations) {
                                  "[[volume]]\nbox = { min = [0, 0, 0], max = [1, 0, 1] }\n"
                                  "shader = \"water\"\n");
     EXPECT_NE(loadError(flat).find("'max'"), std::string::npos) << loadError(flat);
+}
+
+// The quality presets scale what a scene states it needs (film.spp, render.photons: ¼, 1, 4)
+// and keep a stated render.k, so that the final preset, the gallery's noise reference, is the
+// scene's own estimator with 4× the samples; unstated, k is the preset's; --set still wins.
+TEST(SceneLoad, QualityPresetsScaleStatedSamplesAndKeepAStatedK) {
+    const std::string dir = test::tempDir();
+    fogAsset(dir);
+    auto scene = [&](const std::string& name, const std::string& render) {
+        ColorPipeline color;
+        return loadScene(writeFile(dir, name,
+                                   "[film]\nresolution = [8, 8]\nspp = 16\n[render]\n"
+                                   "integrator = \"photon\"\nphotons = 2000\n" +
+                                       render + "[[volume]]\nfile = \"fog.vdb\"\n"),
+                         LoadOptions{}, color);
+    };
+    for (const QualityPreset& preset : qualityPresets()) {
+        Scene stated = scene("k64.toml", "k = 64\n");
+        applyQualityPreset(stated, preset, "photon", {});
+        EXPECT_EQ(stated.photon.k, 64) << preset.name;
+        EXPECT_EQ(stated.settings.spp, int(16 * preset.sceneScale)) << preset.name;
+        EXPECT_EQ(stated.photon.photons, uint64_t(2000 * preset.sceneScale)) << preset.name;
+        Scene unstated = scene("k0.toml", "");
+        applyQualityPreset(unstated, preset, "photon", {});
+        EXPECT_EQ(unstated.photon.k, preset.k) << preset.name;
+        Scene overridden = scene("k64.toml", "k = 64\n");
+        overridden.photon.k = 8;
+        applyQualityPreset(overridden, preset, "photon", {"render.k=8"});
+        EXPECT_EQ(overridden.photon.k, 8) << preset.name;
+    }
 }

@@ -222,19 +222,5 @@ TEST(Tradeoff, QualityPresetsSetSamplesUnlessOverridden) {
     EXPECT_NE(out.find("--quality"), std::string::npos) << out;
 }
 
-// The presets' k (16) fills in a k the scene does not state; one it states (a bandwidth its
-// author chose) stands, and an explicit --set render.k stands over both.
-TEST(Tradeoff, QualityPresetKeepsTheScenesK) {
-    auto kAfter = [](int statedK, const std::vector<std::string>& overrides) {
-        Scene scene;
-        scene.photon.k = statedK;
-        applyQualityPreset(scene, qualityPreset("final"), "photon", overrides);
-        return scene.photon.k;
-    };
-    EXPECT_EQ(kAfter(0, {}), qualityPreset("final").k);
-    EXPECT_EQ(kAfter(48, {}), 48);
-    EXPECT_EQ(kAfter(8, {"render.k=8"}), 8);
-}
-
 }  // namespace
 }  // namespace mirage

@@ -50,7 +50,11 @@ constexpr float kGuideFloor = 0.05f;
 std::unique_ptr<ScatterGuide> buildGuide(const RenderScene& scene) {
     Bounds3 bounds;
     for (const auto& m : scene.media) bounds.expand(m->worldBounds());
-    if (scene.lights.empty() || bounds.empty()) return nullptr;
+    // No guide for unbounded media (a fog filling the scene): no grid to lay over them.
+    const Vec3 d = bounds.diagonal();
+    if (scene.lights.empty() || bounds.empty() ||
+        !(std::isfinite(d.x) && std::isfinite(d.y) && std::isfinite(d.z)))
+        return nullptr;
     TrackingContext ctx(scene.mediaPointers());
     const SampledWavelengths w = SampledWavelengths::sampleVisible(0.5f);
     ctx.setWavelengths(w);
@@ -70,7 +74,7 @@ std::unique_ptr<ScatterGuide> buildGuide(const RenderScene& scene) {
                         g += (transmittance(ctx, shadow, ls.distance, sampler) * ls.Li).average() /
                              float(kGuideEstimates);
                 }
-                values[size_t((k * n + j) * n + i)] = std::max(g, 0.f);
+                values[size_t((k * n + j) * n + i)] = std::isfinite(g) ? std::max(g, 0.f) : 0.f;
             }
     return std::make_unique<ScatterGuide>(bounds, std::move(values), kGuideFloor);
 }

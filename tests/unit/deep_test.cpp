@@ -123,7 +123,10 @@ TEST(Deep, AnOpaqueCardInsertedAtItsDepthMatchesARenderWithTheCard) {
                     // The part of a volumetric sample in front of d (Beer–Lambert within it).
                     const double f = (d - p.z) / (p.zBack - p.z);
                     const double a = 1.0 - std::pow(1.0 - std::min(double(p.rgba[3]), 0.999999), f);
-                    for (int c = 0; c < 3; ++c) q.rgba[c] = float(p.rgba[c] * a / p.rgba[3]);
+                    // A sample of no opacity (light scattered where the walk's coverage rounds
+                    // to 0): its colour spread evenly, the limit of a / alpha as alpha → 0.
+                    const double share = p.rgba[3] > 0.f ? a / p.rgba[3] : f;
+                    for (int c = 0; c < 3; ++c) q.rgba[c] = float(p.rgba[c] * share);
                     q.rgba[3] = float(a);
                 }
                 for (int c = 0; c < 4; ++c) front[c] += T * q.rgba[c];

@@ -37,6 +37,7 @@
 #include <cmath>
 
 #include "render/direct_light.h"
+#include "render/guided_continuation.h"
 #include "render/inelastic_light.h"
 #include "render/integrator.h"
 #include "transport/path_vertex.h"
@@ -63,6 +64,7 @@ public:
         const GeometryScene* geometry = scene.hasSurfaces() ? scene.geometry.get() : nullptr;
         bool fluoresced = false;
         bool specularChain = true;  // every vertex so far a mirror or glass: escapes see the dome
+        const bool guided = guidesPaths(scene);  // render/guided_continuation.h
         for (int depth = 0;; ++depth) {
             Ray next;
             std::optional<SurfaceHit> hit;
@@ -100,7 +102,10 @@ public:
                                    view.at(path.history, c.t, false));
                         view.scatter(path.history, c.t, false);
                         path.history.scatter(false);
-                        next = Ray{c.p, samplePhase(m, c, ray.d, sampler, &path), kInfinity};
+                        next = Ray{c.p,
+                                   continueInMedium(scene, guided, m, c, ray.d,
+                                                    ts.tracking.wavelengths(), sampler, &path),
+                                   kInfinity};
                         scattered = true;
                     }
                     return Track::Stop;  // scattered, or absorbed for good
@@ -136,8 +141,8 @@ public:
             if (scattered) specularChain = false;  // a medium event: NEE counted the dome
             if (!scattered && escaped && hit) {
                 specularChain = specularChain && scene.geometry->materialAt(*hit).specular();
-                scattered = scatterAtSurface(scene, *hit, ray, ts.tracking.wavelengths(), sampler,
-                                             ts, &path, &view, &out, &next);
+                scattered = scatterAtSurface(scene, guided, *hit, ray, ts.tracking.wavelengths(),
+                                             sampler, ts, &path, &view, &out, &next);
             }
             if (!scattered) break;
             if (depth + 1 >= mMaxDepth) {
@@ -159,17 +164,6 @@ public:
     }
 
 private:
-    // The next direction from the medium's phase function; β times its weight p/pdf.
-    static Vec3 samplePhase(const Medium& m, const Collision& c, const Vec3& dir, Sampler& sampler,
-                            PathThroughput* path) {
-        SampledSpectrum weight;
-        float pdf;
-        const float uc = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
-        const Vec3 wo = m.phaseSample(c.mp, dir, uc, u1, u2, &weight, &pdf);
-        path->beta *= weight;
-        return wo;
-    }
-
     // The inelastic event at a collision in a fluorescent medium (the top of the file). True
     // when it was chosen: the path goes on hero-only at *lambdaIn along *next (β may be 0 when
     // no λi feeds λo). Not chosen, β carries the ordinary events' factor 1 / (1 − P_f).
@@ -194,10 +188,10 @@ private:
 
     // The surface vertex: emission, NEE on diffuse surfaces, then the BSDF sample that
     // continues the path. Returns false when the path ends here.
-    static bool scatterAtSurface(const RenderScene& scene, const SurfaceHit& hit, const Ray& ray,
-                                 const SampledWavelengths& w, Sampler& sampler, ThreadState& ts,
-                                 PathThroughput* path, DeepView* view, RadianceSample* out,
-                                 Ray* next) {
+    static bool scatterAtSurface(const RenderScene& scene, bool guided, const SurfaceHit& hit,
+                                 const Ray& ray, const SampledWavelengths& w, Sampler& sampler,
+                                 ThreadState& ts, PathThroughput* path, DeepView* view,
+                                 RadianceSample* out, Ray* next) {
         const Material& mat = scene.geometry->materialAt(hit);
         const DeepAt at = view->at(path->history, hit.t, true);
         if (mat.emissive())
@@ -209,6 +203,8 @@ private:
             view->specular(path->history, hit.t);
         else
             view->scatter(path->history, hit.t, true);
+        if (guided && !mat.specular())
+            return continueAtDiffuse(scene, mat, hit, ray.d, w, sampler, path, next);
         return continueAtSurface(mat, hit, ray.d, w, TransportMode::Radiance, sampler, path, next);
     }
 

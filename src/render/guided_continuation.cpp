@@ -37,34 +37,6 @@ bool guidesPaths(const RenderScene& scene) {
     return forward && light;
 }
 
-Vec3 continueInMedium(const RenderScene& scene, bool guided, const Medium& m, const Collision& c,
-                      const Vec3& dir, const SampledWavelengths& w, Sampler& sampler,
-                      PathThroughput* path) {
-    SampledSpectrum weight;
-    float pdf;
-    const float uc = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
-    std::array<Vec3, kMaxGuides> lights;
-    const size_t n = guided && m.phasePdf(c.mp, dir, dir) > kForwardPeak
-                         ? lightDirections(scene, c.p, w, &lights)
-                         : 0;
-    if (n == 0) {
-        const Vec3 wo = m.phaseSample(c.mp, dir, uc, u1, u2, &weight, &pdf);
-        path->beta *= weight;
-        return wo;
-    }
-    // A light's lobe: light travelling along −l into the next vertex and on along −wo towards
-    // this one peaks where wo = l.
-    const float ug = sampler.get1D();
-    const Vec3 wo = ug < 0.5f
-                        ? m.phaseSample(c.mp, dir, uc, u1, u2, &weight, &pdf)
-                        : -m.phaseSample(c.mp, -lights[pick(ug, n)], uc, u1, u2, &weight, &pdf);
-    float toLights = 0.f;
-    for (size_t i = 0; i < n; ++i) toLights += m.phasePdf(c.mp, -lights[i], -wo);
-    const float mixture = 0.5f * m.phasePdf(c.mp, dir, wo) + 0.5f * toLights / float(n);
-    path->beta *= mixture > 0.f ? m.phaseEval(c.mp, dir, wo) / mixture : SampledSpectrum(0.f);
-    return wo;
-}
-
 bool continueAtDiffuse(const RenderScene& scene, const Material& material, const SurfaceHit& hit,
                        const Vec3& dir, const SampledWavelengths& w, Sampler& sampler,
                        PathThroughput* path, Ray* next) {

@@ -102,10 +102,7 @@ public:
                                    view.at(path.history, c.t, false));
                         view.scatter(path.history, c.t, false);
                         path.history.scatter(false);
-                        next = Ray{c.p,
-                                   continueInMedium(scene, guided, m, c, ray.d,
-                                                    ts.tracking.wavelengths(), sampler, &path),
-                                   kInfinity};
+                        next = Ray{c.p, samplePhase(m, c, ray.d, sampler, &path), kInfinity};
                         scattered = true;
                     }
                     return Track::Stop;  // scattered, or absorbed for good
@@ -164,6 +161,17 @@ public:
     }
 
 private:
+    // The next direction from the medium's phase function; β times its weight p/pdf.
+    static Vec3 samplePhase(const Medium& m, const Collision& c, const Vec3& dir, Sampler& sampler,
+                            PathThroughput* path) {
+        SampledSpectrum weight;
+        float pdf;
+        const float uc = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
+        const Vec3 wo = m.phaseSample(c.mp, dir, uc, u1, u2, &weight, &pdf);
+        path->beta *= weight;
+        return wo;
+    }
+
     // The inelastic event at a collision in a fluorescent medium (the top of the file). True
     // when it was chosen: the path goes on hero-only at *lambdaIn along *next (β may be 0 when
     // no λi feeds λo). Not chosen, β carries the ordinary events' factor 1 / (1 − P_f).

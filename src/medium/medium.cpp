@@ -88,10 +88,11 @@ void Medium::resolveSlots() {
     if (slots.size() != mGrids.size()) {
         std::vector<std::string> missing;
         for (size_t i = mGrids.size(); i < slots.size(); ++i) missing.push_back(slots[i]);
-        throw MirageError(
-            "shader '" + mShader.name + "' reads grid slot(s) " + quotedList(slots) + ", but " +
-            std::to_string(mGrids.size()) + " grid(s) are bound" +
-            (missing.empty() ? std::string() : "; no grid for " + quotedList(missing)));
+        throw MirageError("shader '" + mShader.name + "' reads grid slot(s) " +
+                          quotedList(slots) + ", but " + std::to_string(mGrids.size()) +
+                          " grid(s) are bound" +
+                          (missing.empty() ? std::string()
+                                           : "; no grid for " + quotedList(missing)));
     }
     auto indexOf = [&](const std::string& name) {
         if (name.empty()) return -1;
@@ -148,9 +149,10 @@ void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantRes
         mPeakPhase = std::max(mPeakPhase, mPhases.back().eval(1.f));
         greyAll &= mModels[i]->grey() && !c.fluorescent();
         mFluorescent |= c.fluorescent();
-        mFluorescence.push_back(
-            c.fluorescent() ? FluorescenceEmission(c.emissionPeakNm, c.emissionFwhmNm, c.antiStokes)
-                            : FluorescenceEmission());
+        mFluorescence.push_back(c.fluorescent() ? FluorescenceEmission(c.emissionPeakNm,
+                                                                       c.emissionFwhmNm,
+                                                                       c.antiStokes)
+                                                : FluorescenceEmission());
     }
     mGreyCoefficients = greyAll;
     if (!(sigmaMax <= kMaxSigma))
@@ -175,9 +177,9 @@ void Medium::checkEmissionBound(double sigmaMax) const {
         leMax = std::max(leMax, planck(l, T) * 1e-9 * e.intensity);
     if (!(sigmaMax * leMax <= kMaxSigma))
         throw MirageError("shader '" + mShader.name + "': emission σa·Le up to " +
-                          formatNumber(sigmaMax * leMax) + " W/(m³·sr·nm) at " + formatNumber(T) +
-                          " K (grid '" + mGrids[slot].name() + "') is above the limit of " +
-                          formatNumber(kMaxSigma) +
+                          formatNumber(sigmaMax * leMax) + " W/(m³·sr·nm) at " +
+                          formatNumber(T) + " K (grid '" + mGrids[slot].name() +
+                          "') is above the limit of " + formatNumber(kMaxSigma) +
                           "; lower the temperature scale, intensity or density");
 }
 
@@ -190,15 +192,14 @@ double Medium::checkedSigmaMax(int i, const FloatGrid* grid, float k) const {
     const double gridMax = grid ? double(grid->maxValue()) : 1.0;
     const double sigma = mModels[size_t(i)]->sigmaTBound(double(k) * gridMax);
     if (!(sigma <= kMaxSigma))
-        throw MirageError(
-            "shader '" + mShader.name + "': component '" + c.name + "'" +
-            (grid ? " on grid '" + grid->name() + "' (max value " + formatNumber(gridMax) + ")"
-                  : std::string()) +
-            ": σt up to " + formatNumber(sigma) +
-            " 1/m (concentration × density_scale × grid × cross-section) is above "
-            "the limit of " +
-            formatNumber(kMaxSigma) +
-            " 1/m; lower density_scale, concentration or the cross-sections");
+        throw MirageError("shader '" + mShader.name + "': component '" + c.name + "'" +
+                          (grid ? " on grid '" + grid->name() + "' (max value " +
+                                      formatNumber(gridMax) + ")"
+                                : std::string()) +
+                          ": σt up to " + formatNumber(sigma) +
+                          " 1/m (concentration × density_scale × grid × cross-section) is above "
+                          "the limit of " + formatNumber(kMaxSigma) +
+                          " 1/m; lower density_scale, concentration or the cross-sections");
     return sigma;
 }
 
@@ -224,7 +225,8 @@ void Medium::Context::setWavelengths(const SampledWavelengths& w) {
     // What depends only on λ is evaluated here, once per path, not per lookup.
     const auto& comps = mMedium->mShader.components;
     for (size_t i = 0; i < comps.size(); ++i)
-        mModel[i]->sampleWavelengths(w, comps[i].concentration * mMedium->mDensityScale, &mPath[i]);
+        mModel[i]->sampleWavelengths(w, comps[i].concentration * mMedium->mDensityScale,
+                                     &mPath[i]);
 }
 
 void Medium::Context::placeAt(float seconds) {
@@ -262,7 +264,8 @@ void Medium::setMotion(VectorGrid velocity, float velocityScale, float maxTimeOf
                           formatNumber(mVelocity.magnitudeBound()) + " m/s × velocity_scale " +
                           formatNumber(velocityScale) + " moves shader '" + mShader.name +
                           "' up to " + formatNumber(R) + " m within the shutter, more than " +
-                          formatNumber(kMaxBlurToSize) + " times its size (" + formatNumber(size) +
+                          formatNumber(kMaxBlurToSize) + " times its size (" +
+                          formatNumber(size) +
                           " m); velocities are in object units per second: check "
                           "velocity_scale, [output] fps and the shutter");
     mBlurRadius = float(R);
@@ -399,10 +402,7 @@ Vec3 Medium::phaseSample(const MediumPoint& mp, const Vec3& wi, float uc, float 
     float acc = 0.f;
     for (int i = 0; i < mp.components; ++i) {
         acc += mp.sigmaSComponent[i].average();
-        if (uc * total < acc) {
-            chosen = i;
-            break;
-        }
+        if (uc * total < acc) { chosen = i; break; }
     }
     Vec3 wo = mPhases[chosen].sample(wi, u1, u2, nullptr);
     const float mixPdf = phasePdf(mp, wi, wo);

@@ -28,7 +28,7 @@ constexpr int kMaxComponents = 8;
 // Coefficients at one point for a path's wavelengths.
 struct MediumPoint {
     SampledSpectrum sigmaA, sigmaS;  // 1/m
-    SampledSpectrum Le;  // emitted radiance, W·m⁻²·sr⁻¹·nm⁻¹ (emission = σa·Le)
+    SampledSpectrum Le;              // emitted radiance, W·m⁻²·sr⁻¹·nm⁻¹ (emission = σa·Le)
     int components = 0;
     std::array<SampledSpectrum, kMaxComponents> sigmaSComponent;  // for the phase mixture
 };
@@ -70,7 +70,7 @@ public:
     // Some component re-emits absorbed light (Γ > 0): the Γ roulette applies (reemission.h).
     bool fluorescent() const { return mFluorescent; }
     // The largest forward value of a component's lobe, p(0) (1/sr): 1/4π isotropic, 26 for
-    // HG g 0.92 (render/volpath.cpp guides paths towards the lights above a threshold).
+    // HG g 0.92 (render/guided_continuation.h guides paths towards the lights above 5/sr).
     float peakPhase() const { return mPeakPhase; }
     // "Model only what a scene requires" (docs/design.md): every component is linear with
     // wavelength-independent σa and σs and none fluoresces, so σ is one number per component.
@@ -218,7 +218,8 @@ public:
     // Absorption coefficient of each component (1/m) at an object-space point for one
     // wavelength: which component absorbed a photon decides whether it fluoresces. Writes
     // shader().components.size() values.
-    void sigmaAComponentsAt(const Vec3& pObject, Context& ctx, float lambdaNm, float* sigmaA) const;
+    void sigmaAComponentsAt(const Vec3& pObject, Context& ctx, float lambdaNm,
+                            float* sigmaA) const;
     // The emission band of component i (valid when it is fluorescent).
     const FluorescenceEmission& fluorescence(int i) const { return mFluorescence[size_t(i)]; }
 
@@ -270,7 +271,7 @@ private:
     float mVelocityScale = 1.f, mBlurRadius = 0.f;
     std::vector<ComponentPhase> mPhases;
     std::vector<FluorescenceEmission> mFluorescence;  // per component (empty when Γ = 0)
-    std::shared_ptr<const Region> mRegion;            // null: the whole box
+    std::shared_ptr<const Region> mRegion;             // null: the whole box
     std::vector<std::shared_ptr<const Region>> mExcluded;
     bool mFluorescent = false;
     float mPeakPhase = 0.f;

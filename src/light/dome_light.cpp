@@ -116,7 +116,18 @@ public:
         out->wi = d;
         out->distance = kInfinity;
         out->Li = radiance(d, w) / pdf;
+        out->pdf = pdf;
         return !out->Li.isZero();
+    }
+    // Every direction reaches the dome: a phase-function sample in a medium is a second
+    // strategy, weighed against this light's own samples (render/direct_light.cpp).
+    bool hitLi(const Vec3&, const Vec3& wi, const SampledWavelengths& w,
+               LightSample* out) const override {
+        out->wi = wi;
+        out->distance = kInfinity;
+        out->pdf = directionPdf(wi);
+        out->Li = radiance(wi, w);
+        return out->pdf > 0.f && !out->Li.isZero();
     }
 
     SampledSpectrum escapedRadiance(const Vec3& d, const SampledWavelengths& w,
@@ -185,6 +196,15 @@ private:
         const float sinT = std::sin(kPi * v);
         *pdf = sinT > 0.f ? pdfUv * kInv2Pi2 / sinT : 0.f;
         return latLongDirection(u, v, mRotation);
+    }
+
+    // The density sampleDirection draws d with.
+    float directionPdf(const Vec3& d) const {
+        if (mDistribution.empty()) return kInv4Pi;
+        float u, v;
+        latLongCoordinates(d, mRotation, &u, &v);
+        const float sinT = std::sin(kPi * v);
+        return sinT > 0.f ? mDistribution.pdf(u, v) * kInv2Pi2 / sinT : 0.f;
     }
 
     size_t pixel(const Vec3& d) const {

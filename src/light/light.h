@@ -21,9 +21,9 @@ struct LightSample {
     Vec3 wi;             // unit direction from the shaded point towards the light
     float distance;      // to the light (kInfinity for distant lights)
     SampledSpectrum Li;  // incident radiance divided by the sampling pdf (W·m⁻²·nm⁻¹)
-    // Solid-angle pdf of wi for a light with an area a sampled direction can hit (the quad),
-    // for multiple importance sampling against the phase function (render/direct_light.cpp);
-    // 0 for lights a direction cannot hit (point, spot, distant, dome: no MIS).
+    // Solid-angle pdf of wi for a light a sampled direction can hit (the quad, the dome), for
+    // multiple importance sampling against the phase function (render/direct_light.cpp); 0 for
+    // lights a direction cannot hit (point, spot, distant: no MIS).
     float pdf = 0.f;
 };
 
@@ -64,9 +64,9 @@ public:
                                             bool /*cameraRay*/) const {
         return SampledSpectrum(0.f);
     }
-    // A light with an area: whether the ray from p along the unit direction wi meets its
-    // emitting side; then *out holds the distance, the radiance itself (Li, not divided by a
-    // pdf) and the pdf sampleLi would draw wi with. The others: false.
+    // A light with an area or at infinity (the dome): whether the ray from p along the unit
+    // direction wi meets its emitting side; then *out holds the distance, the radiance itself
+    // (Li, not divided by a pdf) and the pdf sampleLi would draw wi with. The others: false.
     virtual bool hitLi(const Vec3& /*p*/, const Vec3& /*wi*/, const SampledWavelengths&,
                        LightSample* /*out*/) const {
         return false;

@@ -146,6 +146,7 @@ void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantRes
         const FloatGrid* grid = slot < 0 ? nullptr : &mGrids[size_t(slot)];
         sigmaMax += checkedSigmaMax(int(i), grid, k);
         mPhases.emplace_back(c.phase, c.g, c.g2, c.phaseWeight);
+        mPeakPhase = std::max(mPeakPhase, mPhases.back().eval(1.f));
         greyAll &= mModels[i]->grey() && !c.fluorescent();
         mFluorescent |= c.fluorescent();
         mFluorescence.push_back(c.fluorescent() ? FluorescenceEmission(c.emissionPeakNm,

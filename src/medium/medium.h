@@ -69,6 +69,9 @@ public:
     void setHoldout(bool holdout) { mHoldout = holdout; }
     // Some component re-emits absorbed light (Γ > 0): the Γ roulette applies (reemission.h).
     bool fluorescent() const { return mFluorescent; }
+    // The largest forward value of a component's lobe, p(0) (1/sr): 1/4π isotropic, 26 for
+    // HG g 0.92 (render/guided_continuation.h guides paths towards the lights above 5/sr).
+    float peakPhase() const { return mPeakPhase; }
     // "Model only what a scene requires" (docs/design.md): every component is linear with
     // wavelength-independent σa and σs and none fluoresces, so σ is one number per component.
     // Then eval() computes one value per component instead of one per wavelength, and
@@ -271,6 +274,7 @@ private:
     std::shared_ptr<const Region> mRegion;             // null: the whole box
     std::vector<std::shared_ptr<const Region>> mExcluded;
     bool mFluorescent = false;
+    float mPeakPhase = 0.f;
     bool mGreyCoefficients = false, mGreyPath = true;
     bool mHoldout = false;
 };

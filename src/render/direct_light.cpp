@@ -20,7 +20,7 @@ float powerHeuristic(float a, float b) {
 }  // namespace
 
 // Light arriving at a medium point, by next-event estimation. A light a direction can hit (the
-// quad) is sampled twice, by the light and by the phase function, the two combined by
+// quad, the dome) is sampled twice, by the light and by the phase function, the two combined by
 // multiple importance sampling (Veach 1997): in a strongly forward medium (marine particles,
 // HG g = 0.92, p up to 26/sr against a mean of 1/4π) the light's own samples alone score rare
 // directions along the lobe ~300 times the mean, the speckles of a lit water box; phase
@@ -50,12 +50,12 @@ SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, 
         if (light->sampleLi(c.p, u1, u2, w, &ls)) {
             // The light travels along −wi into the point and leaves along wo.
             const SampledSpectrum phase = m.phaseEval(c.mp, -ls.wi, wo);
-            const float mis = ls.pdf > 0.f ? powerHeuristic(ls.pdf, m.phasePdf(c.mp, -wo, ls.wi))
-                                           : 1.f;
+            const float mis =
+                ls.pdf > 0.f ? powerHeuristic(ls.pdf, m.phasePdf(c.mp, -wo, ls.wi)) : 1.f;
             if (!phase.isZero()) term += shadowed(ls) * phase * mis;
         }
         if (ls.pdf > 0.f) {
-            // The phase function's sample, for a light with an area (its samples have a pdf)
+            // The phase function's sample, for a light a direction can hit (its samples have a pdf)
             // that the point sees the emitting side of.
             SampledSpectrum weight;
             float pdf;
@@ -71,30 +71,57 @@ SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, 
     return L;
 }
 
+// Light arriving at a diffuse surface point, by next-event estimation. A light at infinity (the
+// dome) is sampled twice, by the light and by the BSDF, combined by multiple importance sampling
+// as in a medium: a constant dome drawn uniformly over the sphere sends half its samples below
+// the surface, and the BSDF's cosine lobe draws exactly the directions that count. A quad's
+// small solid angle would waste most BSDF samples, so it keeps its own sampling alone.
 SampledSpectrum directLightSurface(const RenderScene& scene, const SurfaceHit& hit,
                                    const Material& material, const Vec3& wo, Sampler& sampler,
                                    ThreadState& ts) {
     SampledSpectrum L(0.f);
+    const SampledWavelengths& w = ts.tracking.wavelengths();
     Frame frame(hit.ns);
     Vec3 woL = frame.toLocal(wo);
     const float side = dot(wo, hit.ng);
     SampledSpectrum* split = ts.startLightSplit();
-    for (size_t i = 0; i < scene.lights.size(); ++i) {
-        const Light* light = scene.lights[i].get();
-        float u1, u2;
-        sampler.get2D(&u1, &u2);  // one pair of dimensions: stratified over the light
-        LightSample ls;
-        if (!light->sampleLi(hit.p, u1, u2, ts.tracking.wavelengths(), &ls)) continue;
+    // T f |cos θi| for a direction towards the light (Li left to the caller); 0 when the light
+    // is behind the surface, or blocked.
+    auto shadowed = [&](const LightSample& ls) {
         // Light from behind the geometric surface cannot reach the viewer's side.
-        if (dot(ls.wi, hit.ng) * side <= 0.f) continue;
-        Vec3 wiL = frame.toLocal(ls.wi);
-        SampledSpectrum f = material.eval(woL, wiL, ts.tracking.wavelengths());
-        if (f.isZero()) continue;
+        if (dot(ls.wi, hit.ng) * side <= 0.f) return SampledSpectrum(0.f);
+        const Vec3 wiL = frame.toLocal(ls.wi);
+        const SampledSpectrum f = material.eval(woL, wiL, w);
+        if (f.isZero()) return SampledSpectrum(0.f);
         Ray shadow = spawnRay(hit, ls.wi, ls.distance);
         float len = shadowLength(hit.p + ls.wi * ls.distance, ls.distance);
-        if (scene.geometry->occluded(shadow.o, ls.wi, len)) continue;
-        SampledSpectrum T = transmittance(ts.tracking, shadow, ls.distance, sampler);
-        const SampledSpectrum term = T * f * std::abs(wiL.z) * ls.Li;
+        if (scene.geometry->occluded(shadow.o, ls.wi, len)) return SampledSpectrum(0.f);
+        return transmittance(ts.tracking, shadow, ls.distance, sampler) * f * std::abs(wiL.z);
+    };
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const Light* light = scene.lights[i].get();
+        const bool twoStrategies = light->infinite();
+        float u1, u2;
+        sampler.get2D(&u1, &u2);  // one pair of dimensions: stratified over the light
+        SampledSpectrum term(0.f);
+        LightSample ls;
+        if (light->sampleLi(hit.p, u1, u2, w, &ls)) {
+            const float mis = twoStrategies && ls.pdf > 0.f
+                                  ? powerHeuristic(ls.pdf, material.pdf(woL, frame.toLocal(ls.wi)))
+                                  : 1.f;
+            term += shadowed(ls) * ls.Li * mis;
+        }
+        if (twoStrategies) {
+            const float uc = sampler.get1D(), v1 = sampler.get1D(), v2 = sampler.get1D();
+            BsdfSample bs;
+            LightSample hs;
+            if (material.sample(woL, uc, v1, v2, w, TransportMode::Radiance, &bs) && !bs.specular) {
+                const float pdf = material.pdf(woL, bs.wi);
+                const Vec3 wi = frame.toWorld(bs.wi);
+                if (pdf > 0.f && light->hitLi(hit.p, wi, w, &hs))
+                    term += shadowed(hs) * hs.Li * (powerHeuristic(pdf, hs.pdf) / pdf);
+            }
+        }
         L += term;
         if (split) split[scene.lightGroupSlot(i)] += term;
     }

@@ -37,6 +37,7 @@
 #include <cmath>
 
 #include "render/direct_light.h"
+#include "render/guided_continuation.h"
 #include "render/inelastic_light.h"
 #include "render/integrator.h"
 #include "transport/path_vertex.h"
@@ -63,6 +64,7 @@ public:
         const GeometryScene* geometry = scene.hasSurfaces() ? scene.geometry.get() : nullptr;
         bool fluoresced = false;
         bool specularChain = true;  // every vertex so far a mirror or glass: escapes see the dome
+        const bool guided = guidesPaths(scene);  // render/guided_continuation.h
         for (int depth = 0;; ++depth) {
             Ray next;
             std::optional<SurfaceHit> hit;
@@ -136,8 +138,8 @@ public:
             if (scattered) specularChain = false;  // a medium event: NEE counted the dome
             if (!scattered && escaped && hit) {
                 specularChain = specularChain && scene.geometry->materialAt(*hit).specular();
-                scattered = scatterAtSurface(scene, *hit, ray, ts.tracking.wavelengths(), sampler,
-                                             ts, &path, &view, &out, &next);
+                scattered = scatterAtSurface(scene, guided, *hit, ray, ts.tracking.wavelengths(),
+                                             sampler, ts, &path, &view, &out, &next);
             }
             if (!scattered) break;
             if (depth + 1 >= mMaxDepth) {
@@ -194,10 +196,10 @@ private:
 
     // The surface vertex: emission, NEE on diffuse surfaces, then the BSDF sample that
     // continues the path. Returns false when the path ends here.
-    static bool scatterAtSurface(const RenderScene& scene, const SurfaceHit& hit, const Ray& ray,
-                                 const SampledWavelengths& w, Sampler& sampler, ThreadState& ts,
-                                 PathThroughput* path, DeepView* view, RadianceSample* out,
-                                 Ray* next) {
+    static bool scatterAtSurface(const RenderScene& scene, bool guided, const SurfaceHit& hit,
+                                 const Ray& ray, const SampledWavelengths& w, Sampler& sampler,
+                                 ThreadState& ts, PathThroughput* path, DeepView* view,
+                                 RadianceSample* out, Ray* next) {
         const Material& mat = scene.geometry->materialAt(hit);
         const DeepAt at = view->at(path->history, hit.t, true);
         if (mat.emissive())
@@ -209,6 +211,8 @@ private:
             view->specular(path->history, hit.t);
         else
             view->scatter(path->history, hit.t, true);
+        if (guided && !mat.specular())
+            return continueAtDiffuse(scene, mat, hit, ray.d, w, sampler, path, next);
         return continueAtSurface(mat, hit, ray.d, w, TransportMode::Radiance, sampler, path, next);
     }
 

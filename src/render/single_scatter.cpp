@@ -42,6 +42,7 @@ namespace {
 // of 0.05; 8 or 16 estimates per cell no less than 4.
 constexpr int kGuideEstimates = 4;
 constexpr float kGuideFloor = 0.05f;
+constexpr uint64_t kGuideCollisions = 1024;
 
 // The guide of the scattering points (transport/scatter_guide.h): at each cell's centre, the
 // direct light it would receive, one light sample and kGuideEstimates shadow rays per light
@@ -58,6 +59,13 @@ std::unique_ptr<ScatterGuide> buildGuide(const RenderScene& scene) {
     TrackingContext ctx(scene.mediaPointers());
     const SampledWavelengths w = SampledWavelengths::sampleVisible(0.5f);
     ctx.setWavelengths(w);
+    // A guess needs no accuracy (any g > 0 keeps the estimate unbiased), but its cost must stay
+    // bounded: a shadow ray cut at kGuideCollisions tentative collisions counts as dark and
+    // takes the floor. Without the cut, a grid of huge voxels (σ ~ 10⁶/m in a coarse majorant
+    // cell) sends each of the guide's 131 k rays to the render's cap of 65 536 collisions.
+    // 1024 leaves the race scene's guide as it was (some of its rays need more than 256) and
+    // holds the guide of tests/physics' degenerate grids to seconds.
+    ctx.maxCollisions = kGuideCollisions;
     Sampler sampler(SamplerKind::Random, 0x6775696465ull, 0, 0);  // "guide"
     constexpr int n = ScatterGuide::kResolution;
     std::vector<float> values(size_t(n) * n * n, 0.f);

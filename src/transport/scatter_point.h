@@ -17,7 +17,6 @@
 
 #include <vector>
 
-#include "transport/scatter_guide.h"
 #include "transport/tracking.h"
 
 namespace mirage {
@@ -27,8 +26,8 @@ namespace mirage {
 constexpr int kScatterPoints = 4;
 
 struct ScatterPointWalk {
-    bool chosen = false;                  // a collision with σs > 0 was met
-    Collision collision[kScatterPoints];  // the chosen ones (a collision may repeat)
+    bool chosen = false;                   // a collision with σs > 0 was met
+    Collision collision[kScatterPoints];   // the chosen ones (a collision may repeat)
     // W w_sel / (w̄_sel kScatterPoints): the factor of Ld at each chosen collision.
     SampledSpectrum weight[kScatterPoints];
     SampledSpectrum T{0.f};   // ratio-tracking transmittance over (0, tEnd); 0 when ended early
@@ -48,11 +47,8 @@ struct EmissionAt {
     float t;
     SampledSpectrum L;
 };
-// With a guide (transport/scatter_guide.h), the points are drawn ∝ T σs g(p) instead of T σs
-// and weighted by 1/g: the same expectation, less variance where g follows the light.
 ScatterPointWalk chooseScatterPoints(TrackingContext& ctx, const Ray& worldRay, float tEnd,
                                      const SampledSpectrum& beta, Sampler& sampler,
-                                     SampledSpectrum* L, std::vector<EmissionAt>* parts = nullptr,
-                                     const ScatterGuide* guide = nullptr);
+                                     SampledSpectrum* L, std::vector<EmissionAt>* parts = nullptr);
 
 }  // namespace mirage

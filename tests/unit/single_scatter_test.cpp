@@ -5,8 +5,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <utility>
-#include <vector>
 
 #include "film/color.h"
 #include "render/renderer.h"
@@ -36,19 +34,6 @@ double opticalDepth(const FloatGrid& g, const Vec3& a, const Vec3& b, double sig
     double sum = 0.0;
     for (int i = 0; i < n; ++i) sum += g.sample(acc, a + (b - a) * ((i + 0.5f) / n));
     return sigmaT * sum * length(b - a) / n;
-}
-
-// The mean of x(i) over i < n and its standard error.
-template <typename F>
-std::pair<double, double> meanAndError(int n, F&& x) {
-    double sum = 0, sum2 = 0;
-    for (int i = 0; i < n; ++i) {
-        const double v = x(i);
-        sum += v;
-        sum2 += v * v;
-    }
-    const double mean = sum / n;
-    return {mean, std::sqrt((sum2 / n - mean * mean) / n)};
 }
 
 }  // namespace
@@ -100,86 +85,6 @@ TEST(SingleScatter, MatchesQuadratureOfTheSingleScatteringIntegral) {
     }
 }
 
-TEST(SingleScatter, GuidedScatteringPointsKeepTheirExpectation) {
-    // Points drawn ∝ T σs g with a wild guide g (values spread over two decades, cell by cell)
-    // and weighted by 1/g: E[Σ_k weight_k f(t_k)] = ∫ T σs f dt for any f, here f(t) = 1 + 4t
-    // along a ray through the box, against the midpoint rule on the grid's own field.
-    const float sa = 0.5f, ss = 2.f;
-    RenderScene scene = boxScene(sa, ss, 0.f, 470.f);
-    const FloatGrid& g = scene.media[0]->grids()[0];
-    auto acc = g.accessor();
-    const Ray ray{Vec3(-0.2f, 0.3f, 0.6f), Vec3(1, 0, 0), kInfinity};
-    auto f = [](double t) { return 1.0 + 4.0 * t; };
-    double expected = 0.0, tau = 0.0;
-    const int n = 4000;
-    const double dt = 1.5 / n;
-    for (int i = 0; i < n; ++i) {
-        const double t = (i + 0.5) * dt, density = g.sample(acc, ray.at(float(t)));
-        expected += std::exp(-tau) * ss * density * f(t) * dt;
-        tau += (sa + ss) * density * dt;
-    }
-    constexpr int r = ScatterGuide::kResolution;
-    std::vector<float> values(size_t(r) * r * r);
-    for (size_t i = 0; i < values.size(); ++i)
-        values[i] = std::pow(10.f, -2.f * float(mix64(i) >> 40) * 0x1p-24f);
-    const ScatterGuide guide(Bounds3{Vec3(0.f), Vec3(1.f)}, std::move(values), 1e-3f);
-
-    ThreadState ts(scene);
-    for (const ScatterGuide* gd : {static_cast<const ScatterGuide*>(nullptr), &guide}) {
-        SCOPED_TRACE(gd ? "guided" : "unguided");
-        const auto [mean, se] = meanAndError(40000, [&](int i) {
-            Sampler s(SamplerKind::Random, 5, 0, uint64_t(i));
-            ts.tracking.setWavelengths(SampledWavelengths::sampleVisible(s.get1D()));
-            SampledSpectrum L(0.f);
-            const ScatterPointWalk walk = chooseScatterPoints(
-                ts.tracking, ray, kInfinity, SampledSpectrum(1.f), s, &L, nullptr, gd);
-            double x = 0.0;
-            for (int k = 0; walk.chosen && k < kScatterPoints; ++k)
-                x += walk.weight[k][0] * f(walk.collision[k].t);
-            return x;
-        });
-        EXPECT_NEAR(mean, expected, 4 * se) << "expected " << expected << " ± " << se;
-    }
-}
-
-TEST(SingleScatter, GuidedRenderMatchesTheQuadrature) {
-    // The whole integrator with its guide (built by the first sample after preprocess): the
-    // pixel's mean against the quadrature of the single-scattering integral, light from the
-    // top through a box whose density falls with height, so that the guide varies.
-    const float sa = 0.5f, ss = 2.f, E = 470.f;
-    RenderScene scene;
-    scene.media.push_back(test::gridMedium([](int, int j, int) { return 0.2f + 0.05f * float(j); },
-                                           0, 31, kH, sa, ss, 0.f));
-    scene.lights.push_back(makeDistantLight(Vec3(0, -1, 0), E, Spectrum(1.f)));
-    const FloatGrid& g = scene.media[0]->grids()[0];
-    auto acc = g.accessor();
-    // A ray climbing through the box: its points see the light through less and less smoke.
-    const Ray ray{Vec3(-0.2f, 0.05f, 0.5f), normalize(Vec3(1.f, 0.6f, 0.f)), kInfinity};
-    double expected = 0.0, tauCam = 0.0;
-    const int n = 4000;
-    const double dt = 2.0 / n;
-    for (int i = 0; i < n; ++i) {
-        const double t = (i + 0.5) * dt;
-        const Vec3 p = ray.at(float(t));
-        const double density = g.sample(acc, p);
-        if (density > 0) {
-            const double Tl = std::exp(-opticalDepth(g, p, Vec3(p.x, 1.2f, p.z), sa + ss));
-            expected += std::exp(-tauCam) * ss * density / (4 * M_PI) * Tl * dt;
-        }
-        tauCam += (sa + ss) * density * dt;
-    }
-    auto integrator = makeSingleScatterIntegrator();
-    integrator->preprocess(scene);
-    ThreadState ts(scene);
-    const auto [mean, se] = meanAndError(40000, [&](int i) {
-        Sampler s(SamplerKind::Sobol, 1, 0, uint64_t(i));
-        SampledWavelengths w = SampledWavelengths::sampleVisible(s.get1D());
-        ts.tracking.setWavelengths(w);
-        return double(integrator->Li(scene, ray, w, s, ts).L[0]);
-    });
-    EXPECT_NEAR(mean, expected, 4 * se) << "expected " << expected << " ± " << se;
-}
-
 TEST(SingleScatter, EmptyRayIsBlackAndTransparent) {
     RenderScene scene = boxScene(0.5f, 2.f, 0.f, 470.f);
     auto integrator = makeSingleScatterIntegrator();
@@ -207,7 +112,6 @@ TEST(Renderer, SameSeedSameBitsForOneAndTwoThreads) {
     Image images[2];
     for (int threads : {1, 2}) {
         tbb::global_control gc(tbb::global_control::max_allowed_parallelism, size_t(threads));
-        integrator->preprocess(scene);  // a guide of its own, built by whichever thread starts
         images[threads - 1] = render(scene, *integrator, rs, nullptr).develop(color);
     }
     ASSERT_EQ(images[0].rgba.size(), images[1].rgba.size());

@@ -67,7 +67,10 @@ for t in $TARGETS; do
   else
     status=1
     echo "fuzz: $t FOUND A PROBLEM; input kept in $OUT/findings/ (tail of $log):" >&2
-    grep -E "ERROR|SUMMARY|runtime error|Test unit written" "$log" | head -20 >&2 || true
+    # An uncaught exception aborts with only "deadly signal" from libFuzzer: its what() and the
+    # stack's frames in Mirage say where.
+    grep -E "ERROR|SUMMARY|runtime error|Test unit written|terminate called|what\(\)| in mirage::" \
+      "$log" | head -30 >&2 || true
   fi
   if [ "${FUZZ_MERGE:-0}" = 1 ]; then
     "$BUILD_DIR/tests/fuzz/fuzz_$t" -merge=1 -rss_limit_mb="$RSS_MB" -malloc_limit_mb="$RSS_MB" \

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "core/path_check.h"
 #include "core/text.h"
 #include "film/color.h"
 #include "scene/output_loader.h"
@@ -129,7 +130,8 @@ std::unique_ptr<GeometryScene> readGeometry(
             geometry->addQuad(xf.point(corner), xf.vector(u), xf.vector(v), material, interior);
         } else if (type == "mesh") {
             std::string file = resolve(t.getString("file"));
-            if (!std::filesystem::exists(file)) t.fail("file", "mesh file not found: " + file);
+            if (const std::string problem = pathProblem(file); !problem.empty())
+                t.fail("file", "mesh file " + problem + ": " + file);
             TriangleMesh mesh;
             try {
                 mesh = loadObjMesh(file);

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/grid_name.h"
+#include "core/path_check.h"
 #include "core/text.h"
 #include "film/color.h"
 #include "medium/ocean_components.h"
@@ -289,8 +290,8 @@ std::string readVolumeFile(const TableReader& v, const Resolve& resolve, int fra
     }
     // The shipped scenes use procedural caches that Mirage writes itself (no downloads): say
     // how, since a fresh checkout has none of them.
-    if (!fs::exists(file))
-        v.fail("file", "volume file not found: " + file +
+    if (const std::string problem = pathProblem(file); !problem.empty())
+        v.fail("file", "volume file " + problem + ": " + file +
                            " (a procedural cache? `mirage make-asset smoke|fire|fog-sphere|"
                            "ocean -o " + file + "` writes one; the scene's header "
                            "comment says which)");
@@ -513,7 +514,8 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
     scene.source = path;
     VolumeRecord rec;
     rec.file = expandFramePattern(path, options.frame);
-    if (!fs::exists(rec.file)) throw MirageError("volume file not found: " + rec.file);
+    if (const std::string problem = pathProblem(rec.file); !problem.empty())
+        throw MirageError("volume file " + problem + ": " + rec.file);
     if (!options.overrides.empty()) {
         // No scene file: --set reaches the settings tables only; anything else (a light, a
         // volume, a typo) is an unknown key rather than silently ignored.

@@ -4,6 +4,7 @@
 #include <utility>
 #include <filesystem>
 
+#include "core/path_check.h"
 #include "core/text.h"
 #include "medium/ocean_components.h"
 #include "spectrum/ocean_spectra.h"
@@ -157,7 +158,8 @@ ShaderDesc loadShader(const std::string& nameOrPath, const std::string& sceneDir
     if (looksLikePath) {
         fs::path p(nameOrPath);
         if (p.is_relative() && !sceneDir.empty()) p = fs::path(sceneDir) / p;
-        if (!fs::exists(p)) throw MirageError("shader file not found: " + p.string());
+        if (const std::string problem = pathProblem(p); !problem.empty())
+            throw MirageError("shader file " + problem + ": " + p.string());
         return fromFile(p);
     }
     std::vector<fs::path> candidates;
@@ -170,7 +172,7 @@ ShaderDesc loadShader(const std::string& nameOrPath, const std::string& sceneDir
     if (const char* env = std::getenv("MIRAGE_SHADER_PATH"))
         candidates.push_back(fs::path(env) / (nameOrPath + ".toml"));
     for (const auto& c : candidates)
-        if (fs::exists(c)) return fromFile(c);
+        if (pathProblem(c).empty()) return fromFile(c);
     for (const auto& [name, text] : builtinShaders())
         if (name == nameOrPath)
             return parseShader(parseTomlText(text, "<built-in shader " + name + ">"),

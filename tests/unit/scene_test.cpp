@@ -103,6 +103,31 @@ TEST(SceneErrors, SyntaxErrorAndMissingFiles) {
     EXPECT_NE(loadError(dir + "/absent.toml").find("cannot open"), std::string::npos);
 }
 
+// A path the file system cannot even look up (a name past its 255-byte limit) is one message
+// naming the key, like a missing file; std::filesystem::exists would throw past the loader.
+TEST(SceneErrors, UnreadablePathsAreOneMessageNamingTheKey) {
+    const std::string dir = test::tempDir();
+    const std::string longName(300, 'x');
+    const std::string volume =
+        writeFile(dir, "long_volume.toml", "[[volume]]\nfile = \"" + longName + ".vdb\"\n");
+    std::string msg = loadError(volume);
+    EXPECT_NE(msg.find(volume + ":2:8"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("volume file unreadable (File name too long)"), std::string::npos) << msg;
+
+    fogAsset(dir);
+    const std::string shader = writeFile(
+        dir, "long_shader.toml",
+        "[[volume]]\nfile = \"fog.vdb\"\nshader = \"" + longName + ".toml\"\n");
+    msg = loadError(shader);
+    EXPECT_NE(msg.find("shader file unreadable (File name too long)"), std::string::npos) << msg;
+
+    const std::string mesh = writeFile(
+        dir, "long_mesh.toml", "[[material]]\nname = \"white\"\ntype = \"diffuse\"\n"
+        "[[shape]]\ntype = \"mesh\"\nmaterial = \"white\"\nfile = \"" + longName + ".obj\"\n");
+    msg = loadError(mesh);
+    EXPECT_NE(msg.find("mesh file unreadable (File name too long)"), std::string::npos) << msg;
+}
+
 TEST(SceneErrors, MissingGridNamesTheSlotAndTheGridsPresent) {
     std::string dir = test::tempDir();
     fogAsset(dir);

@@ -23,48 +23,69 @@ int firstVisibleMedium(const RenderScene& scene, const Ray& ray, float tEnd) {
 
 }  // namespace
 
-void cameraRayData(const RenderScene& scene, const Ray& ray, Sampler& sampler, ThreadState& ts,
-                   AovSample* aov, DeepSample* deep) {
+CameraRayData::CameraRayData(const RenderScene& scene, const Ray& ray, const SampledWavelengths& w,
+                             Sampler& sampler, ThreadState& ts, AovSample* aov, DeepSample* deep)
+    : mScene(scene),
+      mRay(ray),
+      mW(w),
+      mSampler(sampler),
+      mTs(ts),
+      mAov(aov),
+      mDeep(deep),
+      mCrypto(aov && !aov->volumeCoverage.empty()) {}
+
+void CameraRayData::seen(const Collision& c) {
+    if (!mAlive) return;
+    mLastT = c.t;
+    const bool visible = !mTs.tracking.medium(size_t(c.medium)).holdout();
+    if (visible) mAlbedo += mT * c.mp.sigmaS / c.sigmaMaj;
+    const float before = mT.average();
+    mT *= (SampledSpectrum(c.sigmaMaj) - c.mp.sigmaA - c.mp.sigmaS) / c.sigmaMaj;
+    if (!(mDepth < kInfinity) && mT.average() <= 0.5f) mDepth = c.t;
+    // The coverage this collision adds (before the roulette rescales T), to the deep samples
+    // and to the medium's Cryptomatte coverage.
+    if (mDeep && visible) mDeep->coverage.push_back({{c.t, false}, before - mT.average()});
+    if (mCrypto && visible) mAov->volumeCoverage[size_t(c.medium)] += before - mT.average();
+    const float left = mT.average();
+    mAlive = russianRoulette(&mT, mSampler);
+    if (mAlive) return;
+    if (mDeep && visible) mDeep->coverage.push_back({{c.t, false}, left});
+    if (mCrypto && visible) mAov->volumeCoverage[size_t(c.medium)] += left;
+}
+
+void CameraRayData::finish() {
     std::optional<SurfaceHit> hit;
-    if (scene.hasSurfaces()) hit = scene.geometry->intersect(ray);
-    const float tEnd = hit ? hit->t : ray.tMax;
-    SampledSpectrum T(1.f), albedo(0.f);
-    const bool crypto = aov && !aov->volumeCoverage.empty();
-    float depth = kInfinity;
-    const bool reached = trackCollisions(ts.tracking, ray, tEnd, sampler, [&](const Collision& c) {
-        const bool visible = !ts.tracking.medium(size_t(c.medium)).holdout();
-        if (visible) albedo += T * c.mp.sigmaS / c.sigmaMaj;
-        const float before = T.average();
-        T *= (SampledSpectrum(c.sigmaMaj) - c.mp.sigmaA - c.mp.sigmaS) / c.sigmaMaj;
-        if (!(depth < kInfinity) && T.average() <= 0.5f) depth = c.t;
-        // The coverage this collision adds (before the roulette rescales T), to the deep
-        // samples and to the medium's Cryptomatte coverage.
-        if (deep && visible) deep->coverage.push_back({{c.t, false}, before - T.average()});
-        if (crypto && visible) aov->volumeCoverage[size_t(c.medium)] += before - T.average();
-        const float left = T.average();
-        if (russianRoulette(&T, sampler)) return Track::Continue;
-        if (deep && visible) deep->coverage.push_back({{c.t, false}, left});
-        if (crypto && visible) aov->volumeCoverage[size_t(c.medium)] += left;
-        return Track::Stop;
-    });
-    if (crypto) aov->firstVolume = firstVisibleMedium(scene, ray, tEnd);
-    if (!reached) T = SampledSpectrum(0.f);
-    if (hit && reached && scene.geometry->holdout(*hit)) {
-        // A holdout: no albedo and no coverage of its own; the plate behind it shows by T.
-        if (!(depth < kInfinity)) depth = hit->t;
-    } else if (hit && reached) {
-        const Material& mat = scene.geometry->materialAt(*hit);
-        const SampledWavelengths& w = ts.tracking.wavelengths();
-        for (int i = 0; i < kSpectrumSamples; ++i) albedo[i] += T[i] * mat.albedo(w.lambda[i]);
-        if (!(depth < kInfinity)) depth = hit->t;
-        if (deep) deep->coverage.push_back({{hit->t, true}, T.average()});
-        if (crypto) aov->shapeCoverage[size_t(hit->shape)] += T.average();
-        T = SampledSpectrum(0.f);
+    if (mScene.hasSurfaces()) hit = mScene.geometry->intersect(mRay);
+    const float tEnd = hit ? hit->t : mRay.tMax;
+    // The integrator may have changed the context's wavelengths (fluorescence, dispersion).
+    mTs.tracking.setWavelengths(mW);
+    bool reached = mAlive && mWalk == Walk::ToTheEnd;
+    if (mAlive && mWalk != Walk::ToTheEnd) {
+        const float t0 = mLastT;
+        const Ray rest{mRay.at(t0), mRay.d, mRay.tMax - t0};
+        reached = trackCollisions(mTs.tracking, rest, tEnd - t0, mSampler, [&](Collision c) {
+            c.t += t0;
+            seen(c);
+            return mAlive ? Track::Continue : Track::Stop;
+        });
     }
-    if (!aov) return;
-    aov->depth = depth;
-    aov->albedo = albedo;
-    aov->transmittance = T;
+    if (mCrypto) mAov->firstVolume = firstVisibleMedium(mScene, mRay, tEnd);
+    if (!reached) mT = SampledSpectrum(0.f);
+    if (hit && reached && mScene.geometry->holdout(*hit)) {
+        // A holdout: no albedo and no coverage of its own; the plate behind it shows by T.
+        if (!(mDepth < kInfinity)) mDepth = hit->t;
+    } else if (hit && reached) {
+        const Material& mat = mScene.geometry->materialAt(*hit);
+        for (int i = 0; i < kSpectrumSamples; ++i) mAlbedo[i] += mT[i] * mat.albedo(mW.lambda[i]);
+        if (!(mDepth < kInfinity)) mDepth = hit->t;
+        if (mDeep) mDeep->coverage.push_back({{hit->t, true}, mT.average()});
+        if (mCrypto) mAov->shapeCoverage[size_t(hit->shape)] += mT.average();
+        mT = SampledSpectrum(0.f);
+    }
+    if (!mAov) return;
+    mAov->depth = mDepth;
+    mAov->albedo = mAlbedo;
+    mAov->transmittance = mT;
 }
 
 }  // namespace mirage

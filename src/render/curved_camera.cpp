@@ -73,13 +73,18 @@ public:
         AovSample* const aov = ts.aov;
         std::optional<AovSample> chordAov;
         if (aov) chordAov.emplace(*aov);  // the same parts, reset per chord
+        // The chords are not the straight camera ray the data passes describe: they walk it
+        // themselves (render/camera_ray_data.h).
+        CameraRayData* const data = ts.cameraData;
         auto inner = [&](const Ray& r) {
             if (aov) {
                 chordAov->reset();
                 ts.aov = &*chordAov;
             }
+            ts.cameraData = nullptr;
             RadianceSample s = mInner->Li(scene, r, w, sampler, ts);
             ts.aov = aov;
+            ts.cameraData = data;
             return s;
         };
         auto add = [&](const RadianceSample& s, double n) {

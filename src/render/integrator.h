@@ -24,6 +24,7 @@
 
 namespace mirage {
 
+class CameraRayData;
 struct PhotonPassResult;
 
 // Per-thread state an integrator may use (allocated once per tile, reused per sample).
@@ -38,6 +39,10 @@ struct ThreadState {
     // nothing below is touched.
     AovSample* aov = nullptr;
     DeepSample* deep = nullptr;       // the sample's deep record; null without deep output
+    // The data passes' record of the camera ray (render/camera_ray_data.h), null when no data
+    // pass or deep output asks for it: an integrator hands it the collisions of its walk of the
+    // camera ray and says how that walk ended.
+    CameraRayData* cameraData = nullptr;
     std::vector<EmissionAt> emitted;  // scratch: a flight's emission per collision
     // Next-event estimation's parts per light-group slot (render/direct_light.h), when the
     // passes split light groups: the last estimate's, overwritten by the next.

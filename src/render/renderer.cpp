@@ -9,6 +9,7 @@
 #include <csignal>
 #include <memory>
 #include <mutex>
+#include <optional>
 
 #include "core/error.h"
 #include "core/interrupt.h"
@@ -68,11 +69,17 @@ uint64_t renderTile(const RenderScene& scene, const Integrator& integrator, cons
                         : camera.generate(float(x) + jx, float(y) + jy);
                 if (ts.aov) aov.reset();
                 if (ts.deep) deep.reset();
+                std::optional<Sampler> data;
+                std::optional<CameraRayData> record;
+                if (walkCameraRay) {
+                    data.emplace(SamplerKind::Random, dataSeed, pixel, uint64_t(i));
+                    ts.cameraData = &record.emplace(scene, ray, w, *data, ts, ts.aov, ts.deep);
+                }
                 RadianceSample rs = integrator.Li(scene, ray, w, sampler, ts);
                 if (achromatic) achromatic->apply(w, &rs);
-                if (walkCameraRay) {
-                    Sampler data(SamplerKind::Random, dataSeed, pixel, uint64_t(i));
-                    cameraRayData(scene, ray, data, ts, ts.aov, ts.deep);
+                if (record) {
+                    record->finish();
+                    ts.cameraData = nullptr;
                     if (layout.coverage()) aov.scaleCoverage(rs.alpha);
                 }
                 const bool kept =

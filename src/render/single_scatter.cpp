@@ -20,6 +20,7 @@
 #include <cmath>
 #include <optional>
 
+#include "render/camera_ray_data.h"
 #include "render/direct_light.h"
 #include "render/integrator.h"
 #include "transport/path_vertex.h"
@@ -53,9 +54,12 @@ public:
             // apart per collision, to be tagged and placed.
             const bool split = out.aov || out.deep;
             ts.emitted.clear();
+            // The camera ray's walk is the data passes' too (render/camera_ray_data.h).
+            CameraRayData* data = bounce == 0 ? ts.cameraData : nullptr;
             const ScatterPointWalk walk =
                 chooseScatterPoints(ts.tracking, ray, tEnd, path.beta, sampler,
-                                    split ? nullptr : &out.L, split ? &ts.emitted : nullptr);
+                                    split ? nullptr : &out.L, split ? &ts.emitted : nullptr, data);
+            if (data) data->walked(walk.reachedEnd);
             for (const EmissionAt& e : ts.emitted)
                 out.add(e.L, path.history.emitted(), kEmissionGroup,
                         view.at(path.history, e.t, false));

@@ -36,6 +36,7 @@
 #include <atomic>
 #include <cmath>
 
+#include "render/camera_ray_data.h"
 #include "render/direct_light.h"
 #include "render/guided_continuation.h"
 #include "render/inelastic_light.h"
@@ -74,8 +75,12 @@ public:
             bool scattered = false;
             bool heldOut = false;  // a real event in a holdout medium the camera looks into
             float eventT = 0.f;    // where the path fluoresced
+            // The camera ray's walk, up to its first real collision, is the data passes' too
+            // (render/camera_ray_data.h).
+            CameraRayData* data = depth == 0 ? ts.cameraData : nullptr;
             const bool escaped =
                 trackCollisions(ts.tracking, ray, tEnd, sampler, [&](const Collision& c) {
+                    if (data) data->seen(c);
                     const Medium& m = ts.tracking.medium(c.medium);
                     // A holdout medium seen by the camera only attenuates: no emission, and a
                     // real event in it ends the path with nothing (and no coverage).
@@ -107,6 +112,7 @@ public:
                     }
                     return Track::Stop;  // scattered, or absorbed for good
                 });
+            if (data) data->walked(escaped);
             // A holdout seen before the path scattered is nothing to the camera: black, and
             // only what lies in front of it covers the pixel (docs/aovs.md, "Holdouts"). Light
             // that scattered meets it as any surface.

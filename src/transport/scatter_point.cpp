@@ -4,7 +4,8 @@ namespace mirage {
 
 ScatterPointWalk chooseScatterPoints(TrackingContext& ctx, const Ray& worldRay, float tEnd,
                                      const SampledSpectrum& beta, Sampler& sampler,
-                                     SampledSpectrum* L, std::vector<EmissionAt>* parts) {
+                                     SampledSpectrum* L, std::vector<EmissionAt>* parts,
+                                     CollisionObserver* observer) {
     ScatterPointWalk walk;
     SampledSpectrum T(1.f);
     // One uniform per reservoir, stratified: (u + k) / kScatterPoints. A reservoir fed with one
@@ -18,6 +19,7 @@ ScatterPointWalk chooseScatterPoints(TrackingContext& ctx, const Ray& worldRay, 
     float chosenMean[kScatterPoints] = {};
     for (int k = 0; k < kScatterPoints; ++k) u[k] = (u0 + k) / kScatterPoints;
     walk.reachedEnd = trackCollisions(ctx, worldRay, tEnd, sampler, [&](const Collision& c) {
+        if (observer) observer->seen(c);
         const Medium& m = ctx.medium(size_t(c.medium));
         if (m.holdout())
             walk.holdoutCoverage += (T * (c.mp.sigmaA + c.mp.sigmaS) / c.sigmaMaj).average();

@@ -26,8 +26,8 @@ namespace mirage {
 constexpr int kScatterPoints = 4;
 
 struct ScatterPointWalk {
-    bool chosen = false;                   // a collision with σs > 0 was met
-    Collision collision[kScatterPoints];   // the chosen ones (a collision may repeat)
+    bool chosen = false;                  // a collision with σs > 0 was met
+    Collision collision[kScatterPoints];  // the chosen ones (a collision may repeat)
     // W w_sel / (w̄_sel kScatterPoints): the factor of Ld at each chosen collision.
     SampledSpectrum weight[kScatterPoints];
     SampledSpectrum T{0.f};   // ratio-tracking transmittance over (0, tEnd); 0 when ended early
@@ -42,13 +42,15 @@ struct ScatterPointWalk {
 // only attenuates: it emits nothing and holds no scattering point. β is the path's throughput so
 // far.
 // With `parts` (render passes, deep output), each collision's emission is appended there
-// instead, with its distance along worldRay, and L may be null.
+// instead, with its distance along worldRay, and L may be null. An observer sees every
+// tentative collision the walk meets.
 struct EmissionAt {
     float t;
     SampledSpectrum L;
 };
 ScatterPointWalk chooseScatterPoints(TrackingContext& ctx, const Ray& worldRay, float tEnd,
                                      const SampledSpectrum& beta, Sampler& sampler,
-                                     SampledSpectrum* L, std::vector<EmissionAt>* parts = nullptr);
+                                     SampledSpectrum* L, std::vector<EmissionAt>* parts = nullptr,
+                                     CollisionObserver* observer = nullptr);
 
 }  // namespace mirage

@@ -89,6 +89,17 @@ struct Collision {
     MediumPoint mp;      // coefficients at the path's wavelengths
 };
 
+// Sees, in order, the tentative collisions of a walk that another estimator makes along the
+// same ray: the camera ray's data passes read them off an integrator's walk instead of walking
+// the ray again (render/camera_ray_data.h).
+class CollisionObserver {
+public:
+    virtual void seen(const Collision& c) = 0;
+
+protected:
+    ~CollisionObserver() = default;
+};
+
 // Calls f(const Collision&) at every tentative collision along worldRay in (0, tMax), in
 // increasing t, until f returns Track::Stop. Returns true when the ray got through to tMax
 // without being stopped; false too when the flight hit ctx.maxCollisions (ctx.cappedFlights

@@ -52,7 +52,8 @@ bool Film::addSample(int x, int y, const SampledSpectrum& L, const SampledWavele
         return false;
     }
     // Finite radiance can still overflow float in L / pdf for a wavelength of tiny density.
-    Vec3 xyz = spectrumToXyz(L, w) + extraXyz;
+    const SampleXyz toXyz(w);
+    Vec3 xyz = toXyz(L) + extraXyz;
     if (!isFinite(xyz)) {
         ++p.nonFinite;
         return false;
@@ -63,7 +64,7 @@ bool Film::addSample(int x, int y, const SampledSpectrum& L, const SampledWavele
     }
     p.alpha += alpha;
     ++p.samples;
-    if (aov && !mAovs.empty()) addAovs(size_t(y) * mWidth + x, *aov, w, xyz);
+    if (aov && !mAovs.empty()) addAovs(size_t(y) * mWidth + x, *aov, toXyz, xyz);
     return true;
 }
 
@@ -71,7 +72,7 @@ bool Film::addSample(int x, int y, const SampledSpectrum& L, const SampledWavele
 // Σ passes = beauty up to rounding. Albedo and transmittance are ratios: their XYZ is that of
 // the spectrum as a radiance, mapped back to ratios in develop(). The variance sums the
 // products of the sample's XYZ (the beauty's `xyz`) that Pixel::xyzSq does not keep.
-void Film::addAovs(size_t pixel, const AovSample& aov, const SampledWavelengths& w,
+void Film::addAovs(size_t pixel, const AovSample& aov, const SampleXyz& toXyz,
                    const Vec3& xyz) {
     double* sums = mAovSums.data() + pixel * size_t(mAovs.stride());
     auto add3 = [&](int offset, const Vec3& v) {
@@ -79,11 +80,11 @@ void Film::addAovs(size_t pixel, const AovSample& aov, const SampledWavelengths&
     };
     for (const AovPass& pass : mAovs.passes()) switch (pass.kind) {
             case AovKind::LightPath:
-                add3(pass.offset, spectrumToXyz(aov.path[size_t(pass.index)], w) +
+                add3(pass.offset, toXyz(aov.path[size_t(pass.index)]) +
                                       aov.pathXyz[size_t(pass.index)]);
                 break;
             case AovKind::LightGroup:
-                add3(pass.offset, spectrumToXyz(aov.group[size_t(pass.index)], w) +
+                add3(pass.offset, toXyz(aov.group[size_t(pass.index)]) +
                                       aov.groupXyz[size_t(pass.index)]);
                 break;
             case AovKind::Depth:
@@ -93,10 +94,10 @@ void Film::addAovs(size_t pixel, const AovSample& aov, const SampledWavelengths&
                 }
                 break;
             case AovKind::Albedo:
-                add3(pass.offset, spectrumToXyz(aov.albedo, w));
+                add3(pass.offset, toXyz(aov.albedo));
                 break;
             case AovKind::Transmittance:
-                add3(pass.offset, spectrumToXyz(aov.transmittance, w));
+                add3(pass.offset, toXyz(aov.transmittance));
                 break;
             case AovKind::Variance:
                 sums[pass.offset + 0] += double(xyz.x) * double(xyz.y);

@@ -15,6 +15,8 @@
 
 namespace mirage {
 
+class SampleXyz;  // spectrum/cie.h
+
 class ColorPipeline;
 
 // One render pass developed: a layer of the EXR, whose channels are written `name.channel`
@@ -89,7 +91,7 @@ public:
     }
 
 private:
-    void addAovs(size_t pixel, const AovSample& aov, const SampledWavelengths& w, const Vec3& xyz);
+    void addAovs(size_t pixel, const AovSample& aov, const SampleXyz& toXyz, const Vec3& xyz);
     std::vector<ImageLayer> developAovs(
         const Mat3& toWorking, std::vector<std::pair<std::string, std::string>>* attributes) const;
     void developCryptomatte(const AovPass& pass, std::vector<ImageLayer>* layers,

@@ -187,10 +187,21 @@ Vec3 cieXyz(float lambdaNm) {
 // over the eye's response) rather than in lumens. A wavelength with pdf 0 (outside the sampled
 // range) contributes nothing; it was never drawn.
 Vec3 spectrumToXyz(const SampledSpectrum& L, const SampledWavelengths& w) {
+    return SampleXyz(w)(L);
+}
+
+SampleXyz::SampleXyz(const SampledWavelengths& w) {
+    for (int i = 0; i < kSpectrumSamples; ++i) {
+        mPdf[i] = w.pdf[i];
+        mCmf[i] = w.pdf[i] == 0.f ? Vec3(0.f) : cieXyz(w.lambda[i]);
+    }
+}
+
+Vec3 SampleXyz::operator()(const SampledSpectrum& L) const {
     Vec3 sum(0.f);
     for (int i = 0; i < kSpectrumSamples; ++i) {
-        if (w.pdf[i] == 0.f) continue;
-        sum += cieXyz(w.lambda[i]) * (L[i] / w.pdf[i]);
+        if (mPdf[i] == 0.f) continue;
+        sum += mCmf[i] * (L[i] / mPdf[i]);
     }
     return sum / (float(kSpectrumSamples) * kCieYIntegral);
 }

@@ -18,4 +18,16 @@ Vec3 cieXyz(float lambdaNm);  // (x̄, ȳ, z̄) at lambda; 0 outside [360, 830]
 // Monte Carlo XYZ of one spectral sample: Σ_i L(λ_i) cmf(λ_i) / pdf(λ_i) / (N · ∫ȳ).
 Vec3 spectrumToXyz(const SampledSpectrum& L, const SampledWavelengths& w);
 
+// spectrumToXyz for several spectra at the same wavelengths (a sample's beauty and its render
+// passes): the colour-matching values looked up once, the same arithmetic, the same bits.
+class SampleXyz {
+public:
+    explicit SampleXyz(const SampledWavelengths& w);
+    Vec3 operator()(const SampledSpectrum& L) const;
+
+private:
+    Vec3 mCmf[kSpectrumSamples];
+    float mPdf[kSpectrumSamples];
+};
+
 }  // namespace mirage

@@ -112,6 +112,7 @@ void AchromaticFilm::apply(const SampledWavelengths& w, RadianceSample* rs) cons
         const SampledSpectrum s = mShapes[k].sample(w);
         for (int i = 0; i < kSpectrumSamples; ++i) S[k][i] = double(s[i]);
     }
+    double norm2[kMaxColours];  // A's diagonal before elimination: |S_k|²
     for (size_t j = 0; j < K; ++j) {
         b[j] = 0.0;
         for (int i = 0; i < kSpectrumSamples; ++i) b[j] += double(rs->L[i]) * S[j][i];
@@ -119,13 +120,13 @@ void AchromaticFilm::apply(const SampledWavelengths& w, RadianceSample* rs) cons
             A[j][k] = 0.0;
             for (int i = 0; i < kSpectrumSamples; ++i) A[j][k] += S[j][i] * S[k][i];
         }
+        norm2[j] = A[j][j];
     }
     // Gaussian elimination; A is symmetric positive definite when the shapes are independent
-    // at these wavelengths, so no pivoting. A vanishing pivot: filmed spectrally (L kept).
+    // at these wavelengths, so no pivoting. Pivot p over |S_p|² is the squared sine of S_p's
+    // angle to the span of the shapes before it: a vanishing one is filmed spectrally (L kept).
     for (size_t p = 0; p < K; ++p) {
-        if (!(A[p][p] > 1e-9 * (S[p][0] * S[p][0] + S[p][1] * S[p][1] + S[p][2] * S[p][2] +
-                                S[p][3] * S[p][3])))
-            return;
+        if (!(A[p][p] > 1e-9 * norm2[p])) return;
         for (size_t r = p + 1; r < K; ++r) {
             const double f = A[r][p] / A[p][p];
             for (size_t c = p; c < K; ++c) A[r][c] -= f * A[p][c];

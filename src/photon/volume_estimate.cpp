@@ -51,13 +51,16 @@ float ScatteringProbe::reemissionDensity(const Vec3& worldP, float lambdaInNm) {
 }
 
 VolumePhotons::VolumePhotons(PhotonList photons, const std::vector<const Medium*>& media,
-                             const std::optional<Vec3>& xyzPerWatt)
+                             const std::vector<Vec3>& xyzPerWatt)
     : mMap(std::move(photons)), mMedia(media) {
     const size_t n = mMap.size();
     mFluxXyz.resize(n);
-    for (size_t i = 0; i < n; ++i)
-        mFluxXyz[i] = xyzPerWatt ? *xyzPerWatt * mMap[i].power
-                                 : cieXyz(mMap[i].lambda) * (mMap[i].power / kCieYIntegral);
+    for (size_t i = 0; i < n; ++i) {
+        // An achromatic scene has no emissive media: every photon comes from a light.
+        MIRAGE_CHECK(xyzPerWatt.empty() || mMap[i].light < xyzPerWatt.size());
+        mFluxXyz[i] = xyzPerWatt.empty() ? cieXyz(mMap[i].lambda) * (mMap[i].power / kCieYIntegral)
+                                         : xyzPerWatt[mMap[i].light] * mMap[i].power;
+    }
     mSigmaS.resize(n);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1024),
                       [&](const tbb::blocked_range<size_t>& r) {

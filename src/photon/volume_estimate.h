@@ -15,7 +15,6 @@
 // hero wavelengths do it for the camera paths, so the two parts add in the same pixel sum.
 #pragma once
 
-#include <optional>
 #include <vector>
 
 #include "medium/medium.h"
@@ -68,17 +67,18 @@ public:
     // Builds the kd-tree. The phase function of photon p is the mixture of the HG lobes of every
     // medium component, weighted by σs,c(x_p, λ_p): one medium evaluation per photon, here,
     // and only when the lobes differ (a single lobe needs no weights). xyzPerWatt, where the
-    // scene is achromatic (render/achromatic_film.h), is the expectation of cmf(λ_p)/∫ȳ over
-    // the lights' wavelengths: every photon's flux is then Φ_p × xyzPerWatt, the lights' exact
-    // colour, instead of Φ_p cmf(λ_p)/∫ȳ (the same mean, no colour noise).
+    // scene is achromatic (render/achromatic_film.h), holds per light (Photon::light) the
+    // expectation of cmf(λ_p)/∫ȳ over that light's wavelengths: every photon's flux is then
+    // Φ_p × xyzPerWatt[light], its light's exact colour, instead of Φ_p cmf(λ_p)/∫ȳ (the same
+    // mean, no colour noise); empty: each photon at its own wavelength.
     VolumePhotons(PhotonList photons, const std::vector<const Medium*>& media,
-                  const std::optional<Vec3>& xyzPerWatt = std::nullopt);
+                  const std::vector<Vec3>& xyzPerWatt = {});
 
     const PhotonMap& map() const { return mMap; }
     // The media the photons were traced in (they must outlive this object).
     const std::vector<const Medium*>& media() const { return mMedia; }
     size_t size() const { return mMap.size(); }
-    // Φ_p cmf(λ_p) / ∫ȳ, W (see above), or Φ_p × xyzPerWatt.
+    // Φ_p cmf(λ_p) / ∫ȳ, W (see above), or Φ_p × xyzPerWatt[light].
     const Vec3& fluxXyz(size_t slot) const { return mFluxXyz[slot]; }
     // p(wi_p, wo) in 1/sr: the photon arrived along wi_p and leaves towards the camera along wo;
     // 1/(4π) for a re-emission.

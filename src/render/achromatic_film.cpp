@@ -30,25 +30,44 @@ bool positiveEverywhere(const Spectrum& s) {
     return positive;
 }
 
-// The lights' common shape, or nothing (with the reason) when they have none.
-std::optional<Spectrum> commonLightShape(const RenderScene& scene, std::string* why) {
+// Colours of lights beyond this are sampled: more unknowns per sample than its 4 wavelengths
+// pin down with margin (render/achromatic_film.h).
+constexpr size_t kMaxColours = 3;
+
+// The lights' distinct shapes and each light's among them.
+struct LightShapes {
+    std::vector<Spectrum> shapes;
+    std::vector<size_t> ofLight;
+};
+
+// The lights' shapes, or nothing (with the reason) when a light has none (its colour varies)
+// or they are too many.
+std::optional<LightShapes> lightShapes(const RenderScene& scene, std::string* why) {
     if (scene.lights.empty()) {
         *why = "no lights";
         return std::nullopt;
     }
-    const Spectrum* first = scene.lights.front()->spectrum();
+    LightShapes out;
     for (const auto& light : scene.lights) {
         const Spectrum* s = light->spectrum();
-        if (!s || !first || !sameShape(*s, *first)) {
-            *why = "lights of different colours";
+        if (!s) {
+            *why = "a light whose colour varies over directions or points";
             return std::nullopt;
         }
+        if (!positiveEverywhere(*s)) {
+            *why = "a light spectrum with zeros";
+            return std::nullopt;
+        }
+        size_t k = 0;
+        while (k < out.shapes.size() && !sameShape(*s, out.shapes[k])) ++k;
+        if (k == out.shapes.size()) out.shapes.push_back(*s);
+        out.ofLight.push_back(k);
     }
-    if (!positiveEverywhere(*first)) {
-        *why = "a light spectrum with zeros";
+    if (out.shapes.size() > kMaxColours) {
+        *why = "lights of more than " + std::to_string(kMaxColours) + " colours";
         return std::nullopt;
     }
-    return *first;
+    return out;
 }
 
 // Empty when every medium is grey and nothing else is spectral; else what is.
@@ -59,7 +78,7 @@ std::string spectralPart(const RenderScene& scene) {
         if (m->emissive()) return "emission";
     }
     std::string why;
-    if (!commonLightShape(scene, &why)) return why;
+    if (!lightShapes(scene, &why)) return why;
     return "";
 }
 
@@ -69,32 +88,90 @@ std::optional<AchromaticFilm> AchromaticFilm::forScene(const RenderScene& scene,
                                                        const Integrator& integrator) {
     if (!integrator.lightShapedRadiance() || !spectralPart(scene).empty()) return std::nullopt;
     std::string why;
-    Spectrum shape = *commonLightShape(scene, &why);
-    const Vec3d xyz = spectrumToXyz(shape);
-    const Vec3d perWatt = xyz / SpectrumSampler(shape).integral();
-    return AchromaticFilm(std::move(shape), Vec3(float(xyz.x), float(xyz.y), float(xyz.z)),
-                          Vec3(float(perWatt.x), float(perWatt.y), float(perWatt.z)));
+    LightShapes ls = *lightShapes(scene, &why);
+    std::vector<Vec3> xyz, perWatt;
+    for (const Spectrum& shape : ls.shapes) {
+        const Vec3d c = spectrumToXyz(shape);
+        xyz.push_back(Vec3(float(c.x), float(c.y), float(c.z)));
+    }
+    for (size_t light = 0; light < scene.lights.size(); ++light) {
+        const Spectrum& shape = ls.shapes[ls.ofLight[light]];
+        const Vec3d c = spectrumToXyz(shape) / SpectrumSampler(shape).integral();
+        perWatt.push_back(Vec3(float(c.x), float(c.y), float(c.z)));
+    }
+    return AchromaticFilm(std::move(ls.shapes), std::move(xyz), std::move(perWatt));
 }
 
 void AchromaticFilm::apply(const SampledWavelengths& w, RadianceSample* rs) const {
-    const SampledSpectrum s = mShape.sample(w);
+    const size_t K = mShapes.size();
+    if (K == 1) return applyOne(w, rs);
+    // The normal equations A G = b of the least-squares fit L_i = Σ_k G_k S_k(λ_i), in double:
+    // A_jk = Σ_i S_j,i S_k,i, b_j = Σ_i L_i S_j,i.
+    double S[kMaxColours][kSpectrumSamples], A[kMaxColours][kMaxColours], b[kMaxColours];
+    for (size_t k = 0; k < K; ++k) {
+        const SampledSpectrum s = mShapes[k].sample(w);
+        for (int i = 0; i < kSpectrumSamples; ++i) S[k][i] = double(s[i]);
+    }
+    double norm2[kMaxColours];  // A's diagonal before elimination: |S_k|²
+    for (size_t j = 0; j < K; ++j) {
+        b[j] = 0.0;
+        for (int i = 0; i < kSpectrumSamples; ++i) b[j] += double(rs->L[i]) * S[j][i];
+        for (size_t k = 0; k < K; ++k) {
+            A[j][k] = 0.0;
+            for (int i = 0; i < kSpectrumSamples; ++i) A[j][k] += S[j][i] * S[k][i];
+        }
+        norm2[j] = A[j][j];
+    }
+    // Gaussian elimination; A is symmetric positive definite when the shapes are independent
+    // at these wavelengths, so no pivoting. Pivot p over |S_p|² is the squared sine of S_p's
+    // angle to the span of the shapes before it: a vanishing one is filmed spectrally (L kept).
+    for (size_t p = 0; p < K; ++p) {
+        if (!(A[p][p] > 1e-9 * norm2[p])) return;
+        for (size_t r = p + 1; r < K; ++r) {
+            const double f = A[r][p] / A[p][p];
+            for (size_t c = p; c < K; ++c) A[r][c] -= f * A[p][c];
+            b[r] -= f * b[p];
+        }
+    }
+    double G[kMaxColours];
+    for (size_t p = K; p-- > 0;) {
+        double v = b[p];
+        for (size_t c = p + 1; c < K; ++c) v -= A[p][c] * G[c];
+        G[p] = v / A[p][p];
+    }
+    Vec3d sum(0.0);
+    for (size_t k = 0; k < K; ++k) sum += Vec3d(mXyz[k]) * G[k];
+    rs->xyz += Vec3(float(sum.x), float(sum.y), float(sum.z));
+    rs->L = SampledSpectrum(0.f);
+}
+
+void AchromaticFilm::applyOne(const SampledWavelengths& w, RadianceSample* rs) const {
+    const SampledSpectrum s = mShapes[0].sample(w);
     float ls = 0.f, ss = 0.f;
     for (int i = 0; i < kSpectrumSamples; ++i) {
         ls += rs->L[i] * s[i];
         ss += s[i] * s[i];
     }
-    rs->xyz += mXyz * (ls / ss);
+    rs->xyz += mXyz[0] * (ls / ss);
     rs->L = SampledSpectrum(0.f);
 }
 
 bool sampledColour(const RenderScene& scene, std::string* why) {
     const std::string part = spectralPart(scene);
-    *why = part.empty()
-               ? "grey media, one light colour: single and volpath add each sample's "
-                 "exact XYZ, photons carry the light's XYZ (without a [refraction] field): "
-                 "no colour noise"
-               : "4 wavelengths per sample (" + part + ")";
-    return !part.empty();
+    if (!part.empty()) {
+        *why = "4 wavelengths per sample (" + part + ")";
+        return true;
+    }
+    const size_t colours = lightShapes(scene, why)->shapes.size();
+    *why = colours == 1 ? "grey media, one light colour: single and volpath add each sample's "
+                          "exact XYZ, photons carry the light's XYZ (without a [refraction] "
+                          "field): no colour noise"
+                        : "grey media, " + std::to_string(colours) +
+                              " light colours: single and volpath split each sample's "
+                              "radiance by colour at its 4 wavelengths and add each part's "
+                              "exact XYZ, photons carry their light's XYZ (without a "
+                              "[refraction] field): no colour noise";
+    return false;
 }
 
 }  // namespace mirage

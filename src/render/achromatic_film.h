@@ -17,9 +17,20 @@
 // photon's flux XYZ, Φ cmf(λ)/∫ȳ, is colour noise on such a scene too. Nothing a photon meets
 // depends on λ, so the same conditional expectation replaces it by Φ E[cmf(λ)]/∫ȳ =
 // Φ XYZ[S]/∫S dλ (xyzPerWatt): the photon map is filmed in the lights' exact colour.
+//
+// Lights of several colours (a warm sun and a blue sky fill): with K distinct shapes S_k, a
+// path's radiance is L(λ) = Σ_k G_k S_k(λ), G_k again free of λ (light k's lights' share).
+// Each sample's four wavelengths then give four equations in the K unknowns G_k, exact when
+// the four vectors S_k(λ_i) are independent (distinct shapes, K ≤ 3 here); the film adds
+// Σ_k G_k XYZ[S_k], the same conditional expectation, each colour's part in that colour
+// exactly. G is solved by least squares, Σ_i S_j,i S_k,i G_k = Σ_i L_i S_j,i (K = 1: the
+// ratio above, unchanged). A draw of λ at which the shapes are not independent (not met with
+// distinct shapes; the Gram matrix's pivot below 1e-9 of its diagonal) is filmed spectrally.
+// Each photon carries its own light's XYZ per watt (xyzPerWatt(light)).
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include "render/integrator.h"
 
@@ -33,27 +44,31 @@ public:
     static std::optional<AchromaticFilm> forScene(const RenderScene& scene,
                                                   const Integrator& integrator);
 
-    // Moves the sample's spectral radiance into its XYZ: xyz += G · XYZ[S], L = 0.
+    // Moves the sample's spectral radiance into its XYZ: xyz += Σ_k G_k · XYZ[S_k], L = 0.
     void apply(const SampledWavelengths& w, RadianceSample* rs) const;
 
-    const Spectrum& shape() const { return mShape; }
-    Vec3 xyz() const { return mXyz; }
-    // The film's XYZ for one watt of the lights' light, its wavelength drawn ∝ S over the
-    // visible range: XYZ[S]/∫S dλ (1/nm), ∫ by the trapezoids the lights sample λ with
-    // (spectrum/spectrum_sampling.h). A photon of power Φ adds Φ × this (above).
-    Vec3 xyzPerWatt() const { return mXyzPerWatt; }
+    // The lights' distinct colours (1 to 3).
+    size_t colours() const { return mShapes.size(); }
+    // The film's XYZ for one watt of light `light` (its index in the scene), its wavelength
+    // drawn ∝ its shape S over the visible range: XYZ[S]/∫S dλ (1/nm), ∫ by the trapezoids the
+    // lights sample λ with (spectrum/spectrum_sampling.h). A photon of power Φ adds Φ × this.
+    Vec3 xyzPerWatt(size_t light) const { return mXyzPerWatt[light]; }
+    const std::vector<Vec3>& xyzPerWattOfLights() const { return mXyzPerWatt; }
 
 private:
-    AchromaticFilm(Spectrum shape, Vec3 xyz, Vec3 xyzPerWatt)
-        : mShape(std::move(shape)), mXyz(xyz), mXyzPerWatt(xyzPerWatt) {}
-    Spectrum mShape;   // the lights' common spectral shape (any scale)
-    Vec3 mXyz;         // its XYZ, in the film's normalisation
-    Vec3 mXyzPerWatt;  // mXyz / ∫ mShape dλ
+    AchromaticFilm(std::vector<Spectrum> shapes, std::vector<Vec3> xyz,
+                   std::vector<Vec3> xyzPerWatt)
+        : mShapes(std::move(shapes)), mXyz(std::move(xyz)), mXyzPerWatt(std::move(xyzPerWatt)) {}
+    // L = G S for one shape, exactly as it always was filmed.
+    void applyOne(const SampledWavelengths& w, RadianceSample* rs) const;
+    std::vector<Spectrum> mShapes;  // the lights' distinct spectral shapes (any scale)
+    std::vector<Vec3> mXyz;         // their XYZ, in the film's normalisation
+    std::vector<Vec3> mXyzPerWatt;  // per light: its shape's XYZ / ∫ its shape dλ
 };
 
 // Whether the scene's colour is sampled at each sample's wavelengths, and why (for `mirage
-// info`): false when it is achromatic (above), and then single, volpath and the photon mapper
-// film it exactly.
+// info`): false when it is achromatic (above, one light colour or up to 3), and then single,
+// volpath and the photon mapper film it exactly.
 bool sampledColour(const RenderScene& scene, std::string* why);
 
 }  // namespace mirage

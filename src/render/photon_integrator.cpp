@@ -44,12 +44,12 @@
 // transport/ray_optical_depth.h at the photon's wavelength, done once per camera ray.
 //
 // Colour. Where nothing in the scene is spectral (render/achromatic_film.h: grey media, no
-// surfaces or emission, one light colour) and no refraction field bends paths by wavelength,
-// nothing a photon meets depends on its wavelength: each photon's flux is then the lights'
-// exact XYZ times its power (AchromaticFilm::xyzPerWatt, the expectation of its wavelength's
-// colour), and the single-scattered part is filmed exactly by the renderer, so the image has
-// no colour noise. The photons still draw their wavelength, so every other number of a photon's
-// walk, and its power, are the spectral map's.
+// surfaces or emission, up to 3 light colours) and no refraction field bends paths by
+// wavelength, nothing a photon meets depends on its wavelength: each photon's flux is then its
+// light's exact XYZ times its power (AchromaticFilm::xyzPerWatt, the expectation of its
+// wavelength's colour), and the single-scattered part is filmed exactly by the renderer, so the
+// image has no colour noise. The photons still draw their wavelength, so every other number of a
+// photon's walk, and its power, are the spectral map's.
 //
 // Light emitted by the media themselves (fire) reaches the camera directly through the single-
 // scatter integrator; the photon pass emits it too (photon/medium_emitter.h) and stores every
@@ -176,9 +176,9 @@ public:
         for (size_t i = 0; i < scene.lights.size(); ++i)
             mSlotOfLight.push_back(scene.lightGroupSlot(i));
         mCurved = photonsCurve(mSettings.field.get(), scene.bounds());
-        mXyzPerWatt.reset();
+        mXyzPerWatt.clear();
         if (const auto achromatic = AchromaticFilm::forScene(scene, *this))
-            mXyzPerWatt = achromatic->xyzPerWatt();
+            mXyzPerWatt = achromatic->xyzPerWattOfLights();
         // Curved light: where paths curve there are no (straight) shadow rays, so the maps hold
         // the first interaction and the light arriving straight at diffuse surfaces too, and the
         // single-scatter part keeps only emission (Gutierrez et al. 2005). Nothing is counted
@@ -324,7 +324,7 @@ private:
             (unsigned long long)mPassStats.fromMedia, mPassStats.mediumPower);
         std::string line = buf;
         if (mCurved) line += " | photons on curved paths (direct light from the photon maps)";
-        if (mXyzPerWatt) line += " | photons carry the light's XYZ (grey scene)";
+        if (!mXyzPerWatt.empty()) line += " | photons carry the light's XYZ (grey scene)";
         if (mPass > 0) {
             char progressive[160];
             std::snprintf(progressive, sizeof progressive,
@@ -441,8 +441,8 @@ private:
     PhotonIntegratorSettings mSettings;
     std::unique_ptr<Integrator> mSingle;
     bool mCurved = false;  // photons on curved paths, direct light from the maps
-    // The lights' XYZ per watt on an achromatic scene (the top of the file), else nothing.
-    std::optional<Vec3> mXyzPerWatt;
+    // Each light's XYZ per watt on an achromatic scene (the top of the file), else empty.
+    std::vector<Vec3> mXyzPerWatt;
     int mPass = 0;             // the pass whose maps are built
     float mRadiusScale = 1.f;  // its disc radii over pass 0's
     std::vector<const Medium*> mMedia;

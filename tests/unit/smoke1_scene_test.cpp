@@ -1,6 +1,7 @@
 // assets/scenes/smoke1_sun.toml reads the real cache from ../shared/data by a path relative to
-// the scene file. With the data it loads (photon integrator, the sun); copied where that path
-// leads nowhere, it stops with one message naming the missing file and exit code 1.
+// the scene file. With the data it loads (photon integrator, the sun, colour filmed per light
+// colour: render/achromatic_film.h); copied where that path leads nowhere, it stops with one
+// message naming the missing file and exit code 1.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -23,6 +24,8 @@ TEST(Smoke1SunScene, LoadsTheSharedCacheWithThePhotonIntegrator) {
     EXPECT_NE(out.find("smoke1.vdb"), std::string::npos) << out;
     EXPECT_NE(out.find("integrator 'photon'"), std::string::npos) << out;
     EXPECT_NE(out.find("distant light"), std::string::npos) << out;
+    // Grey smoke under a warm sun and a blue fill: filmed per light colour, no colour noise.
+    EXPECT_NE(out.find("grey media, 2 light colours"), std::string::npos) << out;
 }
 
 TEST(Smoke1SunScene, WithoutTheSharedDataOneMessageNamesTheFile) {

@@ -99,6 +99,8 @@ AovLayout::AovLayout(const std::vector<std::string>& names,
         mStride += pass.doubles;
         if (pass.kind == AovKind::LightGroup) mGroupSlots = int(lightGroups.size()) + 1;
         if (pass.kind == AovKind::Cryptomatte) mCoverage = true;
+        if (pass.kind == AovKind::LightPath || pass.kind == AovKind::LightGroup)
+            mSplitsRadiance = true;
         if (pass.kind == AovKind::Depth || pass.kind == AovKind::Albedo ||
             pass.kind == AovKind::Transmittance || mCoverage)
             mCameraData = true;

@@ -77,6 +77,9 @@ public:
     bool cameraData() const { return mCameraData; }
     // Whether a sample carries each object's coverage (a Cryptomatte is asked for).
     bool coverage() const { return mCoverage; }
+    // Whether a pass splits the beauty's radiance (light paths, light groups), so that each
+    // sample's spectral radiance must reach the film as it is, to sum to the beauty exactly.
+    bool splitsRadiance() const { return mSplitsRadiance; }
 
 private:
     std::vector<std::string> mNames, mLightGroups;
@@ -86,6 +89,7 @@ private:
     int mGroupSlots = 0;
     bool mCameraData = false;
     bool mCoverage = false;
+    bool mSplitsRadiance = false;
 };
 
 // Every pass name a scene with these light groups may ask for, for messages and --help.

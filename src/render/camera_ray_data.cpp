@@ -41,12 +41,12 @@ void CameraRayData::seen(const Collision& c) {
     if (visible) mAlbedo += mT * c.mp.sigmaS / c.sigmaMaj;
     const float before = mT.average();
     mT *= (SampledSpectrum(c.sigmaMaj) - c.mp.sigmaA - c.mp.sigmaS) / c.sigmaMaj;
-    if (!(mDepth < kInfinity) && mT.average() <= 0.5f) mDepth = c.t;
+    const float left = mT.average();
+    if (!(mDepth < kInfinity) && left <= 0.5f) mDepth = c.t;
     // The coverage this collision adds (before the roulette rescales T), to the deep samples
     // and to the medium's Cryptomatte coverage.
-    if (mDeep && visible) mDeep->coverage.push_back({{c.t, false}, before - mT.average()});
-    if (mCrypto && visible) mAov->volumeCoverage[size_t(c.medium)] += before - mT.average();
-    const float left = mT.average();
+    if (mDeep && visible) mDeep->coverage.push_back({{c.t, false}, before - left});
+    if (mCrypto && visible) mAov->volumeCoverage[size_t(c.medium)] += before - left;
     mAlive = russianRoulette(&mT, mSampler);
     if (mAlive) return;
     if (mDeep && visible) mDeep->coverage.push_back({{c.t, false}, left});

@@ -117,10 +117,13 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
     // Deep pixels are numbered in the whole frame; the command refuses deep with a region.
     MIRAGE_CHECK(!deep || (win.width() == s.width && win.height() == s.height));
     PerspectiveCamera camera(scene.camera, s.width, s.height);
-    // Colour exactly per sample where nothing in the scene is spectral; not with AOVs or deep
-    // samples, which split each sample's spectral radiance and must sum to the beauty exactly.
+    // Colour exactly per sample where nothing in the scene is spectral; not with passes that
+    // split each sample's spectral radiance (light paths, light groups) or deep samples, which
+    // must sum to the beauty exactly. Data passes describe the camera ray, not its light: the
+    // beauty keeps its exact colour (and its bits) with them.
     const std::optional<AchromaticFilm> achromatic =
-        film.aovs().empty() && !deep ? AchromaticFilm::forScene(scene, integrator) : std::nullopt;
+        !film.aovs().splitsRadiance() && !deep ? AchromaticFilm::forScene(scene, integrator)
+                                               : std::nullopt;
 
     // Which tiles are finished. A tile's pixels are written before its flag is stored (release)
     // and read by a checkpoint writer only after it loads the flag (acquire): no data race.

@@ -140,6 +140,40 @@ TEST(Aov, TheBeautyKeepsItsBitsWithAovs) {
     for (size_t i = 0; i < plain.rgba.size(); ++i) ASSERT_EQ(plain.rgba[i], passes.rgba[i]) << i;
 }
 
+// Data passes describe the camera ray, not its light: on a grey scene the beauty keeps its
+// exact colour per sample (render/achromatic_film.h), so asking for them changes no bit of it.
+TEST(Aov, DataPassesKeepTheBeautysExactColourAndBits) {
+    const std::string dir = test::tempDir();
+    writeProceduralAsset("fog-sphere", dir + "/fog.vdb", 16, 1);
+    auto render = [&](const std::string& aovs) {
+        const std::string path = dir + "/grey" + std::to_string(aovs.size()) + ".toml";
+        std::ofstream(path) << "[film]\nresolution = [12, 10]\nspp = 4\nseed = 3\n"
+                               "[render]\nintegrator = \"volpath\"\n"
+                               "[camera]\nposition = [0.0, 0.0, 3.0]\nlook_at = [0.0, 0.0, 0.0]\n"
+                               "fov = 40.0\n"
+                               "[[volume]]\nfile = \"fog.vdb\"\nshader = \"smoke\"\n"
+                               "density_scale = 4.0\n"
+                               "[[light]]\ntype = \"sun\"\ndirection = [-1, -1, -0.5]\n"
+                               "[output]\naovs = ["
+                            << aovs << "]\n";
+        ColorPipeline color;
+        Scene scene = loadScene(path, {}, color);
+        scene.settings.progress = Progress::Mode::Quiet;
+        return renderFrame(scene, "", color).image;
+    };
+    const Image plain = render("");
+    const Image data =
+        render("\"alpha\", \"depth\", \"albedo\", \"transmittance\", \"variance\"");
+    ASSERT_EQ(plain.rgba.size(), data.rgba.size());
+    ASSERT_EQ(data.layers.size(), 5u);
+    double lit = 0;
+    for (size_t i = 0; i < plain.rgba.size(); ++i) {
+        ASSERT_EQ(plain.rgba[i], data.rgba[i]) << i;
+        lit += plain.rgba[i];
+    }
+    EXPECT_GT(lit, 0.0);
+}
+
 TEST(Aov, DataPasses) {
     const Image image = renderAovScene("single",
                                        "\"alpha\", \"depth\", \"transmittance\", "

@@ -89,16 +89,14 @@ std::optional<AchromaticFilm> AchromaticFilm::forScene(const RenderScene& scene,
     if (!integrator.lightShapedRadiance() || !spectralPart(scene).empty()) return std::nullopt;
     std::string why;
     LightShapes ls = *lightShapes(scene, &why);
-    std::vector<Vec3> xyz, perWatt;
+    std::vector<Vec3> xyz, shapePerWatt, perWatt;
     for (const Spectrum& shape : ls.shapes) {
         const Vec3d c = spectrumToXyz(shape);
+        const Vec3d w = c / SpectrumSampler(shape).integral();
         xyz.push_back(Vec3(float(c.x), float(c.y), float(c.z)));
+        shapePerWatt.push_back(Vec3(float(w.x), float(w.y), float(w.z)));
     }
-    for (size_t light = 0; light < scene.lights.size(); ++light) {
-        const Spectrum& shape = ls.shapes[ls.ofLight[light]];
-        const Vec3d c = spectrumToXyz(shape) / SpectrumSampler(shape).integral();
-        perWatt.push_back(Vec3(float(c.x), float(c.y), float(c.z)));
-    }
+    for (size_t shape : ls.ofLight) perWatt.push_back(shapePerWatt[shape]);
     return AchromaticFilm(std::move(ls.shapes), std::move(xyz), std::move(perWatt));
 }
 

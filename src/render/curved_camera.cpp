@@ -24,8 +24,9 @@ public:
 
     const IntegratorInfo& info() const override { return mInner->info(); }
     std::string name() const override { return mInner->name() + " (curved camera rays)"; }
-    void preprocess(const RenderScene& scene) override {
-        mInner->preprocess(scene);
+    using Integrator::preprocess;
+    void preprocess(const RenderScene& scene, uint64_t frameSamples) override {
+        mInner->preprocess(scene, frameSamples);
         mPhotonPart = mInner->info().photonPass;
         const std::vector<const Medium*> media = scene.mediaPointers();
         mDepth = std::make_unique<tbb::enumerable_thread_specific<RayOpticalDepth>>(

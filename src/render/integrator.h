@@ -98,8 +98,11 @@ public:
     virtual ~Integrator() = default;
     virtual const IntegratorInfo& info() const = 0;
     virtual std::string name() const { return info().name; }
-    // Called once before rendering (a photon mapper traces its photons here).
-    virtual void preprocess(const RenderScene&) {}
+    // Called once before rendering (a photon mapper traces its photons here). frameSamples: the
+    // frame's camera samples (pixels × samples per pixel), which a cache built per frame is
+    // sized to (single scattering's light guide); 0 when unknown, and then none is built.
+    virtual void preprocess(const RenderScene&, uint64_t /*frameSamples*/) {}
+    void preprocess(const RenderScene& scene) { preprocess(scene, 0); }
     // A render in passes (render/passes.h) calls this before pass p = 0, 1, …, after
     // preprocess. What an integrator does here must depend on p alone (not on earlier passes
     // or the time), so that N passes give the same bits however they were reached; the

@@ -163,7 +163,8 @@ public:
         : mSettings(s), mSingle(makeSingleScatterIntegrator()) {}
     const IntegratorInfo& info() const override { return integratorInfo("photon"); }
 
-    void preprocess(const RenderScene& scene) override {
+    using Integrator::preprocess;
+    void preprocess(const RenderScene& scene, uint64_t frameSamples) override {
         // A photon estimate gathers from every medium at a point alike: it cannot leave out a
         // holdout medium's in-scattering on the camera ray.
         for (const auto& m : scene.media)
@@ -184,6 +185,7 @@ public:
         // single-scatter part keeps only emission (Gutierrez et al. 2005). Nothing is counted
         // twice: each scattering of light is in exactly one of the two parts.
         if (mCurved) mSingle = makeSingleScatterIntegrator(false);
+        mSingle->preprocess(scene, frameSamples);
         Vec3 diag = scene.bounds().empty() ? Vec3(1.f) : scene.bounds().diagonal();
         mMaxRadius = mSettings.maxRadius > 0.f ? mSettings.maxRadius : 0.1f * length(diag);
         mThreads = std::make_unique<tbb::enumerable_thread_specific<PhotonThreadState>>(

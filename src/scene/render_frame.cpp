@@ -135,7 +135,10 @@ RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
                               ") covers the whole frame: render it without --region");
         frame.deep = std::make_unique<DeepFilm>(s.width, s.height);
     }
-    frame.integrator->preprocess(scene.render);
+    // Sized by the whole frame's samples, not the region's or the passes': a frame rendered in
+    // regions or in any number of passes gets the same per-frame caches, and so the same bits.
+    frame.integrator->preprocess(
+        scene.render, uint64_t(s.width) * uint64_t(s.height) * uint64_t(std::max(s.spp, 1)));
     if (scene.passes.enabled()) {
         frame.passes.emplace();
         frame.film =

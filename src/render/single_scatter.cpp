@@ -4,12 +4,13 @@
 // The flight is followed to its end by ratio tracking (transport/scatter_point.h): tentative
 // collisions at rate σ̄, the transmittance T multiplied by σn/σ̄ at each. Emission is scored at
 // every tentative collision, β T σa Le / σ̄ (a collision estimator of ∫ T σa Le dt); the
-// scattering points (kScatterPoints of them) are chosen among the tentative collisions ∝ T σs
-// by systematic resampling, and each scores its weight times the direct light (next-event
-// estimation with a residual-ratio-tracked shadow ray). No sample escapes or is absorbed with
-// a score of 0, as one stopped at its first real collision would.
-// T at the end estimates the transmittance of the flight: 1 − T is the pixel's coverage
-// (alpha), and β T the throughput that reaches a surface behind the medium.
+// scattering points (kScatterPoints of them) are chosen among the tentative collisions
+// ∝ T σs g by systematic resampling (g: a coarse guess of the light there, filled once per
+// frame, render/scatter_guide_build.h), and each scores its weight times the direct light
+// (next-event estimation with a residual-ratio-tracked shadow ray). No sample escapes or is
+// absorbed with a score of 0, as one stopped at its first real collision would. T at the end
+// estimates the transmittance of the flight: 1 − T is the pixel's coverage (alpha), and β T the
+// throughput that reaches a surface behind the medium.
 //
 // Surfaces: the camera ray's flight ends at the nearest surface. A diffuse surface scores its
 // emission and its direct light (NEE through the media, blocked by surfaces) and ends the path:
@@ -18,11 +19,13 @@
 // dispersive dielectric keeps the hero wavelength only, as in volpath.cpp. A ray that leaves the
 // scene sees the lights at infinity (the dome), which no next-event estimate has counted on it.
 #include <cmath>
+#include <memory>
 #include <optional>
 
 #include "render/camera_ray_data.h"
 #include "render/direct_light.h"
 #include "render/integrator.h"
+#include "render/scatter_guide_build.h"
 #include "transport/path_vertex.h"
 #include "transport/scatter_point.h"
 
@@ -35,6 +38,10 @@ public:
     explicit SingleScatterIntegrator(bool directLight) : mDirect(directLight) {}
     const IntegratorInfo& info() const override { return integratorInfo("single"); }
     bool lightShapedRadiance() const override { return true; }
+    using Integrator::preprocess;
+    void preprocess(const RenderScene& scene, uint64_t frameSamples) override {
+        mGuide = mDirect ? buildScatterGuide(scene, frameSamples) : nullptr;
+    }
 
     RadianceSample Li(const RenderScene& scene, const Ray& cameraRay, const SampledWavelengths& w,
                       Sampler& sampler, ThreadState& ts) const override {
@@ -56,9 +63,9 @@ public:
             ts.emitted.clear();
             // The camera ray's walk is the data passes' too (render/camera_ray_data.h).
             CameraRayData* data = bounce == 0 ? ts.cameraData : nullptr;
-            const ScatterPointWalk walk =
-                chooseScatterPoints(ts.tracking, ray, tEnd, path.beta, sampler,
-                                    split ? nullptr : &out.L, split ? &ts.emitted : nullptr, data);
+            const ScatterPointWalk walk = chooseScatterPoints(
+                ts.tracking, ray, tEnd, path.beta, sampler, split ? nullptr : &out.L,
+                split ? &ts.emitted : nullptr, data, mGuide.get());
             if (data) data->walked(walk.reachedEnd);
             for (const EmissionAt& e : ts.emitted)
                 out.add(e.L, path.history.emitted(), kEmissionGroup,
@@ -110,6 +117,7 @@ public:
 
 private:
     bool mDirect;
+    std::unique_ptr<ScatterGuide> mGuide;  // null: points ∝ T σs
 };
 
 }  // namespace

@@ -5,7 +5,7 @@ namespace mirage {
 ScatterPointWalk chooseScatterPoints(TrackingContext& ctx, const Ray& worldRay, float tEnd,
                                      const SampledSpectrum& beta, Sampler& sampler,
                                      SampledSpectrum* L, std::vector<EmissionAt>* parts,
-                                     CollisionObserver* observer) {
+                                     CollisionObserver* observer, const ScatterGuide* guide) {
     ScatterPointWalk walk;
     SampledSpectrum T(1.f);
     // One uniform per reservoir, stratified: (u + k) / kScatterPoints. A reservoir fed with one
@@ -28,7 +28,8 @@ ScatterPointWalk chooseScatterPoints(TrackingContext& ctx, const Ray& worldRay, 
         else if (m.emissive())
             *L += beta * T * c.mp.sigmaA * c.mp.Le / c.sigmaMaj;
         const SampledSpectrum w = m.holdout() ? SampledSpectrum(0.f) : T * c.mp.sigmaS / c.sigmaMaj;
-        const float wMean = w.average();
+        // The resampling weight: w̄, times the guide's guess of the light at the point.
+        const float wMean = guide && w.average() > 0.f ? w.average() * guide->at(c.p) : w.average();
         if (wMean > 0.f) {
             total += wMean;
             const double keep = wMean / total;

@@ -49,14 +49,15 @@ cycles() {  # bounces spp exr [seed]
     --sun-strength 5 --threads "$THREADS" --pixel-filter box --seed "${4:-0}" 2>&1 |
     awk '/RENDER_SECONDS/ {print $2}'
 }
-# Mirage: prints its render seconds (mirage:render_seconds: loading and writing excluded).
+# Mirage: prints its frame seconds (mirage:frame_seconds: the integrator's set-up, such as
+# single scattering's light guide, and the render; loading and writing excluded).
 mirage() {  # integrator sampler spp exr [seed]
   local sampler=()
   [ "$2" = default ] || sampler=(--set "render.sampler=$2")
   "$MIRAGE" render tests/bench/smoke1_race.toml --set "volume.0.file=$SMOKE" \
     --set "render.integrator=$1" "${sampler[@]}" --spp "$3" --threads "$THREADS" \
     --seed "${5:-0}" -o "$4" --quiet >/dev/null
-  oiiotool --info -v "$4" | awk -F'"' '/mirage:render_seconds/ {print $2}'
+  oiiotool --info -v "$4" | awk -F'"' '/mirage:frame_seconds/ {print $2}'
 }
 
 # Mirage's progressive photon mapper in P passes: prints the seconds since the frame began

@@ -368,6 +368,9 @@ ExrOptions outputExr(RenderSession& rs, const FrameJob& job, RenderedFrame& rend
                     {"frame", std::to_string(job.frame)},
                     {"integrator", integrator->name()},
                     {"render_seconds", std::to_string(stats.seconds)},
+                    // The frame from the integrator's set-up (photon pass, light guide) to the
+                    // developed image: what a user waits for once the scene is loaded.
+                    {"frame_seconds", std::to_string(rendered.seconds)},
                     {"nonfinite_render", std::to_string(stats.nonFiniteSamples)},
                     {"nonfinite_photons", std::to_string(dropped.nonFinitePhotons)},
                     {"capped_paths", std::to_string(dropped.cappedPaths)},

@@ -195,6 +195,10 @@ TEST(EndToEnd, SceneAndBareVdbRenderFiniteNonBlackExr) {
         }
         EXPECT_GT(sum, 0.0) << input;
         EXPECT_EQ(meta["mirage:spp"], "2");
+        // The frame's time includes the render's and the integrator's set-up.
+        ASSERT_TRUE(meta.count("mirage:frame_seconds") && meta.count("mirage:render_seconds"));
+        EXPECT_GE(std::stod(meta["mirage:frame_seconds"]),
+                  std::stod(meta["mirage:render_seconds"]));
     }
 }
 

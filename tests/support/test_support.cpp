@@ -134,6 +134,14 @@ ShaderDesc greyShader(float sigmaA, float sigmaS, float g) {
     return s;
 }
 
+double opticalDepth(const FloatGrid& g, const Vec3& a, const Vec3& b, double sigmaT) {
+    auto acc = g.accessor();
+    const int n = 2000;
+    double sum = 0.0;
+    for (int i = 0; i < n; ++i) sum += g.sample(acc, a + (b - a) * ((i + 0.5f) / n));
+    return sigmaT * sum * length(b - a) / n;
+}
+
 std::unique_ptr<Medium> gridMedium(const std::function<float(int, int, int)>& value, int lo, int hi,
                                    double h, float sigmaA, float sigmaS, float g,
                                    const Transform& objectToWorld) {

@@ -29,15 +29,6 @@ RenderScene litBox(float (*density)(int, int, int), float sigmaA, float sigmaS) 
     return scene;
 }
 
-// ∫ σ along a segment by the midpoint rule on the grid's own trilinear field.
-double opticalDepth(const FloatGrid& g, const Vec3& a, const Vec3& b, double sigmaT) {
-    auto acc = g.accessor();
-    const int n = 2000;
-    double sum = 0.0;
-    for (int i = 0; i < n; ++i) sum += g.sample(acc, a + (b - a) * ((i + 0.5f) / n));
-    return sigmaT * sum * length(b - a) / n;
-}
-
 // The mean of x(i) over i < n and its standard error.
 template <typename F>
 std::pair<double, double> meanAndError(int n, F&& x) {
@@ -115,7 +106,7 @@ TEST(ScatterGuide, GuidedRenderMatchesTheQuadrature) {
         const Vec3 p = ray.at(float(t));
         const double density = g.sample(acc, p);
         if (density > 0) {
-            const double Tl = std::exp(-opticalDepth(g, p, Vec3(p.x, 1.2f, p.z), sa + ss));
+            const double Tl = std::exp(-test::opticalDepth(g, p, Vec3(p.x, 1.2f, p.z), sa + ss));
             expected += std::exp(-tauCam) * ss * density / (4 * M_PI) * (E / 470.0) * Tl * dt;
         }
         tauCam += (sa + ss) * density * dt;

@@ -27,15 +27,6 @@ RenderScene boxScene(float sigmaA, float sigmaS, float g, float irradiance) {
     return scene;
 }
 
-// ∫ σ along a segment by the midpoint rule on the grid's own trilinear field.
-double opticalDepth(const FloatGrid& g, const Vec3& a, const Vec3& b, double sigmaT) {
-    auto acc = g.accessor();
-    const int n = 2000;
-    double sum = 0.0;
-    for (int i = 0; i < n; ++i) sum += g.sample(acc, a + (b - a) * ((i + 0.5f) / n));
-    return sigmaT * sum * length(b - a) / n;
-}
-
 }  // namespace
 
 TEST(SingleScatter, MatchesQuadratureOfTheSingleScatteringIntegral) {
@@ -56,7 +47,7 @@ TEST(SingleScatter, MatchesQuadratureOfTheSingleScatteringIntegral) {
         Vec3 p = ray.at(float(t));
         double density = g.sample(acc, p);
         if (density > 0) {
-            double Tl = std::exp(-opticalDepth(g, p, Vec3(p.x, 1.2f, p.z), sa + ss));
+            double Tl = std::exp(-test::opticalDepth(g, p, Vec3(p.x, 1.2f, p.z), sa + ss));
             expected += std::exp(-tauCam) * ss * density * (1.0 / (4 * M_PI)) * 1.0 * Tl * dt;
         }
         tauCam += (sa + ss) * density * dt;

@@ -98,6 +98,11 @@ struct Bounds3 {
     void expand(const Bounds3& b) { lo = vmin(lo, b.lo); hi = vmax(hi, b.hi); }
     Vec3 center() const { return (lo + hi) * 0.5f; }
     Vec3 diagonal() const { return hi - lo; }
+    // Inside or on the faces; false for a NaN coordinate.
+    bool contains(const Vec3& p) const {
+        return p.x >= lo.x && p.y >= lo.y && p.z >= lo.z && p.x <= hi.x && p.y <= hi.y &&
+               p.z <= hi.z;
+    }
     // Slab test; returns false when the ray misses [tMin, tMax].
     bool intersect(const Vec3& o, const Vec3& d, float tMin, float tMax, float* t0,
                    float* t1) const {

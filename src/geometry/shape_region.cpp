@@ -110,9 +110,7 @@ public:
     // Odd number of crossings along a fixed direction that no axis-aligned mesh edge or face
     // contains (so grazing hits are as unlikely as for any direction).
     bool contains(const Vec3& p) const override {
-        if (!(p.x >= mBounds.lo.x && p.x <= mBounds.hi.x && p.y >= mBounds.lo.y &&
-              p.y <= mBounds.hi.y && p.z >= mBounds.lo.z && p.z <= mBounds.hi.z))
-            return false;
+        if (!mBounds.contains(p)) return false;
         const Vec3 d = normalize(Vec3(0.5727f, 0.6101f, 0.5474f));
         std::vector<std::pair<uint32_t, float>> hits;
         crossings(Ray{p, d}, 0.f, kInfinity, &hits);

@@ -23,10 +23,7 @@ float ScatteringProbe::sigmaS(const Vec3& worldP, float lambdaNm) {
     float sigmaS = 0.f;
     for (size_t i = 0; i < mMedia.size(); ++i) {
         Vec3 p = mMedia[i]->pointToObject(worldP, mContexts[i]);
-        Bounds3 box = mMedia[i]->objectBounds();
-        if (!(p.x >= box.lo.x && p.y >= box.lo.y && p.z >= box.lo.z && p.x <= box.hi.x &&
-              p.y <= box.hi.y && p.z <= box.hi.z))
-            continue;
+        if (!mMedia[i]->objectBounds().contains(p)) continue;
         sigmaS += mMedia[i]->sigmaSAt(p, mContexts[i], lambdaNm);
     }
     return sigmaS;
@@ -38,10 +35,7 @@ float ScatteringProbe::reemissionDensity(const Vec3& worldP, float lambdaInNm) {
         const Medium& m = *mMedia[i];
         if (!m.fluorescent()) continue;
         Vec3 p = mMedia[i]->pointToObject(worldP, mContexts[i]);
-        Bounds3 box = m.objectBounds();
-        if (!(p.x >= box.lo.x && p.y >= box.lo.y && p.z >= box.lo.z && p.x <= box.hi.x &&
-              p.y <= box.hi.y && p.z <= box.hi.z))
-            continue;
+        if (!m.objectBounds().contains(p)) continue;
         m.sigmaAComponentsAt(p, mContexts[i], lambdaInNm, mSigmaA.data());
         const auto& comps = m.shader().components;
         for (size_t c = 0; c < comps.size(); ++c)
@@ -106,9 +100,7 @@ VolumePhotons::VolumePhotons(PhotonList photons, const std::vector<const Medium*
                 // still report their constant).
                 contexts[mi].setTimeOffset(mMap[i].time);
                 Vec3 p = m.pointToObject(mMap[i].p, contexts[mi]);
-                Bounds3 box = m.objectBounds();
-                if (!(p.x >= box.lo.x && p.y >= box.lo.y && p.z >= box.lo.z && p.x <= box.hi.x &&
-                      p.y <= box.hi.y && p.z <= box.hi.z)) {
+                if (!m.objectBounds().contains(p)) {
                     lobe += size_t(components);
                     continue;
                 }

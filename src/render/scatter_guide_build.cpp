@@ -26,11 +26,6 @@ constexpr int kMinResolution = 4, kMaxResolution = 32;
 
 size_t cellIndex(int n, int i, int j, int k) { return (size_t(k) * n + j) * n + i; }
 
-bool inside(const Bounds3& b, const Vec3& p) {
-    return p.x >= b.lo.x && p.x <= b.hi.x && p.y >= b.lo.y && p.y <= b.hi.y && p.z >= b.lo.z &&
-           p.z <= b.hi.z;
-}
-
 // The media's σt averaged over a cell (mean over the wavelengths of w, 1/m), from 2×2×2 points
 // at the centres of its octants.
 float meanExtinction(TrackingContext& ctx, const Bounds3& bounds, int n, int i, int j, int k) {
@@ -42,7 +37,7 @@ float meanExtinction(TrackingContext& ctx, const Bounds3& bounds, int n, int i, 
                                         cell.z * (k + 0.25f + 0.5f * (o >> 2)));
         for (size_t m = 0; m < ctx.size(); ++m) {
             const Medium& medium = ctx.medium(m);
-            if (!inside(medium.worldBounds(), p)) continue;
+            if (!medium.worldBounds().contains(p)) continue;
             MediumPoint mp;
             medium.eval(medium.pointToObject(p, ctx.context(m)), ctx.context(m), &mp);
             const float s = (mp.sigmaA + mp.sigmaS).average();
@@ -62,12 +57,12 @@ float coarseTransmittance(const std::vector<float>& sigma, const Bounds3& bounds
     const float h = 0.5f * std::min({cell.x, cell.y, cell.z});
     const int steps = std::clamp(int(std::ceil((t1 - t0) / h)), 1, 4 * n);
     const float dt = (t1 - t0) / float(steps);
+    auto index = [&](float x, float lo, float size) {
+        return std::clamp(int((x - lo) / size), 0, n - 1);
+    };
     double tau = 0.0;
     for (int s = 0; s < steps; ++s) {
         const Vec3 q = p + d * (t0 + (s + 0.5f) * dt);
-        auto index = [&](float x, float lo, float size) {
-            return std::clamp(int((x - lo) / size), 0, n - 1);
-        };
         tau += sigma[cellIndex(n, index(q.x, bounds.lo.x, cell.x), index(q.y, bounds.lo.y, cell.y),
                                index(q.z, bounds.lo.z, cell.z))] *
                dt;

@@ -51,22 +51,15 @@ Image render(const std::string& dir, const std::string& name, const std::string&
     return readExr(dir + "/" + name + ".exr");
 }
 
-double channelMean(const Image& im, int c) {
-    double sum = 0;
-    for (int y = 0; y < im.height; ++y)
-        for (int x = 0; x < im.width; ++x) sum += im.pixel(x, y)[c];
-    return sum / (double(im.width) * im.height);
-}
-
 // Each channel's mean within `tolerance` of the reference's, relative to that channel or, for
 // a channel far darker than the brightest (a red image's blue), to a quarter of the brightest:
 // a colour error is judged against the light the pixel has.
 void expectSameColour(const Image& a, const Image& ref, const double (&tolerance)[3]) {
     double brightest = 0;
-    for (int c = 0; c < 3; ++c) brightest = std::max(brightest, channelMean(ref, c));
+    for (int c = 0; c < 3; ++c) brightest = std::max(brightest, test::channelMean(ref, c));
     ASSERT_GT(brightest, 1e-4) << "the reference is black";
     for (int c = 0; c < 3; ++c) {
-        const double x = channelMean(a, c), r = channelMean(ref, c);
+        const double x = test::channelMean(a, c), r = test::channelMean(ref, c);
         std::printf("channel %d: %.5f against %.5f (ratio %.3f)\n", c, x, r, x / r);
         EXPECT_NEAR(x, r, tolerance[c] * std::max(r, 0.25 * brightest)) << "channel " << c;
     }

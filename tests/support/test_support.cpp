@@ -224,4 +224,11 @@ Image renderToExr(const std::string& scene, const std::string& out, const std::s
     return status == 0 ? readExr(out) : Image();
 }
 
+double channelMean(const Image& im, int c) {
+    double sum = 0;
+    for (int y = 0; y < im.height; ++y)
+        for (int x = 0; x < im.width; ++x) sum += im.pixel(x, y)[c];
+    return sum / (double(im.width) * im.height);
+}
+
 }  // namespace mirage::test

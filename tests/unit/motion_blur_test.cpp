@@ -1,9 +1,7 @@
-// Velocity motion blur (Medium::setMotion, [camera] shutter, [output] fps): known answers.
-//
-// A puff moving at a constant velocity V is, at time offset Δt, the still puff translated by
-// V·Δt, so a blurred render must equal the mean of still renders of the puff translated to
-// times spread over the shutter. The blur length is V × shutter width / fps: an fps taken as
-// 24 instead of the scene's makes the blur 12 times shorter and fails the comparison.
+// Velocity motion blur (Medium::setMotion, [camera] shutter, [output] fps): the photon pass's
+// times, bit-identity where nothing moves, determinism, the dilated majorant and the velocity
+// grids' rules. The blurred render against the mean of translated stills is in
+// tests/physics/motion_blur_stills_test.cpp.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -28,40 +26,6 @@ namespace mirage {
 namespace {
 
 using namespace puff;
-
-void expectBlurIsMeanOfTranslatedStills(const std::string& integrator) {
-    const std::string dir = test::tempDir();
-    writePuff(dir);
-    constexpr int kReps = 8;
-    std::vector<std::vector<double>> blurred;
-    for (int r = 0; r < kReps; ++r) {
-        Rendered b =
-            renderScene(writeScene(dir, "blur", kOpen, ""), 1000 + uint64_t(r), integrator);
-        EXPECT_EQ(b.stats.aboveMajorant, 0u);
-        EXPECT_GT(b.stats.mediumLookups, 0u);
-        blurred.push_back(b.Y);
-    }
-    const Estimate blur = combine(blurred);
-    // Blur length = speed × shutter (frames) / fps: 1 m, ±0.5 m about the frame.
-    const double half = 0.5 * kSpeed * kShutter / kFps;
-    const Estimate stills = stillComposite(dir, half, kReps, 5000, integrator);
-    const double z = worstColumnZ(blur, stills, 48, 24);
-    std::printf("%s: worst band %.2f sigma from the translated stills\n", integrator.c_str(), z);
-    EXPECT_LT(z, 4.0);
-    // The same stills spread over the blur an fps of 24 would give: clearly not the render.
-    const Estimate wrongFps =
-        stillComposite(dir, 0.5 * kSpeed * kShutter / 24.0, kReps, 9000, integrator, 4);
-    EXPECT_GT(worstColumnZ(blur, wrongFps, 48, 24), 10.0);
-}
-
-TEST(MotionBlur, BlurredPuffIsTheMeanOfTranslatedStillsSingleScatter) {
-    // Delta tracking to the scattering event along the camera ray, ratio-tracked shadow rays.
-    expectBlurIsMeanOfTranslatedStills("single");
-}
-
-TEST(MotionBlur, BlurredPuffIsTheMeanOfTranslatedStillsVolpath) {
-    expectBlurIsMeanOfTranslatedStills("volpath");
-}
 
 // The photon pass samples times too: each photon meets the puff where it is at its own time,
 // so the stored photons of a puff translated uniformly over a length L spread like the still

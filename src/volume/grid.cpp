@@ -29,6 +29,7 @@ FloatGrid::FloatGrid(nanovdb::GridHandle<nanovdb::HostBuffer> handle, std::strin
       mSanitized(sanitizedVoxels) {
     mGrid = mHandle->grid<float>();
     MIRAGE_CHECK(mGrid != nullptr);
+    mIndexMap = IndexMap(mGrid->map());
 
     // A voxel at index i contributes to trilinear lookups in the open interval (i-1, i+1) on
     // each axis, so the medium is non-zero only inside the active index bbox dilated by one

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/math.h"
+#include "volume/index_map.h"
 #include "volume/leaf_stencil.h"
 
 namespace mirage {
@@ -38,7 +39,7 @@ public:
     // tentative collision and every shadow-ray control reads it).
     float sample(const Accessor& acc, const Vec3& pObject) const {
         using Leaf = nanovdb::NanoLeaf<float>;
-        nanovdb::Vec3f pi = mGrid->worldToIndexF(nanovdb::Vec3f(pObject.x, pObject.y, pObject.z));
+        nanovdb::Vec3f pi = mIndexMap.toIndex(nanovdb::Vec3f(pObject.x, pObject.y, pObject.z));
         const float fi[3] = {std::floor(pi[0]), std::floor(pi[1]), std::floor(pi[2])};
         const nanovdb::Coord ijk{int32_t(fi[0]), int32_t(fi[1]), int32_t(fi[2])};
         constexpr int kStencil[3] = {1, 1, 1};
@@ -60,6 +61,7 @@ public:
 private:
     std::shared_ptr<nanovdb::GridHandle<nanovdb::HostBuffer>> mHandle;
     const nanovdb::FloatGrid* mGrid = nullptr;
+    IndexMap mIndexMap;  // object → index space (volume/index_map.h)
     std::string mName;
     Bounds3 mObjectBounds;
     float mMaxValue = 0.f;

@@ -56,6 +56,7 @@ VectorGrid::VectorGrid(nanovdb::GridHandle<nanovdb::HostBuffer> handle, std::str
       mSanitized(sanitizedVoxels) {
     mGrid = mHandle->grid<nanovdb::Vec3f>();
     MIRAGE_CHECK(mGrid != nullptr);
+    mIndexMap = IndexMap(mGrid->map());
 
     // A collocated voxel reaches lookups within one voxel of its centre; a staggered component
     // sits half a voxel off it, so its reach is one and a half voxels on that axis.
@@ -164,7 +165,7 @@ Vec3 sampleStaggered(const VectorGrid::Accessor& acc, const nanovdb::Vec3f& pi) 
 }  // namespace
 
 Vec3 VectorGrid::sample(const Accessor& acc, const Vec3& pObject) const {
-    const nanovdb::Vec3f pi = mGrid->worldToIndexF(nanovdb::Vec3f(pObject.x, pObject.y, pObject.z));
+    const nanovdb::Vec3f pi = mIndexMap.toIndex(nanovdb::Vec3f(pObject.x, pObject.y, pObject.z));
     return mStaggered ? sampleStaggered(acc, pi) : sampleCollocated(acc, pi);
 }
 

@@ -10,13 +10,14 @@
 // were centred would displace every component by half a voxel.
 #pragma once
 
-#include <memory>
-#include <string>
-
 #include <nanovdb/NanoVDB.h>
 #include <nanovdb/util/GridHandle.h>
 
+#include <memory>
+#include <string>
+
 #include "core/math.h"
+#include "volume/index_map.h"
 
 namespace mirage {
 
@@ -58,6 +59,7 @@ public:
 private:
     std::shared_ptr<nanovdb::GridHandle<nanovdb::HostBuffer>> mHandle;
     const nanovdb::Vec3fGrid* mGrid = nullptr;
+    IndexMap mIndexMap;  // object → index space (volume/index_map.h)
     std::string mName;
     bool mStaggered = false;
     Bounds3 mObjectBounds;

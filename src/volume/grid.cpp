@@ -45,6 +45,7 @@ FloatGrid::FloatGrid(nanovdb::GridHandle<nanovdb::HostBuffer> handle, std::strin
         }
     }
     mMaxValue = maxStoredValue(*mGrid);
+    mDense = DenseBlock::of(*mGrid, mHandle->size());
 }
 
 }  // namespace mirage

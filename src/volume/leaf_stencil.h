@@ -28,19 +28,25 @@ constexpr uint32_t leafStep(int i, int j, int k) {
     return uint32_t(i) * 64u + uint32_t(j) * 8u + uint32_t(k);
 }
 
-// Trilinear interpolation of the 2×2×2 voxels from offset o of `leaf` at fractions u (0 to 1 per
-// axis): the lerps of NanoVDB's TrilinearSampler in its order, so the value has the same bits as
-// a lookup through the accessor. ValueT is float or nanovdb::Vec3f (component by component).
-template <typename Leaf>
-typename Leaf::ValueType trilinearInLeaf(const Leaf& leaf, uint32_t o, const float u[3]) {
-    using ValueT = typename Leaf::ValueType;
-    auto v = [&](int i, int j, int k) { return leaf.getValue(o + leafStep<Leaf>(i, j, k)); };
+// Trilinear interpolation of the 2×2×2 voxels v(i, j, k) (i, j, k ∈ {0, 1}) at fractions u (0 to
+// 1 per axis): the lerps of NanoVDB's TrilinearSampler in its order, so the value has the same
+// bits as a lookup through the accessor. ValueT is float or nanovdb::Vec3f (component by
+// component).
+template <typename ValueT, typename V>
+ValueT trilinearStencil(const V& v, const float u[3]) {
     auto lerp = [](const ValueT& a, const ValueT& b, float w) { return a + ValueT(w) * (b - a); };
     const ValueT x0 =
         lerp(lerp(v(0, 0, 0), v(0, 0, 1), u[2]), lerp(v(0, 1, 0), v(0, 1, 1), u[2]), u[1]);
     const ValueT x1 =
         lerp(lerp(v(1, 0, 0), v(1, 0, 1), u[2]), lerp(v(1, 1, 0), v(1, 1, 1), u[2]), u[1]);
     return lerp(x0, x1, u[0]);
+}
+
+// The stencil from offset o of `leaf`.
+template <typename Leaf>
+typename Leaf::ValueType trilinearInLeaf(const Leaf& leaf, uint32_t o, const float u[3]) {
+    auto v = [&](int i, int j, int k) { return leaf.getValue(o + leafStep<Leaf>(i, j, k)); };
+    return trilinearStencil<typename Leaf::ValueType>(v, u);
 }
 
 }  // namespace mirage

@@ -106,9 +106,15 @@ int runInfo(const InfoOptions& o) {
         for (const std::string& n : v.notes) std::printf("    %s\n", n.c_str());
         for (size_t b = 0; b < v.bindings.size(); ++b) {
             const FloatGrid& g = m.grids()[b];
-            std::printf("    slot '%s' ← grid '%s': %llu active voxels, NanoVDB %s, max %g\n",
+            // The dense copy's size, or why lookups go through the tree (volume/dense_block.h).
+            const std::string dense = g.denseBytes() ? "dense copy " + formatBytes(g.denseBytes())
+                                      : g.activeVoxels()
+                                          ? std::string("no dense copy (over its memory budget)")
+                                          : std::string("empty");
+            std::printf("    slot '%s' ← grid '%s': %llu active voxels, NanoVDB %s, %s, max %g\n",
                         v.bindings[b].first.c_str(), v.bindings[b].second.c_str(),
-                        (unsigned long long)g.activeVoxels(), formatBytes(g.memoryBytes()).c_str(),
+                        (unsigned long long)g.activeVoxels(),
+                        formatBytes(g.memoryBytes() - g.denseBytes()).c_str(), dense.c_str(),
                         g.maxValue());
         }
         for (const ExpressionRecord& e : v.expressions)

@@ -50,6 +50,18 @@ TEST(CliOutput, InfoOnAVdbListsEveryGridFieldAndThePhysics) {
     EXPECT_TRUE(has(info, box)) << box << "\n" << info;
 }
 
+TEST(CliOutput, InfoOnASceneSaysWhichGridsHaveADenseCopy) {
+    // The fog sphere's 16³ grid is far inside the dense copy's budget (volume/dense_block.h).
+    const std::string dir = test::tempDir();
+    test::makeFogSphere(dir);
+    const std::string scene = test::writeFogSphereScene(dir, "resolution = [8, 8]\n", "");
+    std::string info;
+    ASSERT_EQ(test::runMirage("info '" + scene + "'", &info), 0) << info;
+    EXPECT_TRUE(std::regex_search(info, std::regex("slot 'density' .* NanoVDB [0-9.]+ [KMG]?i?B, "
+                                                   "dense copy [0-9.]+ [KMG]?i?B")))
+        << info;
+}
+
 TEST(CliOutput, RenderLogsProgressAndSummaryAndQuietSilencesThem) {
     const std::string dir = test::tempDir();
     const std::string vdb = test::makeFogSphere(dir);

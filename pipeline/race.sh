@@ -10,17 +10,21 @@
 #             pass) against the same volpath reference: its bias counts, and its time is
 #             mirage:time_spent, the photon passes included.
 # Usage: pipeline/race.sh [single | multiple | both]   (default single)
-# Environment: SPPS ("4 16 64"), REF_SPP (1024), THREADS (2), OUT (out/race), SAMPLERS
+# Other caches: CACHE=path.vdb races that file's `density` grid instead of smoke1, with the same
+# medium, sun and resolution, and the camera cycles_vdb.py frames it with (read from its
+# CYCLES_VDB line and handed to Mirage by --set); outputs are named after the cache.
+# Environment: CACHE, SPPS ("4 16 64"), REF_SPP (1024), THREADS (2), OUT (out/race), SAMPLERS
 # ("sobol random": Mirage's [render] sampler values raced; "default" sets none), MIRAGE
 # (build/mirage: another build to race, e.g. an older one against the same references),
 # PHOTON_PASSES ("2 8 24": pass counts of the photon rows; "" for none), PHOTONS (100000:
 # photons per pass), PASS_SPP (4: samples per pixel per pass), MIRAGE_SHARED_DATA.
 # Installs Blender when missing (pipeline/install-deps.sh blender). Prints one table per mode (also
-# OUT/<integrator>.csv) and the equal-error time ratios.
+# OUT/<cache>.<integrator>.csv) and the equal-error time ratios.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 DATA=${MIRAGE_SHARED_DATA:-../shared/data}
-SMOKE="$(realpath -m "$DATA/vdb/smoke1.vdb")"
+SMOKE="$(realpath -m "${CACHE:-$DATA/vdb/smoke1.vdb}")"
+NAME=$(basename "$SMOKE" .vdb)
 CYCLES_PY="$(realpath -m "$DATA/../tools/cycles_vdb.py")"
 for f in "$SMOKE" "$CYCLES_PY"; do
   [ -f "$f" ] || { echo "race: $f not found: the race needs the reference data folder" >&2; exit 1; }
@@ -40,6 +44,27 @@ command -v blender >/dev/null || pipeline/install-deps.sh blender >/dev/null
 [ -x build/mirage ] || pipeline/build.sh build >/dev/null
 mkdir -p "$OUT"
 
+# The camera Cycles frames the cache with (cycles_vdb.py's CYCLES_VDB line of a 1-spp probe,
+# kept in OUT), as Mirage's --set arguments: the race scene's own camera is smoke1's.
+CAMERA_FILE="$OUT/$NAME.camera"
+if [ ! -s "$CAMERA_FILE" ]; then
+  blender -b --factory-startup --python-exit-code 1 --python "$CYCLES_PY" -- "$SMOKE" \
+    "$OUT/$NAME.probe.exr" 256 256 1 --density-scale 5 --threads "$THREADS" 2>&1 |
+    python3 -c '
+import re, sys
+for line in sys.stdin:
+    m = re.search(r"camera_pos \(([^)]*)\) look_at \(([^)]*)\) .* fov_deg ([0-9.]+)", line)
+    if m:
+        print("camera.position=[%s]" % m.group(1).replace(" ", ""))
+        print("camera.look_at=[%s]" % m.group(2).replace(" ", ""))
+        print("camera.fov=%s" % m.group(3))
+' >"$CAMERA_FILE"
+  rm -f "$OUT/$NAME.probe.exr"
+  [ -s "$CAMERA_FILE" ] || { echo "race: no camera from cycles_vdb.py for $SMOKE" >&2; exit 1; }
+fi
+CAMERA=()
+while read -r kv; do CAMERA+=(--set "$kv"); done <"$CAMERA_FILE"
+
 # References take another seed (7): with a low-discrepancy sampler, their first samples would
 # otherwise be the very samples of the images they judge.
 # Cycles: prints its render seconds (scene set-up excluded).
@@ -54,7 +79,7 @@ cycles() {  # bounces spp exr [seed]
 mirage() {  # integrator sampler spp exr [seed]
   local sampler=()
   [ "$2" = default ] || sampler=(--set "render.sampler=$2")
-  "$MIRAGE" render tests/bench/smoke1_race.toml --set "volume.0.file=$SMOKE" \
+  "$MIRAGE" render tests/bench/smoke1_race.toml --set "volume.0.file=$SMOKE" "${CAMERA[@]}" \
     --set "render.integrator=$1" "${sampler[@]}" --spp "$3" --threads "$THREADS" \
     --seed "${5:-0}" -o "$4" --quiet >/dev/null
   oiiotool --info -v "$4" | awk -F'"' '/mirage:frame_seconds/ {print $2}'
@@ -63,16 +88,16 @@ mirage() {  # integrator sampler spp exr [seed]
 # Mirage's progressive photon mapper in P passes: prints the seconds since the frame began
 # (mirage:time_spent: integrator set-up and every pass's photon map included).
 photon() {  # passes exr
-  "$MIRAGE" render tests/bench/smoke1_race.toml --set "volume.0.file=$SMOKE" \
+  "$MIRAGE" render tests/bench/smoke1_race.toml --set "volume.0.file=$SMOKE" "${CAMERA[@]}" \
     --integrator photon --set "render.photons=$PHOTONS" --set "render.pass_spp=$PASS_SPP" \
     --passes "$1" --threads "$THREADS" --seed 0 -o "$2" --quiet >/dev/null
   oiiotool --info -v "$2" | awk -F'"' '/mirage:time_spent/ {print $2}'
 }
 
 race() {  # bounces integrator
-  local bounces=$1 integrator=$2 tag="$OUT/$2"
-  printf '\nsmoke1.vdb 256x256, %d threads: Cycles --volume-bounces %d against mirage --integrator %s\n' \
-    "$THREADS" "$bounces" "$integrator"
+  local bounces=$1 integrator=$2 tag="$OUT/$NAME.$2"
+  printf '\n%s.vdb 256x256, %d threads: Cycles --volume-bounces %d against mirage --integrator %s\n' \
+    "$NAME" "$THREADS" "$bounces" "$integrator"
   [ -f "$tag.cycles_ref.exr" ] || cycles "$bounces" "$REF_SPP" "$tag.cycles_ref.exr" 7 >/dev/null
   [ -f "$tag.mirage_ref.exr" ] || mirage "$integrator" sobol "$REF_SPP" "$tag.mirage_ref.exr" 7 >/dev/null
   printf '  %-5s %-16s %8s %10s\n' spp renderer seconds relMSE

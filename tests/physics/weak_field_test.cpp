@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <fstream>
 #include <string>
 
 #include "film/image_io.h"
@@ -15,29 +14,43 @@
 namespace mirage {
 namespace {
 
+// The fog sphere (smoke shader, density_scale 3) under the sun, with the tables of `body`
+// (film, render, camera, surfaces), rendered straight and in a field of k = 1e−9/m walked in
+// chords of at most maxStep metres; dir is the folder of both scenes.
+struct StraightAndBent {
+    Image straight, bent;
+    std::string dir;
+};
+StraightAndBent renderStraightAndBent(const std::string& body, double maxStep) {
+    StraightAndBent out;
+    out.dir = test::tempDir();
+    test::makeFogSphere(out.dir);
+    const std::string scene =
+        body +
+        "[[volume]]\nfile = \"fog.vdb\"\nshader = \"smoke\"\ndensity_scale = 3\n"
+        "[[light]]\ntype = \"sun\"\ndirection = [0.6, -0.7, -0.4]\nirradiance = 1476\n";
+    const std::string field =
+        "[refraction]\nprofile = \"linear\"\nk = 1e-9\nmax_distance = 20\n"
+        "max_step = " +
+        std::to_string(maxStep) + "\n";
+    out.straight = test::renderToExr(test::writeFile(out.dir, "straight.toml", scene),
+                                     out.dir + "/straight.exr", "");
+    out.bent = test::renderToExr(test::writeFile(out.dir, "bent.toml", scene + field),
+                                 out.dir + "/bent.exr", "");
+    return out;
+}
+
 TEST(RefractionScene, ChordByChordMediaMatchTheStraightRender) {
     // A field that bends nothing visible (k = 1e−9/m) but is walked in 10 cm chords: the media
     // seen chord by chord (each chord's emission and scattering, times the transmittance of the
     // chords before) must add up to the straight render's, within the noise (≈ 0.9 % here).
-    const std::string dir = test::tempDir();
-    test::makeFogSphere(dir);
-    auto scene = [&](const std::string& name, const std::string& extra) {
-        std::ofstream f(dir + "/" + name);
-        f << "[film]\nresolution = [24, 24]\nspp = 64\nseed = 11\n"
-             "[render]\nintegrator = \"single\"\n"
-             "[camera]\nposition = [0, 1, 4]\nlook_at = [0, 1, 0]\nfov = 35\n"
-             "[[volume]]\nfile = \"fog.vdb\"\nshader = \"smoke\"\ndensity_scale = 3\n"
-             "[[light]]\ntype = \"sun\"\ndirection = [0.6, -0.7, -0.4]\nirradiance = 1476\n"
-          << extra;
-        return dir + "/" + name;
-    };
-    const Image straight = test::renderToExr(scene("straight.toml", ""), dir + "/straight.exr", "");
-    const Image chords = test::renderToExr(scene("chords.toml",
-                                                 "[refraction]\nprofile = \"linear\"\nk = 1e-9\n"
-                                                 "max_distance = 20\nmax_step = 0.1\n"),
-                                           dir + "/chords.exr", "");
+    const StraightAndBent r = renderStraightAndBent(
+        "[film]\nresolution = [24, 24]\nspp = 64\nseed = 11\n"
+        "[render]\nintegrator = \"single\"\n"
+        "[camera]\nposition = [0, 1, 4]\nlook_at = [0, 1, 0]\nfov = 35\n",
+        0.1);
     for (int c = 0; c < 3; ++c) {
-        const double a = test::channelMean(straight, c), b = test::channelMean(chords, c);
+        const double a = test::channelMean(r.straight, c), b = test::channelMean(r.bent, c);
         ASSERT_GT(a, 0.01) << "channel " << c;
         EXPECT_NEAR(b / a, 1.0, 0.04) << "channel " << c;
     }
@@ -48,31 +61,19 @@ TEST(CurvedPhotons, WeakFieldGivesThePhotonMapImageOfStraightLight) {
     // light on the floor by shadow rays, the rest from the photons. With k = 1e−9/m the photons
     // walk curved paths and carry the direct light too, which the render then takes from the
     // maps alone: the same image within the noise, nothing counted twice or missed.
-    const std::string dir = test::tempDir();
-    test::makeFogSphere(dir);
-    auto scene = [&](const std::string& name, const std::string& extra) {
-        std::ofstream f(dir + "/" + name);
-        f << "[film]\nresolution = [16, 16]\nspp = 8\nseed = 4\n"
-             "[render]\nintegrator = \"photon\"\nphotons = 800000\n"
-             "[camera]\nposition = [0, 1.2, 4]\nlook_at = [0, 0.6, 0]\nfov = 40\n"
-             "[[volume]]\nfile = \"fog.vdb\"\nshader = \"smoke\"\ndensity_scale = 3\n"
-             "[[light]]\ntype = \"sun\"\ndirection = [0.6, -0.7, -0.4]\nirradiance = 1476\n"
-             "[[material]]\nname = \"floor\"\ntype = \"diffuse\"\nreflectance = 0.5\n"
-             "[[shape]]\ntype = \"quad\"\ncorner = [-3, -1, 3]\nedge_u = [6, 0, 0]\n"
-             "edge_v = [0, 0, -6]\nmaterial = \"floor\"\n"
-          << extra;
-        return dir + "/" + name;
-    };
-    const Image straight = test::renderToExr(scene("straight.toml", ""), dir + "/straight.exr", "");
-    const Image curved = test::renderToExr(scene("curved.toml",
-                                                 "[refraction]\nprofile = \"linear\"\nk = 1e-9\n"
-                                                 "max_distance = 20\nmax_step = 0.5\n"),
-                                           dir + "/curved.exr", "");
+    const StraightAndBent r = renderStraightAndBent(
+        "[film]\nresolution = [16, 16]\nspp = 8\nseed = 4\n"
+        "[render]\nintegrator = \"photon\"\nphotons = 800000\n"
+        "[camera]\nposition = [0, 1.2, 4]\nlook_at = [0, 0.6, 0]\nfov = 40\n"
+        "[[material]]\nname = \"floor\"\ntype = \"diffuse\"\nreflectance = 0.5\n"
+        "[[shape]]\ntype = \"quad\"\ncorner = [-3, -1, 3]\nedge_u = [6, 0, 0]\n"
+        "edge_v = [0, 0, -6]\nmaterial = \"floor\"\n",
+        0.5);
     std::string info;
-    ASSERT_EQ(test::runMirage("info '" + dir + "/curved.toml'", &info), 0) << info;
+    ASSERT_EQ(test::runMirage("info '" + r.dir + "/bent.toml'", &info), 0) << info;
     EXPECT_NE(info.find("photons follow curved paths"), std::string::npos) << info;
     for (int c = 0; c < 3; ++c) {
-        const double a = test::channelMean(straight, c), b = test::channelMean(curved, c);
+        const double a = test::channelMean(r.straight, c), b = test::channelMean(r.bent, c);
         ASSERT_GT(a, 0.01) << c;
         std::printf("channel %d: straight %.5f, curved photons %.5f (ratio %.4f)\n", c, a, b,
                     b / a);

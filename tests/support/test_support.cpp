@@ -224,6 +224,12 @@ Image renderToExr(const std::string& scene, const std::string& out, const std::s
     return status == 0 ? readExr(out) : Image();
 }
 
+std::string writeFile(const std::string& dir, const std::string& name, const std::string& text) {
+    const std::string path = dir + "/" + name;
+    std::ofstream(path) << text;
+    return path;
+}
+
 double channelMean(const Image& im, int c) {
     double sum = 0;
     for (int y = 0; y < im.height; ++y)

@@ -104,6 +104,9 @@ ImageError compareImages(const Image& image, const Image& ref);
 // back; a failed render is a test failure (and an empty image).
 Image renderToExr(const std::string& scene, const std::string& out, const std::string& args);
 
+// Writes `text` to DIR/NAME (a scene file) and returns that path.
+std::string writeFile(const std::string& dir, const std::string& name, const std::string& text);
+
 // The mean of channel c (0 = R, 1 = G, 2 = B) over every pixel of an image.
 double channelMean(const Image& im, int c);
 

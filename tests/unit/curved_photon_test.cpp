@@ -90,16 +90,16 @@ TEST(CurvedPhotons, FlatFieldLeavesThePhotonRenderBitIdentical) {
     // No index gradient anywhere: the straight photon pass, shadow rays and all, bit for bit.
     const std::string dir = test::tempDir();
     auto scene = [&](const std::string& name, const std::string& extra) {
-        std::ofstream f(dir + "/" + name);
-        f << "[film]\nresolution = [12, 12]\nspp = 2\nseed = 8\n"
-             "[render]\nintegrator = \"photon\"\nphotons = 20000\n"
-             "[camera]\nposition = [0, 1.5, 4]\nlook_at = [0, 0, 0]\nfov = 40\n"
-             "[[light]]\ntype = \"point\"\nposition = [0, 2, 0]\npower = 100\n"
-             "[[material]]\nname = \"floor\"\ntype = \"diffuse\"\nreflectance = 0.5\n"
-             "[[shape]]\ntype = \"quad\"\ncorner = [-3, 0, 3]\nedge_u = [6, 0, 0]\n"
-             "edge_v = [0, 0, -6]\nmaterial = \"floor\"\n"
-          << extra;
-        return dir + "/" + name;
+        return test::writeFile(
+            dir, name,
+            std::string("[film]\nresolution = [12, 12]\nspp = 2\nseed = 8\n"
+                        "[render]\nintegrator = \"photon\"\nphotons = 20000\n"
+                        "[camera]\nposition = [0, 1.5, 4]\nlook_at = [0, 0, 0]\nfov = 40\n"
+                        "[[light]]\ntype = \"point\"\nposition = [0, 2, 0]\npower = 100\n"
+                        "[[material]]\nname = \"floor\"\ntype = \"diffuse\"\nreflectance = 0.5\n"
+                        "[[shape]]\ntype = \"quad\"\ncorner = [-3, 0, 3]\nedge_u = [6, 0, 0]\n"
+                        "edge_v = [0, 0, -6]\nmaterial = \"floor\"\n") +
+                extra);
     };
     const Image plain = test::renderToExr(scene("plain.toml", ""), dir + "/plain.exr", "");
     const Image flat = test::renderToExr(

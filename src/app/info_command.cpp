@@ -113,9 +113,8 @@ int runInfo(const InfoOptions& o) {
                                           : std::string("empty");
             std::printf("    slot '%s' ← grid '%s': %llu active voxels, NanoVDB %s, %s, max %g\n",
                         v.bindings[b].first.c_str(), v.bindings[b].second.c_str(),
-                        (unsigned long long)g.activeVoxels(),
-                        formatBytes(g.memoryBytes() - g.denseBytes()).c_str(), dense.c_str(),
-                        g.maxValue());
+                        (unsigned long long)g.activeVoxels(), formatBytes(g.treeBytes()).c_str(),
+                        dense.c_str(), g.maxValue());
         }
         for (const ExpressionRecord& e : v.expressions)
             std::printf("    expression (%s, %s): %s; active voxels only; OpenVDB AX compile + "

@@ -7,13 +7,13 @@
 // else: on the race scene the lookups were a third of a single-scattering frame's instructions
 // (callgrind; docs/performance.md). In a dense array the stencil is 8 loads at fixed strides,
 // wherever it falls. The copy holds what the tree returns for every voxel of the active box
-// dilated by one voxel and a stencil's reach (inactive leaf voxels and tiles included), so a lookup
-// has the same bits either way; outside that box the tree answers.
+// dilated by one voxel and a stencil's reach (inactive leaf voxels and tiles included), so a
+// lookup has the same bits either way; outside that box the tree answers.
 //
 // Memory: a cache's dense box is often not much larger than its sparse tree (smoke1: 11.3 MiB
-// dense with its margin, 6.7 MiB sparse). The copy is made when it needs at most kDenseSmallBytes, or at most
-// kDenseRatio times the tree's buffer, and never more than kDenseMaxBytes: a wide, sparse
-// simulation keeps its tree alone.
+// dense with its margin, 6.7 MiB sparse). The copy is made when it needs at most
+// kDenseSmallBytes, or at most kDenseRatio times the tree's buffer, and never more than
+// kDenseMaxBytes: a wide, sparse simulation keeps its tree alone.
 #pragma once
 
 #include <nanovdb/NanoVDB.h>
@@ -37,9 +37,9 @@ constexpr bool denseCopyFits(uint64_t denseBytes, uint64_t treeBytes) {
 class DenseBlock {
 public:
     // The copy of `grid` over its active box dilated by one voxel (two above: a stencil's
-    // reach), or null when the grid is empty
-    // or the copy would break the budget above (treeBytes: the grid's buffer). Filled in parallel,
-    // each slice by its own accessor: the same values for any thread count.
+    // reach), or null when the grid is empty or the copy would break the budget above
+    // (treeBytes: the grid's buffer). Filled in parallel, each x slice by its own accessor:
+    // the same values for any thread count.
     static std::shared_ptr<const DenseBlock> of(const nanovdb::FloatGrid& grid, uint64_t treeBytes);
 
     // Whether the 2×2×2 stencil from voxel ijk lies inside the block; if so *offset is the

@@ -45,7 +45,7 @@ FloatGrid::FloatGrid(nanovdb::GridHandle<nanovdb::HostBuffer> handle, std::strin
         }
     }
     mMaxValue = maxStoredValue(*mGrid);
-    mDense = DenseBlock::of(*mGrid, mHandle->size());
+    mDense = DenseBlock::of(*mGrid, treeBytes());
 }
 
 }  // namespace mirage

@@ -62,11 +62,9 @@ public:
     nanovdb::CoordBBox indexBounds() const { return mGrid->indexBBox(); }
     float maxValue() const { return mMaxValue; }
     uint64_t activeVoxels() const { return mGrid->activeVoxelCount(); }
-    // The tree's buffer and the dense copy, if any.
-    uint64_t memoryBytes() const {
-        return (mHandle ? mHandle->size() : 0) + (mDense ? mDense->bytes() : 0);
-    }
-    uint64_t denseBytes() const { return mDense ? mDense->bytes() : 0; }
+    uint64_t treeBytes() const { return mHandle ? mHandle->size() : 0; }  // the NanoVDB buffer
+    uint64_t denseBytes() const { return mDense ? mDense->bytes() : 0; }  // the dense copy
+    uint64_t memoryBytes() const { return treeBytes() + denseBytes(); }
     uint64_t sanitizedVoxels() const { return mSanitized; }
     // The same grid without its dense copy: lookups through the tree alone (the copy's tests).
     FloatGrid treeOnly() const {

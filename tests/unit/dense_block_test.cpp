@@ -40,6 +40,7 @@ TEST(DenseBlock, LookupsHaveTheTreesBitsEverywhere) {
     const FloatGrid tree = dense.treeOnly();
     ASSERT_GT(dense.denseBytes(), 0u);
     EXPECT_EQ(tree.denseBytes(), 0u);
+    EXPECT_EQ(dense.treeBytes(), tree.treeBytes());
     EXPECT_EQ(dense.memoryBytes(), tree.memoryBytes() + dense.denseBytes());
     // Points over the object bounds and a voxel beyond, where the copy ends and the tree answers.
     const Bounds3 b = dense.objectBounds();

@@ -70,7 +70,7 @@ public:
     // Some component re-emits absorbed light (Γ > 0): the Γ roulette applies (reemission.h).
     bool fluorescent() const { return mFluorescent; }
     // The largest forward value of a component's lobe, p(0) (1/sr): 1/4π isotropic, 26 for
-    // HG g 0.92 (render/guided_continuation.h guides paths towards the lights above 5/sr).
+    // HG g 0.92 (render/light_lobes.h guides paths towards the lights above 5/sr).
     float peakPhase() const { return mPeakPhase; }
     // "Model only what a scene requires" (docs/design.md): every component is linear with
     // wavelength-independent σa and σs and none fluoresces, so σ is one number per component.

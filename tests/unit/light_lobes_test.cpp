@@ -1,0 +1,89 @@
+// The lobes about the lights (render/light_lobes.h) that the path tracer's lobe walks draw
+// from: their draws follow their density (the walks' weights divide by it, so an error here
+// would bias every guided render). The walks themselves are checked against the lit-box
+// furnace (tests/physics/furnace_test.cpp).
+#include "render/light_lobes.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "chi_square.h"
+#include "test_support.h"
+
+using namespace mirage;
+
+namespace {
+
+constexpr double kH = 1.0 / 32;
+
+RenderScene forwardMediumUnderLights() {
+    RenderScene scene;
+    scene.media.push_back(
+        test::gridMedium([](int, int, int) { return 1.f; }, 0, 31, kH, 0.1f, 5.f, 0.95f));
+    scene.lights.push_back(makeDistantLight(Vec3(0.25f, -1.f, -0.15f), 1000.f, Spectrum(1.f)));
+    scene.lights.push_back(makeQuadLight(Vec3(0.3f, 0.9f, 0.3f), Vec3(0.3f, 0.f, 0.f),
+                                         Vec3(0.f, 0.f, 0.3f), 50.f, Spectrum(1.f)));
+    return scene;
+}
+
+}  // namespace
+
+// The lobes' density, checked against their draws by Pearson's χ² on an equal-area grid of
+// the sphere (z × φ), and its integral over the sphere; the lobes of a near and a far lamp and
+// a sun get unequal shares (the light each would send unblocked).
+TEST(LightLobes, DrawsFollowTheirDensityChiSquare) {
+    RenderScene scene = forwardMediumUnderLights();
+    ASSERT_TRUE(guidesPaths(scene));
+    scene.lights.push_back(makeQuadLight(Vec3(3.f, 0.9f, 3.f), Vec3(0.3f, 0.f, 0.f),
+                                         Vec3(0.f, 0.f, 0.3f), 50.f, Spectrum(1.f)));
+    const SampledWavelengths w = SampledWavelengths::sampleVisible(0.3f);
+    const LightLobes lobes(scene, Vec3(0.45f, 0.4f, 0.5f), w);
+    ASSERT_FALSE(lobes.empty());
+    constexpr int kZ = 40, kPhi = 80, kDraws = 1000000, kSub = 8;
+    auto bin = [](const Vec3& d) {
+        const int iz = std::min(kZ - 1, int((d.z + 1.f) * 0.5f * kZ));
+        const float phi = std::atan2(d.y, d.x) + float(M_PI);
+        return iz * kPhi + std::min(kPhi - 1, int(phi / (2 * M_PI) * kPhi));
+    };
+    std::vector<double> observed(kZ * kPhi, 0.0), expected(kZ * kPhi, 0.0);
+    Sampler s(21, 0, 0);
+    for (int i = 0; i < kDraws; ++i) {
+        const float u = s.get1D(), u1 = s.get1D(), u2 = s.get1D();
+        observed[size_t(bin(lobes.sample(u, u1, u2)))] += 1;
+    }
+    double integral = 0;
+    const double cell = (2.0 / kZ) * (2 * M_PI / kPhi) / (kSub * kSub);  // sr per sub-cell
+    for (int iz = 0; iz < kZ * kSub; ++iz)
+        for (int ip = 0; ip < kPhi * kSub; ++ip) {
+            const double z = -1.0 + (iz + 0.5) * 2.0 / (kZ * kSub);
+            const double phi = -M_PI + (ip + 0.5) * 2 * M_PI / (kPhi * kSub);
+            const double r = std::sqrt(std::max(0.0, 1 - z * z));
+            const Vec3 d(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z));
+            const double p = lobes.pdf(d) * cell;
+            integral += p;
+            expected[size_t(bin(d))] += p * kDraws;
+        }
+    EXPECT_NEAR(integral, 1.0, 2e-3);
+    const test::ChiSquare c = test::chiSquare(observed, expected);
+    std::printf("lobes: ∫ pdf dω = %.5f, χ² %.1f on %d degrees of freedom\n", integral, c.statistic,
+                c.dof);
+    EXPECT_LT(c.statistic, test::chiSquareCritical(c.dof));
+}
+
+// Guiding is for strongly forward media with a light to guide to: not for smoke (HG g 0.5),
+// nor under a dome alone.
+TEST(LightLobes, GuideOnlyForwardMediaUnderLights) {
+    RenderScene smoke;
+    smoke.media.push_back(
+        test::gridMedium([](int, int, int) { return 1.f; }, 0, 31, kH, 0.1f, 5.f, 0.5f));
+    smoke.lights.push_back(makeDistantLight(Vec3(0.f, -1.f, 0.f), 1000.f, Spectrum(1.f)));
+    EXPECT_FALSE(guidesPaths(smoke));
+    RenderScene sea = forwardMediumUnderLights();
+    EXPECT_TRUE(guidesPaths(sea));
+    sea.lights.clear();
+    EXPECT_FALSE(guidesPaths(sea));
+}

@@ -127,9 +127,8 @@ TEST_P(LitBox, VolPathLobeWalksFindTheWallsRadiance) {
     const Vec3 o(0.01f, 0.02f, 0.03f);
     const float sigma = 5.f;
     const float ballCone = std::sqrt(1.f - kBall * kBall / dot(kBallAt - o, kBallAt - o));
-    double sum = 0, sum2 = 0;
-    const int n = 16000;
-    for (int i = 0; i < n; ++i) {
+    test::SampleMean ratio;
+    for (int i = 0; i < 16000; ++i) {
         Sampler s(11, uint64_t(i), 0);
         const SampledWavelengths w = SampledWavelengths::sampleVisible(s.get1D());
         ts.tracking.setWavelengths(w);
@@ -150,14 +149,13 @@ TEST_P(LitBox, VolPathLobeWalksFindTheWallsRadiance) {
         const Vec3 oc = o - kBallAt;
         const float b = dot(oc, d), c = dot(oc, oc) - kBall * kBall;
         const bool hitsBall = ball && b < 0.f && b * b >= c;
-        double ratio = 0;
+        double v = 0;
         for (int k = 0; k < kSpectrumSamples; ++k)
-            ratio += r.L[k] / (ls.Li[k] * ls.pdf) / kSpectrumSamples;
-        if (!hitsBall) ratio += std::exp(-sigma * exit);
-        sum += ratio;
-        sum2 += ratio * ratio;
+            v += r.L[k] / (ls.Li[k] * ls.pdf) / kSpectrumSamples;
+        if (!hitsBall) v += std::exp(-sigma * exit);
+        ratio.add(v);
     }
-    const double mean = sum / n, se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+    const double mean = ratio.mean(), se = ratio.standardError();
     std::printf("lit box%s: L / L_walls = %.4f ± %.4f\n", ball ? " with a white ball" : "", mean,
                 se);
     EXPECT_NEAR(mean, 1.0, 4 * se + 2e-3);

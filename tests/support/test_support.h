@@ -2,6 +2,8 @@
 // running the mirage binary.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace mirage::test {
@@ -109,5 +111,21 @@ std::string writeFile(const std::string& dir, const std::string& name, const std
 
 // The mean of channel c (0 = R, 1 = G, 2 = B) over every pixel of an image.
 double channelMean(const Image& im, int c);
+
+// The mean of Monte Carlo samples and its standard error, for a furnace-style check
+// (|mean − answer| within a few standard errors).
+struct SampleMean {
+    double sum = 0, sum2 = 0;
+    int n = 0;
+    void add(double x) {
+        sum += x;
+        sum2 += x * x;
+        ++n;
+    }
+    double mean() const { return n > 0 ? sum / n : 0.0; }
+    double standardError() const {
+        return n > 0 ? std::sqrt(std::max(0.0, sum2 / n - mean() * mean()) / n) : 0.0;
+    }
+};
 
 }  // namespace mirage::test

@@ -220,9 +220,8 @@ TEST(DomeLight, WhiteFurnace) {
                                                sigmaS, 0.6f, Transform::translate(Vec3d(-1.0))));
         auto volpath = makeVolPathIntegrator();
         ThreadState ts(scene);
-        double sum = 0, sum2 = 0;
-        const int n = 20000;
-        for (int i = 0; i < n; ++i) {
+        test::SampleMean radiance;
+        for (int i = 0; i < 20000; ++i) {
             Sampler s(21, uint64_t(i), 0);
             const SampledWavelengths w = SampledWavelengths::sampleVisible(s.get1D());
             ts.tracking.setWavelengths(w);
@@ -231,11 +230,9 @@ TEST(DomeLight, WhiteFurnace) {
             const Vec3 o(0.f, 0.f, 4.f);
             const RadianceSample r =
                 volpath->Li(scene, Ray{o, normalize(target - o), kInfinity}, w, s, ts);
-            const double v = r.L.average();
-            sum += v;
-            sum2 += v * v;
+            radiance.add(r.L.average());
         }
-        const double mean = sum / n, se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+        const double mean = radiance.mean(), se = radiance.standardError();
         EXPECT_NEAR(mean, 1.0, 4 * se + 2e-3) << "σs " << sigmaS << " ± " << se;
         EXPECT_EQ(volpath->stats().cappedPaths, 0u);
     }

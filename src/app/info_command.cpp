@@ -177,12 +177,18 @@ int runInfo(const InfoOptions& o) {
                     double(c.shutterOpen), double(c.shutterClose));
     else
         std::printf("shutter: closed (no motion blur; [camera] shutter or --shutter opens it)\n");
-    std::printf("film: %dx%d, %d spp, tile %d, seed %llu; integrator '%s' (%s); colour: %s (%s)\n",
-                scene.settings.width, scene.settings.height, scene.settings.spp,
+    // [render] passes: the samples come in passes, and the photon integrator makes a map per pass.
+    const std::string samples =
+        scene.passes.maxPasses > 0
+            ? std::to_string(scene.passes.maxPasses) + " passes of " +
+                  std::to_string(scene.passes.sppPerPass) + " spp" +
+                  (integratorInfo(scene.integrator).photonPass ? " (a photon map each)" : "")
+            : std::to_string(scene.settings.spp) + " spp";
+    std::printf("film: %dx%d, %s, tile %d, seed %llu; integrator '%s' (%s); colour: %s (%s)\n",
+                scene.settings.width, scene.settings.height, samples.c_str(),
                 scene.settings.tileSize, (unsigned long long)scene.settings.seed,
                 scene.integrator.c_str(), integratorInfo(scene.integrator).description.c_str(),
-                color.workingSpace().c_str(),
-                color.configDescription().c_str());
+                color.workingSpace().c_str(), color.configDescription().c_str());
     std::printf("integrator: %s\n", scene.integratorWhy.empty()
                                         ? "named by [render] integrator or --set"
                                         : scene.integratorWhy.c_str());

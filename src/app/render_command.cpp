@@ -120,9 +120,11 @@ LoadOptions frameLoadOptions(const RenderSession& rs, int frame) {
 }
 
 // --passes, --time-limit, --noise-threshold: a render in passes (render/passes.h). An explicit
-// --spp then caps the samples per pixel (whole passes: the count rounds up to a pass).
+// --spp then caps the samples per pixel (whole passes: the count rounds up to a pass). Any of
+// the three replaces the passes a scene states ([render] passes): a time or noise target
+// is not also cut at the scene's count.
 void applyPassOptions(const RenderOptions& o, PassSettings* passes) {
-    passes->maxPasses = o.passes;
+    if (o.passes > 0 || o.timeLimit > 0 || o.noiseThreshold > 0) passes->maxPasses = o.passes;
     passes->timeLimit = o.timeLimit;
     passes->noiseThreshold = o.noiseThreshold;
     if (passes->enabled() && o.passes == 0 && o.spp > 0)

@@ -77,6 +77,10 @@ struct Scene {
     // stated render.k, nonzero, is kept).
     int statedSpp = 0;
     uint64_t statedPhotons = 0;
+    // [render] passes as stated (0: not stated): the scene renders in that many passes of
+    // pass_spp samples, a photon map each with the photon integrator (what k-nearest photon
+    // estimates need to lose their noise: more photons in one map only shrink the radius).
+    int statedPasses = 0;
     int majorantResolution = 64;
     ShutterFrames shutter;  // [camera] shutter (frames); render.camera holds it in seconds
     std::vector<VolumeRecord> volumes;

@@ -233,6 +233,10 @@ static void readSettings(const TableReader& top,
         }
         scene.maxDepth = int(r->getInt("max_depth", 10000, 1, 1 << 30));
         scene.passes.sppPerPass = int(r->getInt("pass_spp", 4, 1, kMaxSamplesPerPixel));
+        if (r->has("passes")) {
+            scene.statedPasses = int(r->getInt("passes", 1, 1, kMaxSamplesPerPixel));
+            scene.passes.maxPasses = scene.statedPasses;
+        }
         const std::string sampler = r->getString("sampler", "sobol");
         if (sampler != "sobol" && sampler != "random")
             r->fail("sampler", "unknown sampler '" + sampler + "'; expected sobol or random");

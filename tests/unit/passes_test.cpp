@@ -250,3 +250,41 @@ TEST(PassesCli, ATimeLimitedFrameRecordsItsPassesAndIsReproducedByThem) {
     EXPECT_EQ(
         0, std::memcmp(timed.rgba.data(), counted.rgba.data(), timed.rgba.size() * sizeof(float)));
 }
+
+// [render] passes: a scene that needs several photon maps states them. It renders in that many
+// passes of pass_spp samples (the same bits as --passes), --quality final takes 4× the passes
+// (and so 4× the maps, each of the stated photons), --passes replaces the count, and `mirage
+// info` says it.
+TEST(PassesCli, ASceneStatesItsPassesAndPhotonMaps) {
+    const std::string dir = test::tempDir();
+    test::makeFogSphere(dir, 16);
+    const std::string body =
+        "[film]\nresolution = [16, 16]\nseed = 3\n"
+        "[render]\nintegrator = \"photon\"\nphotons = 2000\npass_spp = 2\n";
+    const std::string light =
+        "[[volume]]\nfile = \"fog.vdb\"\nshader = \"smoke\"\ndensity_scale = 3\n"
+        "[[light]]\ntype = \"sun\"\ndirection = [0.6, -0.7, -0.4]\nirradiance = 1476\n";
+    const std::string stated = test::writeFile(dir, "stated.toml", body + "passes = 3\n" + light);
+    const std::string plain = test::writeFile(dir, "plain.toml", body + light);
+    std::string out;
+    auto render = [&](const std::string& scene, const std::string& args, const std::string& exr) {
+        EXPECT_EQ(0, test::runMirage("render '" + scene + "' -q --threads 2 " + args + " -o '" +
+                                         dir + "/" + exr + "'",
+                                     &out))
+            << out;
+        std::map<std::string, std::string> meta;
+        readExr(dir + "/" + exr, &meta);
+        return meta;
+    };
+    EXPECT_EQ(render(stated, "", "stated.exr")["mirage:passes"], "3");
+    EXPECT_EQ(render(plain, "--passes 3", "cli.exr")["mirage:passes"], "3");
+    const Image a = readExr(dir + "/stated.exr"), b = readExr(dir + "/cli.exr");
+    ASSERT_EQ(a.rgba.size(), b.rgba.size());
+    EXPECT_EQ(0, std::memcmp(a.rgba.data(), b.rgba.data(), a.rgba.size() * sizeof(float)));
+    std::map<std::string, std::string> final = render(stated, "--quality final", "final.exr");
+    EXPECT_EQ(final["mirage:passes"], "12");
+    EXPECT_EQ(final["mirage:photons_traced"], std::to_string(12 * 2000));  // 2000 per map
+    EXPECT_EQ(render(stated, "--passes 1", "one.exr")["mirage:passes"], "1");
+    ASSERT_EQ(0, test::runMirage("info '" + stated + "'", &out)) << out;
+    EXPECT_NE(out.find("3 passes of 2 spp (a photon map each)"), std::string::npos) << out;
+}

@@ -135,6 +135,24 @@ TEST(GalleryScenes, CornellWaterSeriesBloomIsGreener) {
     for (int i = 0; i < 3; ++i) EXPECT_GT(box[3].g / box[3].b, box[i].g / box[i].b) << i;
 }
 
+TEST(GalleryScenes, VolumeCausticConeGlowsGreen) {
+    // 48 × 48 pixels, 8 passes (a photon map each): the focused cone under the ball (columns
+    // 0.46–0.54, rows 0.56–0.69) and the beam above it (rows 0.12–0.25). The spot light is
+    // white (5500 K) and the dye absorbs around 490 nm: without its re-emission at 515 nm the
+    // cone is reddish (measured G/R 0.77 with Γ = 0), with it green (measured G/R 1.42, G/B 1.9).
+    const Image im = renderShipped("volume_caustic.toml", "--resolution 48x48 --passes 8",
+                                   "fog-sphere", "fog_sphere.vdb");
+    ASSERT_EQ(im.width, 48);
+    const Rgb cone = meanOver(im, 0.46, 0.54, 0.56, 0.69),
+              beam = meanOver(im, 0.46, 0.54, 0.12, 0.25);
+    std::printf("cone: R %.4f G %.4f B %.4f; beam: R %.4f G %.4f B %.4f\n", cone.r, cone.g, cone.b,
+                beam.r, beam.g, beam.b);
+    for (const Rgb& c : {cone, beam}) {
+        EXPECT_GT(c.g, 1.2 * c.r);
+        EXPECT_GT(c.g, 1.4 * c.b);
+    }
+}
+
 TEST(GalleryScenes, SplitSunShowsTwoSeparatedBands) {
     // 90 × 60 pixels over the scene's 1° of height (measured: sun rows 20–21 and 31, gap 9 rows).
     const Image im = renderShipped("split_sun.toml", "--resolution 90x60 --spp 4", "fog-sphere",

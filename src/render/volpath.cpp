@@ -125,8 +125,10 @@ public:
                             float pdf;
                             next =
                                 Ray{c.p, samplePhase(m, c, ray.d, sampler, &path, &pdf), kInfinity};
-                            if (!lobes.empty())
-                                lobeRatios = kLobeWalkGoesOn * ratios + lobes.pdf(next.d) / pdf;
+                            // Walks from earlier vertices pass this one even where no light
+                            // has a lobe (outside a spot's cone): their share decays all the same.
+                            lobeRatios = kLobeWalkGoesOn * ratios +
+                                         (lobes.empty() ? 0.f : lobes.pdf(next.d) / pdf);
                         } else {
                             next = Ray{c.p, samplePhase(m, c, ray.d, sampler, &path), kInfinity};
                         }

@@ -31,27 +31,22 @@ void TrackingContext::setTimeOffset(float seconds) {
     for (auto& c : mContexts) c.setTimeOffset(seconds);
 }
 
-bool nextTentativeCollision(const MajorantGrid& majorant, const Ray& objectRay, float t,
-                            float tEnd, float tau, float* tHit, float* sigmaMaj,
-                            float pathMajorant) {
-    bool found = false;
-    majorant.traverse(objectRay.o, objectRay.d, t, tEnd, [&](float t0, float t1, float s) {
-        if (pathMajorant >= 0.f) s = pathMajorant;
-        if (!(s > 0.f)) return true;  // empty cell: no collisions
-        float dt = t1 - t0;
-        float need = tau / s;  // distance at which the majorant's optical depth reaches tau
-        if (need < dt) {
-            *tHit = t0 + need;
-            *sigmaMaj = s;
-            found = true;
-            return false;
+bool nextTentativeCollision(MajorantGrid::Walk& walk, float t, float tau, float* tHit,
+                            float* sigmaMaj, float pathMajorant) {
+    for (MajorantGrid::Walk::Segment s; walk.next(&s); walk.advanceTo(s.t1)) {
+        const float sigma = pathMajorant >= 0.f ? pathMajorant : s.sigmaMaj;
+        if (!(sigma > 0.f)) continue;    // empty cell: no collisions
+        const float need = tau / sigma;  // distance at which the majorant's optical depth is tau
+        if (need < s.t1 - s.t0) {
+            // A collision at exactly the last one (need = 0 from tau = 0) would stall the walk.
+            *tHit = s.t0 + need > t ? s.t0 + need : std::nextafter(t, kInfinity);
+            *sigmaMaj = sigma;
+            walk.advanceTo(*tHit);
+            return true;
         }
-        tau -= s * dt;
-        return true;
-    });
-    // A collision at exactly the start (need = 0 from tau = 0) would stall the walk.
-    if (found && !(*tHit > t)) *tHit = std::nextafter(t, kInfinity);
-    return found;
+        tau -= sigma * (s.t1 - s.t0);
+    }
+    return false;
 }
 
 EventProbabilities eventProbabilities(const Collision& c, const SampledSpectrum& beta) {

@@ -64,14 +64,13 @@ private:
     float mTime = 0.f;
 };
 
-// Next tentative collision of one medium along an object-space ray, after parameter t: walks
-// the majorant grid until the optical depth of the majorant reaches tau (an Exp(1) sample).
-// Returns false when the ray leaves the medium (or passes tEnd) first.
-// pathMajorant ≥ 0 replaces the grid's value (a homogeneous medium's one cell, at the path's
-// wavelengths: TrackingContext::pathMajorant).
-bool nextTentativeCollision(const MajorantGrid& majorant, const Ray& objectRay, float t,
-                            float tEnd, float tau, float* tHit, float* sigmaMaj,
-                            float pathMajorant = -1.f);
+// Next tentative collision of one medium along its walk of the majorant grid, after the last
+// one at t: walks on until the optical depth of the majorant reaches tau (an Exp(1) sample),
+// and leaves the walk there. Returns false when the ray leaves the medium (or passes the walk's
+// end) first. pathMajorant ≥ 0 replaces the grid's value (a homogeneous medium's one cell, at
+// the path's wavelengths: TrackingContext::pathMajorant).
+bool nextTentativeCollision(MajorantGrid::Walk& walk, float t, float tau, float* tHit,
+                            float* sigmaMaj, float pathMajorant = -1.f);
 
 // An Exp(1) draw, the optical depth to the next tentative collision: −ln(1 − u). 1 − u is exact
 // for the sampler's 24-bit u, so logf loses nothing against log1pf and costs less (glibc's

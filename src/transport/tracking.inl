@@ -2,6 +2,8 @@
 #pragma once
 
 #include <cmath>
+#include <new>
+#include <type_traits>
 #include <vector>
 
 namespace mirage {
@@ -17,12 +19,18 @@ bool trackCollisions(TrackingContext& ctx, const Ray& worldRay, float tMax, Samp
     constexpr size_t kInlineMedia = 16;
     struct Stream {
         Ray objectRay;
-        float tEnd, tNext, sigmaMaj;
+        MajorantGrid::Walk walk;  // kept across the flight's collisions
+        float tNext, sigmaMaj;
     };
     const size_t n = ctx.size();
-    Stream inlineStreams[kInlineMedia];
+    // Left unconstructed until used: clearing sixteen streams costs more than a short flight.
+    union InlineStreams {
+        InlineStreams() {}
+        Stream s[kInlineMedia];
+    } inlineStreams;
+    static_assert(std::is_trivially_destructible_v<Stream>);
     std::vector<Stream> heapStreams;
-    Stream* streams = inlineStreams;
+    Stream* streams = inlineStreams.s;
     if (n > kInlineMedia) {
         heapStreams.resize(n);
         streams = heapStreams.data();
@@ -30,11 +38,14 @@ bool trackCollisions(TrackingContext& ctx, const Ray& worldRay, float tMax, Samp
     auto exp1 = [&] { return exponentialDraw(sampler); };
 
     for (size_t i = 0; i < n; ++i) {
-        Stream& s = streams[i];
-        s.objectRay = ctx.medium(i).toObject(worldRay, ctx.context(i));
-        s.tEnd = tMax;
-        if (!nextTentativeCollision(ctx.medium(i).majorant(), s.objectRay, 0.f, s.tEnd, exp1(),
-                                    &s.tNext, &s.sigmaMaj, ctx.pathMajorant(i)))
+        const Medium& medium = ctx.medium(i);
+        const Ray objectRay = medium.toObject(worldRay, ctx.context(i));
+        Stream& s = *new (&streams[i])
+            Stream{objectRay, MajorantGrid::Walk(medium.majorant(), objectRay.o, objectRay.d, 0.f,
+                                                 tMax),
+                   0.f, 0.f};
+        if (!nextTentativeCollision(s.walk, 0.f, exp1(), &s.tNext, &s.sigmaMaj,
+                                    ctx.pathMajorant(i)))
             s.tNext = kInfinity;
     }
     for (uint64_t collisions = 0;; ++collisions) {
@@ -58,8 +69,8 @@ bool trackCollisions(TrackingContext& ctx, const Ray& worldRay, float tMax, Samp
         ++ctx.lookups;
         if ((c.mp.sigmaA + c.mp.sigmaS).maxValue() > c.sigmaMaj) ++ctx.aboveMajorant;
         if (f(static_cast<const Collision&>(c)) == Track::Stop) return false;
-        if (!nextTentativeCollision(ctx.medium(m).majorant(), s.objectRay, c.t, s.tEnd, exp1(),
-                                    &s.tNext, &s.sigmaMaj, ctx.pathMajorant(m)))
+        if (!nextTentativeCollision(s.walk, c.t, exp1(), &s.tNext, &s.sigmaMaj,
+                                    ctx.pathMajorant(m)))
             s.tNext = kInfinity;
     }
 }

@@ -47,7 +47,14 @@ public:
     template <typename F>
     bool traverse(const Vec3& o, const Vec3& d, float tMin, float tMax, F&& f) const;
 
+    // The same walk, resumable: next() gives the segment from where the walk stands to the end
+    // of its cell and moves nothing; advanceTo(t) moves the walk along it. Free-flight sampling
+    // keeps one across the tentative collisions of a flight, so each collision costs a step in
+    // its cell instead of a new walk from the collision (its set-up is ~4× a cell's step).
+    class Walk;
+
 private:
+    friend class Walk;
     // Per cell: the max of `grid` over the cell and the trilinear footprint of its voxels.
     std::vector<float> cellMaxima(const FloatGrid& grid) const;
 
@@ -55,6 +62,31 @@ private:
     int mRes[3] = {0, 0, 0};
     Vec3 mCellSize;
     std::vector<float> mValues;
+};
+
+class MajorantGrid::Walk {
+public:
+    struct Segment {
+        float t0, t1, sigmaMaj;
+    };
+    Walk() = default;
+    // Walks the cells of grid that the ray o + t d crosses in [tMin, tMax] (object space).
+    Walk(const MajorantGrid& grid, const Vec3& o, const Vec3& d, float tMin, float tMax);
+    // The next non-empty segment: [where the walk stands, the end of its cell or tMax]. False
+    // when the walk has reached tMax or left the bounds.
+    bool next(Segment* s);
+    // Moves the walk to t within the segment next() gave (t = its t1 finishes the cell).
+    void advanceTo(float t) { mT = t; }
+
+private:
+    // Left uninitialised but for mValues: a tracker keeps one per medium on the stack.
+    const float* mValues = nullptr;  // null: nothing left to walk
+    float mO[3], mLo[3], mCellSize[3];
+    int mCell[3], mStep[3], mStop[3];
+    long mStride[3], mIndex;
+    float mTNext[3], mInvD[3];
+    float mT, mTEnd;
+    bool mLastCell;  // rounding put the last boundary before tMax: this cell runs to it
 };
 
 }  // namespace mirage

@@ -206,6 +206,52 @@ TEST(Majorant, TraversalPartitionsTheClippedInterval) {
     EXPECT_GT(axial, 1000);
 }
 
+// Free-flight sampling keeps one walk across a flight's collisions (transport/tracking.cpp):
+// moved to a point inside a segment, the walk must go on as a fresh walk from that point would.
+TEST(Majorant, AWalkMovedAlongGoesOnAsAFreshOne) {
+    std::string path = makeSmoke(32);
+    FloatGrid g = loadFloatGrid(path, "density");
+    MajorantGrid m(g.objectBounds(), 12);
+    m.addGrid(g, 1.f);
+    const Bounds3 b = m.bounds();
+    const Vec3 size = b.diagonal();
+    const Bounds3 around{b.lo - size, b.hi + size};
+    Sampler rng(31, 0, 0);
+    int resumed = 0;
+    for (int n = 0; n < 5000; ++n) {
+        const Vec3 o = uniformIn(rng, around);
+        const Vec3 d = uniformIn(rng, b) - o;
+        MajorantGrid::Walk kept(m, o, d, 0.f, kInfinity);
+        MajorantGrid::Walk::Segment s;
+        // Stops at random points of the segments, each time against a fresh walk from there.
+        while (kept.next(&s)) {
+            if (rng.get1D() < 0.5f) {
+                kept.advanceTo(s.t1);
+                continue;
+            }
+            const float t = s.t0 + (0.25f + 0.5f * rng.get1D()) * (s.t1 - s.t0);
+            if (!(t > s.t0 && t < s.t1) || (s.t1 - s.t0) * length(d) < 1e-3f * size.x) {
+                kept.advanceTo(s.t1);
+                continue;
+            }
+            kept.advanceTo(t);
+            const std::vector<Segment> fresh = walk(m, o, d, t, kInfinity);
+            MajorantGrid::Walk copy = kept;
+            for (const Segment& f : fresh) {
+                MajorantGrid::Walk::Segment c;
+                ASSERT_TRUE(copy.next(&c));
+                ASSERT_EQ(c.t0, f.t0);
+                ASSERT_EQ(c.t1, f.t1);
+                ASSERT_EQ(c.sigmaMaj, f.value);
+                copy.advanceTo(c.t1);
+            }
+            ASSERT_FALSE(copy.next(&s));
+            ++resumed;
+        }
+    }
+    EXPECT_GT(resumed, 5000);
+}
+
 TEST(Majorant, RaysThatMissCallNothing) {
     MajorantGrid m(Bounds3{Vec3(0.f), Vec3(1.f)}, 8);
     m.addConstant(1.f);

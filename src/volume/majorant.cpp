@@ -181,7 +181,54 @@ public:
             }
     }
 
+    // A leaf voxel by voxel: each value onto the cells its own footprint (x − 1, x + 1) touches,
+    // instead of the leaf's maximum onto every cell the leaf's footprint touches. Cells of a few
+    // voxels then hold the maximum of the voxels near them, not of the whole 8³ leaf: in a wispy
+    // smoke most cells are far below their leaf's maximum. Needs an axis-aligned index map
+    // (then each axis maps on its own); false, and nothing splatted, otherwise.
+    bool splatVoxels(const nanovdb::Coord& origin, const float* values) {
+        if (!axisAligned()) return false;
+        constexpr double kPad = 1.001;
+        int lo[3][8], hi[3][8];
+        for (int a = 0; a < 3; ++a)
+            for (int l = 0; l < 8; ++l) {
+                const double i = double(origin[a] + l);
+                const double w0 = axisToWorld(a, i - kPad), w1 = axisToWorld(a, i + kPad);
+                lo[a][l] = cellIndex(a, float(std::min(w0, w1)));
+                hi[a][l] = cellIndex(a, float(std::max(w0, w1)));
+                // Entirely outside the bounds on this axis: the voxel reaches no cell.
+                if (std::max(w0, w1) < double(mBounds.lo[a]) ||
+                    std::min(w0, w1) > double(mBounds.hi[a]))
+                    hi[a][l] = lo[a][l] - 1;
+            }
+        // NanoVDB leaf order: offset = x·64 + y·8 + z.
+        for (int x = 0; x < 8; ++x)
+            for (int y = 0; y < 8; ++y)
+                for (int z = 0; z < 8; ++z) {
+                    const float v = values[(x << 6) | (y << 3) | z];
+                    if (!(v > 0.f)) continue;
+                    for (int cz = lo[2][z]; cz <= hi[2][z]; ++cz)
+                        for (int cy = lo[1][y]; cy <= hi[1][y]; ++cy) {
+                            float* row = &mCells[(size_t(cz) * mRes[1] + cy) * mRes[0]];
+                            for (int cx = lo[0][x]; cx <= hi[0][x]; ++cx)
+                                row[cx] = std::max(row[cx], v);
+                        }
+                }
+        return true;
+    }
+
 private:
+    bool axisAligned() const {
+        const double* m = mGrid.map().mMatD;
+        return m[1] == 0.0 && m[2] == 0.0 && m[3] == 0.0 && m[5] == 0.0 && m[6] == 0.0 &&
+               m[7] == 0.0;
+    }
+    // The world coordinate on axis a of index coordinate i on that axis (axis-aligned map).
+    double axisToWorld(int a, double i) const {
+        nanovdb::Vec3d p(0.0);
+        p[a] = i;
+        return mGrid.indexToWorld(p)[a];
+    }
     int cellIndex(int a, float x) const {
         float c = (x - mBounds.lo[a]) * mInvCell[a];
         if (!(c > 0.f)) return 0;
@@ -226,10 +273,12 @@ std::vector<float> MajorantGrid::cellMaxima(const FloatGrid& grid) const {
     std::vector<float> cells(mValues.size(), 0.f);
     Splatter splatter(g, mBounds, mRes, mCellSize, cells);
 
-    // Leaves: the maximum over all 512 values, inactive ones included (the sampler reads them).
+    // Leaves: all 512 values, inactive ones included (the sampler reads them); voxel by voxel
+    // where the map allows, else the leaf's maximum over the leaf's footprint.
     const auto* leaf = tree.getFirstLeaf();
     for (uint32_t i = 0; i < tree.nodeCount(0); ++i) {
         const float* v = leaf[i].data()->mValues;
+        if (splatter.splatVoxels(leaf[i].origin(), v)) continue;
         float m = 0.f;
         for (int k = 0; k < 512; ++k) m = std::max(m, v[k]);
         splatter.splat(leaf[i].origin(), 8, m);

@@ -290,7 +290,8 @@ TEST(AchromaticFilm, PixelLitByOneLightHasItsChromaticity) {
 }
 
 // Two lights of different colours: the image's XYZ per channel is the sum of the two single-
-// light renders' and the spectral film's, within their noise (2 %), volpath at 64 samples.
+// light renders' and the spectral film's, within their noise (2 %), volpath at 128 samples (at
+// 64 the sum's ratio spread 0.991–1.022 over four seeds).
 TEST(AchromaticFilm, TwoColoursSumTheSingleLightRenders) {
     const Spectrum kBlue = blackbodyNormalized(12000.f);
     RenderScene both = greyScene(kWarm);
@@ -300,7 +301,7 @@ TEST(AchromaticFilm, TwoColoursSumTheSingleLightRenders) {
     blueOnly.lights[0] = makeDistantLight(normalize(Vec3(-0.5f, -0.3f, -0.4f)), 600.f, kBlue);
     auto volpath = makeVolPathIntegrator();
     ASSERT_EQ(AchromaticFilm::forScene(both, *volpath)->colours(), 2u);
-    const RenderSettings rs = test::smallRenderSettings(64, 5, 16, 16);
+    const RenderSettings rs = test::smallRenderSettings(128, 5, 16, 16);
     const Vec3d exact = meanXyz(render(both, *volpath, rs, nullptr));
     const Vec3d sum = meanXyz(render(warmOnly, *volpath, rs, nullptr)) +
                       meanXyz(render(blueOnly, *volpath, rs, nullptr));

@@ -135,6 +135,30 @@ TEST(Majorant, ConservativeWithTilesAndLoneVoxels) {
     expectConservative(m, {&g}, {1.f}, 200000);
 }
 
+// Cells of a few voxels hold the largest value near them, not their leaf's: one hot voxel at
+// the end of a row of 1s raises only the cells its own footprint reaches.
+TEST(Majorant, CellsHoldTheVoxelsNearThemNotTheirLeafsMaximum) {
+    const std::string path = test::tempDir() + "/hot_voxel.vdb";
+    TestGridSpec spec;
+    spec.voxelSize = 0.05;
+    for (int i = 0; i < 16; ++i) spec.voxels.push_back({i, 0, 0, i == 0 ? 10.0 : 1.0});
+    writeTestGrid(path, spec);
+    FloatGrid g = loadFloatGrid(path, "density");
+    MajorantGrid m(g.objectBounds(), 9);  // cells two voxels wide along the row
+    m.addGrid(g, 1.f);
+    expectConservative(m, {&g}, {1.f}, 200000);
+    auto at = [&](double i) {
+        const nanovdb::Vec3d p = g.grid()->indexToWorld(nanovdb::Vec3d(i, 0.0, 0.0));
+        return cellAt(m, Vec3(float(p[0]), float(p[1]), float(p[2])));
+    };
+    EXPECT_GE(at(0.0), 10.f);
+    // Voxels 4 to 7 share the hot voxel's leaf (0–7) but lie beyond its footprint (−1, 1).
+    for (double i : {4.5, 6.5}) {
+        EXPECT_GE(at(i), 1.f) << i;
+        EXPECT_LE(at(i), 1.001f) << i;
+    }
+}
+
 TEST(Majorant, TraversalPartitionsTheClippedInterval) {
     std::string path = makeSmoke(32);
     FloatGrid g = loadFloatGrid(path, "density");

@@ -78,14 +78,20 @@ void Film::addAovs(size_t pixel, const AovSample& aov, const SampleXyz& toXyz,
     auto add3 = [&](int offset, const Vec3& v) {
         for (int c = 0; c < 3; ++c) sums[offset + c] += v[c];
     };
+    // A light-path pass or light group: its spectral part in XYZ plus the part already in XYZ
+    // (render/achromatic_film.h). Most of them are empty for any one sample.
+    auto addLight = [&](int offset, const SampledSpectrum& L, const Vec3& xyzPart) {
+        if (L.isZero() && xyzPart.x == 0.f && xyzPart.y == 0.f && xyzPart.z == 0.f) return;
+        add3(offset, toXyz(L) + xyzPart);
+    };
     for (const AovPass& pass : mAovs.passes()) switch (pass.kind) {
             case AovKind::LightPath:
-                add3(pass.offset, toXyz(aov.path[size_t(pass.index)]) +
-                                      aov.pathXyz[size_t(pass.index)]);
+                addLight(pass.offset, aov.path[size_t(pass.index)],
+                         aov.pathXyz[size_t(pass.index)]);
                 break;
             case AovKind::LightGroup:
-                add3(pass.offset, toXyz(aov.group[size_t(pass.index)]) +
-                                      aov.groupXyz[size_t(pass.index)]);
+                addLight(pass.offset, aov.group[size_t(pass.index)],
+                         aov.groupXyz[size_t(pass.index)]);
                 break;
             case AovKind::Depth:
                 if (std::isfinite(aov.depth)) {

@@ -58,7 +58,8 @@ void CameraRayData::finish() {
     if (mScene.hasSurfaces()) hit = mScene.geometry->intersect(mRay);
     const float tEnd = hit ? hit->t : mRay.tMax;
     // The integrator may have changed the context's wavelengths (fluorescence, dispersion).
-    mTs.tracking.setWavelengths(mW);
+    const SampledWavelengths& now = mTs.tracking.wavelengths();
+    if (now.lambda != mW.lambda || now.pdf != mW.pdf) mTs.tracking.setWavelengths(mW);
     bool reached = mAlive && mWalk == Walk::ToTheEnd;
     if (mAlive && mWalk != Walk::ToTheEnd) {
         const float t0 = mLastT;

@@ -198,6 +198,9 @@ SampleXyz::SampleXyz(const SampledWavelengths& w) {
 }
 
 Vec3 SampleXyz::operator()(const SampledSpectrum& L) const {
+    // Most of a sample's render passes hold nothing (its light is direct or indirect, one
+    // group's or another's): the same +0 without the four divisions.
+    if (L.isZero()) return Vec3(0.f);
     Vec3 sum(0.f);
     for (int i = 0; i < kSpectrumSamples; ++i) {
         if (mPdf[i] == 0.f) continue;

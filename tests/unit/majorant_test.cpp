@@ -159,14 +159,32 @@ TEST(Majorant, CellsHoldTheVoxelsNearThemNotTheirLeafsMaximum) {
     }
 }
 
+// The procedural smoke (32³) under a majorant of 12 cells, and a box three times its size about
+// it for rays to start in: the walks' tests.
+struct SmokeWalks {
+    FloatGrid grid;
+    MajorantGrid majorant;
+    Bounds3 bounds, around;
+    Vec3 size;
+};
+
+SmokeWalks smokeWalks() {
+    SmokeWalks s;
+    s.grid = loadFloatGrid(makeSmoke(32), "density");
+    s.majorant = MajorantGrid(s.grid.objectBounds(), 12);
+    s.majorant.addGrid(s.grid, 1.f);
+    s.bounds = s.majorant.bounds();
+    s.size = s.bounds.diagonal();
+    s.around = {s.bounds.lo - s.size, s.bounds.hi + s.size};
+    return s;
+}
+
 TEST(Majorant, TraversalPartitionsTheClippedInterval) {
-    std::string path = makeSmoke(32);
-    FloatGrid g = loadFloatGrid(path, "density");
-    MajorantGrid m(g.objectBounds(), 12);
-    m.addGrid(g, 1.f);
-    const Bounds3 b = m.bounds();
-    const Vec3 size = b.diagonal();
-    const Bounds3 around{b.lo - size, b.hi + size};
+    const SmokeWalks smoke = smokeWalks();
+    const MajorantGrid& m = smoke.majorant;
+    const Bounds3& b = smoke.bounds;
+    const Vec3& size = smoke.size;
+    const Bounds3& around = smoke.around;
     const Vec3 axes[6] = {Vec3(1, 0, 0),  Vec3(-1, 0, 0), Vec3(0, 1, 0),
                           Vec3(0, -1, 0), Vec3(0, 0, 1),  Vec3(0, 0, -1)};
     Sampler rng(29, 0, 0);
@@ -233,17 +251,14 @@ TEST(Majorant, TraversalPartitionsTheClippedInterval) {
 // Free-flight sampling keeps one walk across a flight's collisions (transport/tracking.cpp):
 // moved to a point inside a segment, the walk must go on as a fresh walk from that point would.
 TEST(Majorant, AWalkMovedAlongGoesOnAsAFreshOne) {
-    std::string path = makeSmoke(32);
-    FloatGrid g = loadFloatGrid(path, "density");
-    MajorantGrid m(g.objectBounds(), 12);
-    m.addGrid(g, 1.f);
-    const Bounds3 b = m.bounds();
-    const Vec3 size = b.diagonal();
-    const Bounds3 around{b.lo - size, b.hi + size};
+    const SmokeWalks smoke = smokeWalks();
+    const MajorantGrid& m = smoke.majorant;
+    const Bounds3& b = smoke.bounds;
+    const Vec3& size = smoke.size;
     Sampler rng(31, 0, 0);
     int resumed = 0;
     for (int n = 0; n < 5000; ++n) {
-        const Vec3 o = uniformIn(rng, around);
+        const Vec3 o = uniformIn(rng, smoke.around);
         const Vec3 d = uniformIn(rng, b) - o;
         MajorantGrid::Walk kept(m, o, d, 0.f, kInfinity);
         MajorantGrid::Walk::Segment s;

@@ -190,23 +190,12 @@ Vec3 spectrumToXyz(const SampledSpectrum& L, const SampledWavelengths& w) {
     return SampleXyz(w)(L);
 }
 
+// The weights cmf(λ_i) / (pdf(λ_i) · N · ∫ȳ) are computed once per sample: the beauty and each
+// of its render passes then cost four multiply-adds.
 SampleXyz::SampleXyz(const SampledWavelengths& w) {
-    for (int i = 0; i < kSpectrumSamples; ++i) {
-        mPdf[i] = w.pdf[i];
-        mCmf[i] = w.pdf[i] == 0.f ? Vec3(0.f) : cieXyz(w.lambda[i]);
-    }
-}
-
-Vec3 SampleXyz::operator()(const SampledSpectrum& L) const {
-    // Most of a sample's render passes hold nothing (its light is direct or indirect, one
-    // group's or another's): the same +0 without the four divisions.
-    if (L.isZero()) return Vec3(0.f);
-    Vec3 sum(0.f);
-    for (int i = 0; i < kSpectrumSamples; ++i) {
-        if (mPdf[i] == 0.f) continue;
-        sum += mCmf[i] * (L[i] / mPdf[i]);
-    }
-    return sum / (float(kSpectrumSamples) * kCieYIntegral);
+    const float norm = float(kSpectrumSamples) * kCieYIntegral;
+    for (int i = 0; i < kSpectrumSamples; ++i)
+        mWeight[i] = w.pdf[i] == 0.f ? Vec3(0.f) : cieXyz(w.lambda[i]) / (w.pdf[i] * norm);
 }
 
 }  // namespace mirage

@@ -19,15 +19,23 @@ Vec3 cieXyz(float lambdaNm);  // (x̄, ȳ, z̄) at lambda; 0 outside [360, 830]
 Vec3 spectrumToXyz(const SampledSpectrum& L, const SampledWavelengths& w);
 
 // spectrumToXyz for several spectra at the same wavelengths (a sample's beauty and its render
-// passes): the colour-matching values looked up once, the same arithmetic, the same bits.
+// passes): the colour-matching values and the pdf's weights computed once, the same bits for
+// every spectrum.
 class SampleXyz {
 public:
     explicit SampleXyz(const SampledWavelengths& w);
-    Vec3 operator()(const SampledSpectrum& L) const;
+    // Inline: the film calls it for the beauty and each of its passes, every sample.
+    Vec3 operator()(const SampledSpectrum& L) const {
+        // Most of a sample's render passes hold nothing (its light is direct or indirect, one
+        // group's or another's).
+        if (L.isZero()) return Vec3(0.f);
+        Vec3 sum(0.f);
+        for (int i = 0; i < kSpectrumSamples; ++i) sum += mWeight[i] * L[i];
+        return sum;
+    }
 
 private:
-    Vec3 mCmf[kSpectrumSamples];
-    float mPdf[kSpectrumSamples];
+    Vec3 mWeight[kSpectrumSamples];  // cmf(λ_i) / (pdf(λ_i) · N · ∫ȳ); 0 where pdf = 0
 };
 
 }  // namespace mirage

@@ -97,6 +97,7 @@ AovLayout::AovLayout(const std::vector<std::string>& names,
             throw MirageError("AOV '" + name + "' is asked for twice");
         pass.offset = mStride;
         mStride += pass.doubles;
+        placeOffset(pass);
         if (pass.kind == AovKind::LightGroup) mGroupSlots = int(lightGroups.size()) + 1;
         if (pass.kind == AovKind::Cryptomatte) mCoverage = true;
         if (pass.kind == AovKind::LightPath || pass.kind == AovKind::LightGroup)
@@ -105,6 +106,35 @@ AovLayout::AovLayout(const std::vector<std::string>& names,
             pass.kind == AovKind::Transmittance || mCoverage)
             mCameraData = true;
         mPasses.push_back(pass);
+    }
+}
+
+void AovLayout::placeOffset(const AovPass& pass) {
+    switch (pass.kind) {
+        case AovKind::LightPath:
+            mOffsets.path[size_t(pass.index)] = pass.offset;
+            break;
+        case AovKind::LightGroup:
+            mOffsets.group.resize(mLightGroups.size() + 1, -1);
+            mOffsets.group[size_t(pass.index)] = pass.offset;
+            break;
+        case AovKind::Depth:
+            mOffsets.depth = pass.offset;
+            break;
+        case AovKind::Albedo:
+            mOffsets.albedo = pass.offset;
+            break;
+        case AovKind::Transmittance:
+            mOffsets.transmittance = pass.offset;
+            break;
+        case AovKind::Variance:
+            mOffsets.variance = pass.offset;
+            break;
+        case AovKind::Cryptomatte:
+            mOffsets.crypto[size_t(pass.index)] = pass.offset;
+            break;
+        case AovKind::Alpha:
+            break;  // the beauty's own coverage sum
     }
 }
 
@@ -133,10 +163,16 @@ void AovSample::scaleCoverage(float alpha) {
 }
 
 void AovSample::reset() {
-    path.fill(SampledSpectrum(0.f));
-    pathXyz.fill(Vec3(0.f));
-    std::fill(group.begin(), group.end(), SampledSpectrum(0.f));
-    std::fill(groupXyz.begin(), groupXyz.end(), Vec3(0.f));
+    for (uint32_t m = litPaths; m != 0; m &= m - 1) {
+        path[size_t(lowestBit(m))] = SampledSpectrum(0.f);
+        pathXyz[size_t(lowestBit(m))] = Vec3(0.f);
+    }
+    if (groupsLit) {
+        std::fill(group.begin(), group.end(), SampledSpectrum(0.f));
+        std::fill(groupXyz.begin(), groupXyz.end(), Vec3(0.f));
+    }
+    litPaths = 0;
+    groupsLit = false;
     depth = kInfinity;
     albedo = SampledSpectrum(0.f);
     transmittance = SampledSpectrum(1.f);
@@ -146,6 +182,8 @@ void AovSample::reset() {
 }
 
 void AovSample::addWeighted(const AovSample& o, const SampledSpectrum& T, float k) {
+    litPaths |= o.litPaths;
+    groupsLit = groupsLit || o.groupsLit;
     for (size_t p = 0; p < path.size(); ++p) {
         path[p] += o.path[p] * T * k;
         pathXyz[p] += o.pathXyz[p] * k;

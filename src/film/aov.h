@@ -12,6 +12,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,17 @@ struct CryptoObjects {
     std::vector<std::string> volumes, shapes;
 };
 
+// Where each pass's sums sit in a pixel's record, by what it holds (-1: not asked for), so that
+// the film adds a sample's passes without looking their kinds up.
+struct AovOffsets {
+    std::array<int, kLightPathCount> path;
+    std::vector<int> group;  // per light-group slot
+    int depth = -1, albedo = -1, transmittance = -1, variance = -1;
+    std::array<int, 2> crypto{-1, -1};  // volumes, shapes
+
+    AovOffsets() { path.fill(-1); }
+};
+
 class AovLayout {
 public:
     AovLayout() = default;
@@ -69,6 +81,7 @@ public:
     const std::vector<std::string>& lightGroups() const { return mLightGroups; }
     const CryptoObjects& cryptoObjects() const { return mObjects; }
     const std::vector<AovPass>& passes() const { return mPasses; }
+    const AovOffsets& offsets() const { return mOffsets; }
     int stride() const { return mStride; }  // doubles per pixel
     // Light-group slots a sample carries: 1 + the scene's groups when a group pass is asked
     // for, else 0 (the groups are then not split at all).
@@ -82,9 +95,12 @@ public:
     bool splitsRadiance() const { return mSplitsRadiance; }
 
 private:
+    void placeOffset(const AovPass& pass);
+
     std::vector<std::string> mNames, mLightGroups;
     CryptoObjects mObjects;
     std::vector<AovPass> mPasses;
+    AovOffsets mOffsets;
     int mStride = 0;
     int mGroupSlots = 0;
     bool mCameraData = false;
@@ -100,7 +116,9 @@ std::vector<std::string> aovNames(const std::vector<std::string>& lightGroups);
 std::string cryptomattePass(const std::string& kind);
 
 // What one camera sample adds to the passes. Spectral parts at the sample's wavelengths, XYZ
-// parts from the photon estimates (each photon at its own wavelength).
+// parts from the photon estimates (each photon at its own wavelength). A sample's light is
+// mostly of one or two light paths, so the parts it touched are marked (litPaths, groupsLit),
+// and the film, reset() and forEachRadiance visit only those.
 struct AovSample {
     std::array<SampledSpectrum, kLightPathCount> path;
     std::array<Vec3, kLightPathCount> pathXyz;
@@ -114,25 +132,46 @@ struct AovSample {
     // did not place (−1: none).
     std::vector<float> volumeCoverage, shapeCoverage;
     int firstVolume = -1;
+    uint32_t litPaths = 0;   // bit p: path[p] or pathXyz[p] was added to
+    bool groupsLit = false;  // a light group was added to
 
     AovSample() = default;
     explicit AovSample(const AovLayout& layout);
     void reset();
-    void addPath(const SampledSpectrum& c, LightPath p) { path[size_t(p)] += c; }
-    void addGroup(const SampledSpectrum& c, int slot) {
-        if (!group.empty()) group[size_t(slot)] += c;
+    void addPath(const SampledSpectrum& c, LightPath p) {
+        path[size_t(p)] += c;
+        litPaths |= 1u << unsigned(p);
     }
-    void addPathXyz(const Vec3& c, LightPath p) { pathXyz[size_t(p)] += c; }
+    void addGroup(const SampledSpectrum& c, int slot) {
+        if (group.empty()) return;
+        group[size_t(slot)] += c;
+        groupsLit = true;
+    }
+    // Next-event estimation's light split by group (ThreadState::lightSplit), at throughput beta.
+    void addGroups(const SampledSpectrum& beta, const std::vector<SampledSpectrum>& split) {
+        if (group.empty()) return;
+        for (size_t g = 0; g < group.size(); ++g) group[g] += beta * split[g];
+        groupsLit = true;
+    }
+    void addPathXyz(const Vec3& c, LightPath p) {
+        pathXyz[size_t(p)] += c;
+        litPaths |= 1u << unsigned(p);
+    }
     // A photon estimate's parts per light group (photon/photon_groups.h), groupSlots() of them.
     void addGroupXyz(const std::vector<Vec3>& parts) {
+        if (groupXyz.empty()) return;
         for (size_t g = 0; g < groupXyz.size(); ++g) groupXyz[g] += parts[g];
+        groupsLit = true;
     }
-    // Applies f to every spectral radiance part (a path's final estimate, a chord's weight).
+    // Applies f to every spectral radiance part that holds light (a path's final estimate, a
+    // chord's weight; f maps 0 to 0).
     template <typename F>
     void forEachRadiance(F&& f) {
-        for (SampledSpectrum& s : path) f(s);
-        for (SampledSpectrum& s : group) f(s);
+        for (uint32_t m = litPaths; m != 0; m &= m - 1) f(path[size_t(lowestBit(m))]);
+        if (groupsLit)
+            for (SampledSpectrum& s : group) f(s);
     }
+    static int lowestBit(uint32_t m) { return __builtin_ctz(m); }
     // Scales the objects' coverages to sum to the sample's alpha (render/camera_ray_data.h).
     void scaleCoverage(float alpha);
     // Adds `o` weighted by T (spectral parts) and k (all radiance parts): the curved camera's

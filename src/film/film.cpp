@@ -71,54 +71,43 @@ bool Film::addSample(int x, int y, const SampledSpectrum& L, const SampledWavele
 // The radiance passes go through spectrumToXyz exactly as the beauty does (a linear map), so
 // Σ passes = beauty up to rounding. Albedo and transmittance are ratios: their XYZ is that of
 // the spectrum as a radiance, mapped back to ratios in develop(). The variance sums the
-// products of the sample's XYZ (the beauty's `xyz`) that Pixel::xyzSq does not keep.
+// products of the sample's XYZ (the beauty's `xyz`) that Pixel::xyzSq does not keep. The
+// light-path passes and light groups a sample left empty add nothing (AovSample::litPaths).
 void Film::addAovs(size_t pixel, const AovSample& aov, const SampleXyz& toXyz,
                    const Vec3& xyz) {
     double* sums = mAovSums.data() + pixel * size_t(mAovs.stride());
+    const AovOffsets& at = mAovs.offsets();
     auto add3 = [&](int offset, const Vec3& v) {
         for (int c = 0; c < 3; ++c) sums[offset + c] += v[c];
     };
     // A light-path pass or light group: its spectral part in XYZ plus the part already in XYZ
-    // (render/achromatic_film.h). Most of them are empty for any one sample.
+    // (render/achromatic_film.h).
     auto addLight = [&](int offset, const SampledSpectrum& L, const Vec3& xyzPart) {
-        if (L.isZero() && xyzPart.x == 0.f && xyzPart.y == 0.f && xyzPart.z == 0.f) return;
-        add3(offset, toXyz(L) + xyzPart);
+        if (offset >= 0) add3(offset, toXyz(L) + xyzPart);
     };
-    for (const AovPass& pass : mAovs.passes()) switch (pass.kind) {
-            case AovKind::LightPath:
-                addLight(pass.offset, aov.path[size_t(pass.index)],
-                         aov.pathXyz[size_t(pass.index)]);
-                break;
-            case AovKind::LightGroup:
-                addLight(pass.offset, aov.group[size_t(pass.index)],
-                         aov.groupXyz[size_t(pass.index)]);
-                break;
-            case AovKind::Depth:
-                if (std::isfinite(aov.depth)) {
-                    sums[pass.offset] += aov.depth;
-                    sums[pass.offset + 1] += 1.0;
-                }
-                break;
-            case AovKind::Albedo:
-                add3(pass.offset, toXyz(aov.albedo));
-                break;
-            case AovKind::Transmittance:
-                add3(pass.offset, toXyz(aov.transmittance));
-                break;
-            case AovKind::Variance:
-                sums[pass.offset + 0] += double(xyz.x) * double(xyz.y);
-                sums[pass.offset + 1] += double(xyz.x) * double(xyz.z);
-                sums[pass.offset + 2] += double(xyz.y) * double(xyz.z);
-                break;
-            case AovKind::Cryptomatte: {
-                const std::vector<float>& c =
-                    pass.index == 0 ? aov.volumeCoverage : aov.shapeCoverage;
-                for (size_t i = 0; i < c.size(); ++i) sums[pass.offset + int(i)] += c[i];
-                break;
-            }
-            case AovKind::Alpha:
-                break;
-        }
+    for (uint32_t m = aov.litPaths; m != 0; m &= m - 1) {
+        const size_t p = size_t(AovSample::lowestBit(m));
+        addLight(at.path[p], aov.path[p], aov.pathXyz[p]);
+    }
+    if (aov.groupsLit)
+        for (size_t g = 0; g < at.group.size(); ++g)
+            addLight(at.group[g], aov.group[g], aov.groupXyz[g]);
+    if (at.depth >= 0 && std::isfinite(aov.depth)) {
+        sums[at.depth] += aov.depth;
+        sums[at.depth + 1] += 1.0;
+    }
+    if (at.albedo >= 0) add3(at.albedo, toXyz(aov.albedo));
+    if (at.transmittance >= 0) add3(at.transmittance, toXyz(aov.transmittance));
+    if (at.variance >= 0) {
+        sums[at.variance + 0] += double(xyz.x) * double(xyz.y);
+        sums[at.variance + 1] += double(xyz.x) * double(xyz.z);
+        sums[at.variance + 2] += double(xyz.y) * double(xyz.z);
+    }
+    for (int k = 0; k < 2; ++k) {
+        if (at.crypto[size_t(k)] < 0) continue;
+        const std::vector<float>& c = k == 0 ? aov.volumeCoverage : aov.shapeCoverage;
+        for (size_t i = 0; i < c.size(); ++i) sums[at.crypto[size_t(k)] + int(i)] += c[i];
+    }
 }
 
 namespace {

@@ -68,7 +68,7 @@ struct RadianceSample {
         if (deep) deep->radiance.push_back({at, c, Vec3(0.f)});
         if (!aov) return;
         aov->addPath(c, p);
-        for (size_t g = 0; g < aov->group.size(); ++g) aov->group[g] += beta * split[g];
+        aov->addGroups(beta, split);
     }
     // A photon estimate (XYZ); two of them at one surface, summed before they are added.
     // `groups`: the estimate split by light group (photon/photon_groups.h), when the render

@@ -131,6 +131,21 @@ TEST(Aov, LightGroupsSumToTheBeauty) {
     }
 }
 
+// Curved camera rays (a refraction gradient) carry their passes chord by chord
+// (AovSample::addWeighted): the passes a chord lit must reach the film, whichever chord lit them.
+TEST(Aov, PassesSumToTheBeautyAlongCurvedRays) {
+    const std::string refraction = "[refraction]\nprofile = \"linear\"\nn0 = 1.0003\nk = 0.02\n";
+    for (const char* integrator : {"single", "volpath"}) {
+        const Image image =
+            renderAovScene(integrator, std::string(kLightPathAovs) + ", " + kGroupAovs, refraction);
+        std::vector<std::string> names;
+        for (int p = 0; p < kLightPathCount; ++p) names.push_back(lightPathName(LightPath(p)));
+        expectSumToBeauty(image, names, integrator);
+        expectSumToBeauty(image, {"lightgroup_emission", "lightgroup_key", "lightgroup_fill"},
+                          integrator);
+    }
+}
+
 TEST(Aov, TheBeautyKeepsItsBitsWithAovs) {
     const Image plain = renderAovScene("volpath", "");
     const Image passes = renderAovScene(

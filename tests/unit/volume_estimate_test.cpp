@@ -354,6 +354,30 @@ TEST(BeamEstimate, SharpDensityEdgeKeepsEachSidesLight) {
     }
 }
 
+// One photon stored in thin smoke (density 0.001) whose disc reaches a ray in dense smoke
+// (density 1): the σs ratio, 1000 there, is capped at 16 (beam_estimate.cpp, kMaxDensityRatio),
+// so that a rare photon of the thin side does not light the dense side as a blotch. Against
+// the mirror ray on the thin side (ratio 1, the same kernel and phase), the dense side gets 16 ×
+// its transmittance; uncapped it would get about 780 times as much.
+TEST(BeamEstimate, AThinSidePhotonLightsTheDenseSideAtMostSixteenfold) {
+    const float sigmaS = 0.5f;
+    auto edge = [](int i, int, int) { return i < 16 ? 1.f : 0.001f; };
+    auto m = test::gridMedium(edge, 0, 31, kH, 0.f, sigmaS, 0.f);
+    Photon photon;
+    photon.p = Vec3(0.55f, 0.5f, 0.5f);
+    photon.wi = Vec3(0.f, -1.f, 0.f);
+    photon.lambda = 555.f;
+    photon.power = 1.f;
+    VolumePhotons photons(PhotonList{photon}, {m.get()});
+    const Ray dense{Vec3(0.45f, 0.5f, -1.f), Vec3(0, 0, 1), kInfinity};
+    const Ray thin{Vec3(0.65f, 0.5f, -1.f), Vec3(0, 0, 1), kInfinity};
+    const std::vector<double> y = beamAlong(photons, *m, {dense, thin}, 0.2f);
+    ASSERT_GT(y[1], 0.0);
+    // T to the photon's projection on the dense ray: 0.5 m of σs = 0.5/m from the box's face.
+    const double expected = 16.0 * std::exp(-0.5 * sigmaS);
+    EXPECT_NEAR(y[0] / y[1], expected, 0.03 * expected);
+}
+
 TEST(BeamEstimate, FogInAGlassBallStaysInTheBall) {
     // Homogeneous fog confined to a glass sphere of radius 0.5 m (its box twice as wide), the
     // photons uniform in the ball, and a thin absorbing haze (σa = 0.05/m, no scattering) over

@@ -120,15 +120,17 @@ LoadOptions frameLoadOptions(const RenderSession& rs, int frame) {
 }
 
 // --passes, --time-limit, --noise-threshold: a render in passes (render/passes.h). An explicit
-// --spp then caps the samples per pixel (whole passes: the count rounds up to a pass). Any of
-// the three replaces the passes a scene states ([render] passes): a time or noise target
-// is not also cut at the scene's count.
+// --spp then caps the samples per pixel (whole passes: the count rounds up to a pass; fewer
+// samples than a pass make one pass of that many). Any of the three replaces the passes a
+// scene states ([render] passes): a time or noise target is not also cut at the scene's count.
 void applyPassOptions(const RenderOptions& o, PassSettings* passes) {
     if (o.passes > 0 || o.timeLimit > 0 || o.noiseThreshold > 0) passes->maxPasses = o.passes;
     passes->timeLimit = o.timeLimit;
     passes->noiseThreshold = o.noiseThreshold;
-    if (passes->enabled() && o.passes == 0 && o.spp > 0)
+    if (passes->enabled() && o.passes == 0 && o.spp > 0) {
+        passes->sppPerPass = std::min(passes->sppPerPass, o.spp);
         passes->maxPasses = (o.spp + passes->sppPerPass - 1) / passes->sppPerPass;
+    }
 }
 
 // A complete output: a finished frame, or for `mirage photons` an intact photon file.

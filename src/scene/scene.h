@@ -81,6 +81,8 @@ struct Scene {
     // pass_spp samples, a photon map each with the photon integrator (what k-nearest photon
     // estimates need to lose their noise: more photons in one map only shrink the radius).
     int statedPasses = 0;
+    // statedPasses was made by `auto` from film.spp (integrator_choice.cpp, rule 4), not stated.
+    bool autoPasses = false;
     int majorantResolution = 64;
     ShutterFrames shutter;  // [camera] shutter (frames); render.camera holds it in seconds
     std::vector<VolumeRecord> volumes;
@@ -110,6 +112,7 @@ struct LoadOptions {
 struct IntegratorChoice {
     std::string name;
     std::string why;
+    bool progressive = false;  // render film.spp as progressive photon passes
 };
 IntegratorChoice chooseIntegrator(const Scene& scene);
 // Replaces integrator "auto" by chooseIntegrator's choice and records why; any other name stays.

@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <map>
 
 #include "film/color.h"
+#include "film/image_io.h"
 #include "scene/scene.h"
 #include "test_support.h"
 
@@ -13,14 +15,15 @@ using namespace mirage;
 
 namespace {
 
-// A homogeneous box of one grey component (σa, σs in 1/m) under a sun, plus `extra` TOML.
+// A homogeneous box of one grey component (σa, σs in 1/m) under a sun, plus `extra` TOML. Its
+// side is 2 m, so its typical optical depth (integrator_choice.cpp) is 2 (σa + σs).
 std::string boxScene(const std::string& dir, const std::string& name, float sigmaA, float sigmaS,
-                     const std::string& extra = "") {
+                     const std::string& extra = "", int spp = 1) {
     const std::string shader = dir + "/" + name + "_shader.toml";
     std::ofstream(shader) << "[[component]]\nname = \"fog\"\ngrid = \"\"\nsigma_a = " << sigmaA
                           << "\nsigma_s = " << sigmaS << "\n";
     const std::string path = dir + "/" + name + ".toml";
-    std::ofstream(path) << "[film]\nresolution = [8, 8]\nspp = 1\n"
+    std::ofstream(path) << "[film]\nresolution = [8, 8]\nspp = " << spp << "\n"
                         << "[camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n"
                         << "[[volume]]\nbox = { min = [-1, -1, -1], max = [1, 1, 1] }\nshader = \""
                         << shader << "\"\n"
@@ -47,6 +50,68 @@ TEST(IntegratorChoice, ScatteringMediaGetThePathTracer) {
             EXPECT_TRUE(t.active) << t.why;
         }
     }
+}
+
+// Rule 4: dense (optical depth ≥ 10), bright (albedo ≥ 0.9), grey smoke renders with progressive
+// photon passes, film.spp of them as passes of pass_spp samples; just below either threshold,
+// or with a surface in the scene, it stays with the path tracer.
+TEST(IntegratorChoice, DenseBrightSmokeGetsProgressivePhotonPasses) {
+    const std::string dir = test::tempDir();
+    Scene dense = load(boxScene(dir, "dense", 0.25f, 9.75f, "", 10));  // depth 20, albedo 0.975
+    EXPECT_EQ(dense.integrator, "photon");
+    EXPECT_NE(dense.integratorWhy.find("dense, bright, grey smoke (albedo 0.98"), std::string::npos)
+        << dense.integratorWhy;
+    EXPECT_NE(dense.integratorWhy.find("optical depth 20)"), std::string::npos)
+        << dense.integratorWhy;
+    EXPECT_EQ(dense.passes.maxPasses, 3);  // 10 samples in passes of 4
+    EXPECT_EQ(dense.statedPasses, 3);
+    EXPECT_EQ(load(boxScene(dir, "thinner", 0.24f, 4.5f)).integrator, "volpath");  // depth 9.5
+    EXPECT_EQ(load(boxScene(dir, "darker", 2.f, 16.f)).integrator, "volpath");     // albedo 0.89
+    Scene floor = load(boxScene(dir, "floor", 0.25f, 9.75f,
+                                "[[shape]]\ntype = \"quad\"\ncorner = [-2, -1, 2]\n"
+                                "edge_u = [4, 0, 0]\nedge_v = [0, 0, -4]\nmaterial = \"white\"\n"
+                                "[[material]]\nname = \"white\"\ntype = \"diffuse\"\n"));
+    EXPECT_EQ(floor.integrator, "volpath");
+    // A scene that states its passes keeps them; a named integrator takes film.spp again.
+    Scene stated = load(boxScene(dir, "stated", 0.25f, 9.75f, "[render]\npasses = 7\n"));
+    EXPECT_EQ(stated.integrator, "photon");
+    EXPECT_EQ(stated.passes.maxPasses, 7);
+    Scene named =
+        load(boxScene(dir, "named_dense", 0.25f, 9.75f, "", 10), {"render.integrator=volpath"});
+    EXPECT_EQ(named.passes.maxPasses, 0);
+    Scene chosen = load(boxScene(dir, "rechosen", 0.25f, 9.75f, "", 10));
+    chosen.integrator = "volpath";  // what --integrator does after loading
+    resolveAutoIntegrator(&chosen);
+    EXPECT_EQ(chosen.passes.maxPasses, 0);
+    EXPECT_EQ(chosen.statedPasses, 0);
+}
+
+// What a user sees: `mirage render` of the dense box renders film.spp as passes (EXR metadata),
+// --spp sets their number, --integrator volpath renders film.spp without passes, and `mirage
+// info` says all of it.
+TEST(IntegratorChoice, DenseSmokeRendersItsSamplesAsPhotonPasses) {
+    const std::string dir = test::tempDir();
+    const std::string path =
+        boxScene(dir, "dense_cli", 0.25f, 9.75f, "[render]\nphotons = 4000\n", 8);
+    std::string out;
+    auto render = [&](const std::string& args, const std::string& exr) {
+        EXPECT_EQ(0, test::runMirage("render '" + path + "' -q --threads 2 " + args + " -o '" +
+                                         dir + "/" + exr + "'",
+                                     &out))
+            << out;
+        std::map<std::string, std::string> meta;
+        readExr(dir + "/" + exr, &meta);
+        return meta;
+    };
+    std::map<std::string, std::string> plain = render("", "auto.exr");
+    EXPECT_EQ(plain["mirage:passes"], "2");
+    EXPECT_EQ(plain["mirage:samples"], std::to_string(8 * 8 * 8));
+    EXPECT_EQ(render("--spp 16", "more.exr")["mirage:passes"], "4");
+    std::map<std::string, std::string> path_traced = render("--integrator volpath", "vp.exr");
+    EXPECT_EQ(path_traced.count("mirage:passes"), 0u);
+    ASSERT_EQ(0, test::runMirage("info '" + path + "'", &out)) << out;
+    EXPECT_NE(out.find("2 passes of 4 spp (a photon map each)"), std::string::npos) << out;
+    EXPECT_NE(out.find("integrator: auto: dense, bright, grey smoke"), std::string::npos) << out;
 }
 
 TEST(IntegratorChoice, PurelyAbsorbingMediaGetSingleWhichIsExactThere) {

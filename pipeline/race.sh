@@ -5,10 +5,11 @@
 # OUT between runs: Cycles' ray marching and Mirage's tracking converge to slightly different
 # images), by relMSE over the smoke's pixels (pipeline/relmse.py), at each of SPPS.
 #   single    Cycles with 0 volume bounces against mirage --integrator single
-#   multiple  Cycles with 64 volume bounces against mirage --integrator volpath, and the
-#             progressive photon mapper (--integrator photon --passes P, one photon map per
-#             pass) against the same volpath reference: its bias counts, and its time is
-#             mirage:time_spent, the photon passes included.
+#   multiple  Cycles with 64 volume bounces against mirage --integrator volpath, Mirage's
+#             default (integrator auto at the same spp: what `mirage render` does unasked), and
+#             the progressive photon mapper (--integrator photon --passes P, one photon map per
+#             pass), all against the same volpath reference: a biased method's bias counts,
+#             and a render in passes is timed by mirage:time_spent, its photon passes included.
 # Usage: pipeline/race.sh [single | multiple | both]   (default single)
 # Other caches: CACHE=path.vdb races that file's `density` grid instead of smoke1, with the same
 # medium, sun and resolution, and the camera cycles_vdb.py frames it with (read from its
@@ -94,6 +95,16 @@ photon() {  # passes exr
   oiiotool --info -v "$2" | awk -F'"' '/mirage:time_spent/ {print $2}'
 }
 
+# Mirage as a user runs it: the default integrator at the scene's settings and `spp` samples
+# per pixel (on dense smoke, progressive photon passes). Prints mirage:time_spent for a render
+# in passes, else mirage:frame_seconds.
+default_render() {  # spp exr
+  "$MIRAGE" render tests/bench/smoke1_race.toml --set "volume.0.file=$SMOKE" "${CAMERA[@]}" \
+    --set render.integrator=auto --spp "$1" --threads "$THREADS" --seed 0 -o "$2" --quiet >/dev/null
+  oiiotool --info -v "$2" |
+    awk -F'"' '/mirage:time_spent/ {t = $2} /mirage:frame_seconds/ {f = $2} END {print (t != "" ? t : f)}'
+}
+
 race() {  # bounces integrator
   local bounces=$1 integrator=$2 tag="$OUT/$NAME.$2"
   printf '\n%s.vdb 256x256, %d threads: Cycles --volume-bounces %d against mirage --integrator %s\n' \
@@ -116,8 +127,13 @@ race() {  # bounces integrator
         "$tag.mirage.exr" "$tag.mirage_ref.exr"
     done
   done
-  # Multiple scattering: the progressive photon mapper against the same volpath reference.
+  # Multiple scattering: the default and the progressive photon mapper against the same
+  # volpath reference.
   if [ "$integrator" = volpath ]; then
+    for spp in $SPPS; do
+      row "mirage default" "$spp" "$(default_render "$spp" "$tag.default.exr")" \
+        "$tag.default.exr" "$tag.mirage_ref.exr"
+    done
     for passes in $PHOTON_PASSES; do
       row "mirage photon" "$((passes * PASS_SPP))" "$(photon "$passes" "$tag.photon.exr")" \
         "$tag.photon.exr" "$tag.mirage_ref.exr"

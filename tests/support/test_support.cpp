@@ -107,6 +107,17 @@ int runMirage(const std::string& args, std::string* output) {
     return runCommand(std::string("'") + MIRAGE_BINARY + "' " + args, output);
 }
 
+std::map<std::string, std::string> renderMetadata(const std::string& scene, const std::string& args,
+                                                  const std::string& exr) {
+    std::string out;
+    EXPECT_EQ(
+        0, runMirage("render '" + scene + "' -q --threads 2 " + args + " -o '" + exr + "'", &out))
+        << out;
+    std::map<std::string, std::string> meta;
+    readExr(exr, &meta);
+    return meta;
+}
+
 }  // namespace mirage::test
 
 #include <nanovdb/util/GridBuilder.h>

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <string>
 
 namespace mirage::test {
@@ -15,6 +16,10 @@ std::string sharedFile(const std::string& relative);  // "" when missing
 std::string tempDir();
 // Runs `mirage <args>` (the built binary), returns its exit code; stdout+stderr into *output.
 int runMirage(const std::string& args, std::string* output = nullptr);
+// Runs `mirage render SCENE -q --threads 2 ARGS -o EXR`, expecting exit code 0 (else a test
+// failure with its output), and returns the EXR's metadata.
+std::map<std::string, std::string> renderMetadata(const std::string& scene, const std::string& args,
+                                                  const std::string& exr);
 // Runs a shell command, returns its exit code; stdout+stderr into *output.
 int runCommand(const std::string& cmd, std::string* output = nullptr);
 // The built mirage binary and the source tree. Only test_support.cpp is compiled with these

@@ -7,7 +7,6 @@
 #include <map>
 
 #include "film/color.h"
-#include "film/image_io.h"
 #include "scene/scene.h"
 #include "test_support.h"
 
@@ -95,13 +94,7 @@ TEST(IntegratorChoice, DenseSmokeRendersItsSamplesAsPhotonPasses) {
         boxScene(dir, "dense_cli", 0.25f, 9.75f, "[render]\nphotons = 4000\n", 8);
     std::string out;
     auto render = [&](const std::string& args, const std::string& exr) {
-        EXPECT_EQ(0, test::runMirage("render '" + path + "' -q --threads 2 " + args + " -o '" +
-                                         dir + "/" + exr + "'",
-                                     &out))
-            << out;
-        std::map<std::string, std::string> meta;
-        readExr(dir + "/" + exr, &meta);
-        return meta;
+        return test::renderMetadata(path, args, dir + "/" + exr);
     };
     std::map<std::string, std::string> plain = render("", "auto.exr");
     EXPECT_EQ(plain["mirage:passes"], "2");

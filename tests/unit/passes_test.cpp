@@ -268,13 +268,7 @@ TEST(PassesCli, ASceneStatesItsPassesAndPhotonMaps) {
     const std::string plain = test::writeFile(dir, "plain.toml", body + light);
     std::string out;
     auto render = [&](const std::string& scene, const std::string& args, const std::string& exr) {
-        EXPECT_EQ(0, test::runMirage("render '" + scene + "' -q --threads 2 " + args + " -o '" +
-                                         dir + "/" + exr + "'",
-                                     &out))
-            << out;
-        std::map<std::string, std::string> meta;
-        readExr(dir + "/" + exr, &meta);
-        return meta;
+        return test::renderMetadata(scene, args, dir + "/" + exr);
     };
     EXPECT_EQ(render(stated, "", "stated.exr")["mirage:passes"], "3");
     EXPECT_EQ(render(plain, "--passes 3", "cli.exr")["mirage:passes"], "3");

@@ -77,10 +77,7 @@ float typicalOpticalDepth(const Medium& medium) {
     if (occupied == 0) return 0.f;
     const Vec3 d = g.bounds().diagonal();
     const double cellVolume = double(d.x) * d.y * d.z / (double(g.res(0)) * g.res(1) * g.res(2));
-    const Transform& m = medium.objectToWorld();
-    const double scale = std::cbrt(
-        std::abs(dot(m.vector(Vec3(1.f, 0.f, 0.f)),
-                     cross(m.vector(Vec3(0.f, 1.f, 0.f)), m.vector(Vec3(0.f, 0.f, 1.f))))));
+    const double scale = std::cbrt(std::abs(medium.objectToWorld().linear.determinant()));
     return float(sum / double(occupied) * std::cbrt(double(occupied) * cellVolume) * scale);
 }
 

@@ -52,7 +52,8 @@ const QualityPreset& qualityPreset(const std::string& name);
 // (the preview preset) and the preset scales it (draft ¼, preview 1, final 4: the final
 // preset is the 4× render the noise checks compare against); elsewhere the preset's own
 // measured values apply. A curved-camera scene that asks for 16 samples gets 4, 16 or 64. A
-// stated render.k is kept at every preset.
+// stated render.k is kept at every preset. A scene in passes (stated, or made by `auto` on
+// dense smoke) has its passes scaled, each keeping its photon map's photons.
 void applyQualityPreset(Scene& scene, const QualityPreset& preset, const std::string& integrator,
                         const std::vector<std::string>& overrides);
 

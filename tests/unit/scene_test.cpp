@@ -429,3 +429,23 @@ TEST(SceneLoad, QualityPresetsScaleStatedSamplesAndKeepAStatedK) {
         EXPECT_EQ(overridden.photon.k, 8) << preset.name;
     }
 }
+
+// A scene in passes (stated here; `auto` makes them on dense smoke) has its passes scaled and
+// keeps each map's photons: the preset's photons are a one-map render's (10⁶ or 4·10⁶ in each
+// of 16 maps once made the final preset 40 times the scene's own render).
+TEST(SceneLoad, QualityPresetsScalePassesAndKeepEachMapsPhotons) {
+    const std::string dir = test::tempDir();
+    fogAsset(dir);
+    for (const QualityPreset& preset : qualityPresets()) {
+        ColorPipeline color;
+        Scene s = loadScene(writeFile(dir, "passes.toml",
+                                      "[film]\nresolution = [8, 8]\n[render]\n"
+                                      "integrator = \"photon\"\npasses = 4\n"
+                                      "[[volume]]\nfile = \"fog.vdb\"\n"),
+                            LoadOptions{}, color);
+        const uint64_t photons = s.photon.photons;
+        applyQualityPreset(s, preset, "photon", {});
+        EXPECT_EQ(s.passes.maxPasses, int(4 * preset.sceneScale)) << preset.name;
+        EXPECT_EQ(s.photon.photons, photons) << preset.name;
+    }
+}

@@ -19,7 +19,8 @@
 //     across pixels: on the race's three caches it reaches Cycles' 4-, 16- and 64-sample
 //     errors in 0.1–0.3 of volpath's time (docs/performance.md, "The default on dense smoke").
 //     `photon` then renders the scene's samples as progressive passes of pass_spp samples, a
-//     photon map each (render/passes.h), so that longer renders keep converging.
+//     photon map each (render/passes.h), so that longer renders keep converging; unless the
+//     scene states them, one sample a pass and k = 32 (resolveAutoIntegrator).
 //  5. Otherwise `volpath`: unbiased, every bounce.
 #include <algorithm>
 #include <cmath>
@@ -83,6 +84,8 @@ float typicalOpticalDepth(const Medium& medium) {
 
 constexpr float kDenseAlbedo = 0.9f;
 constexpr float kDenseOpticalDepth = 10.f;
+constexpr int kProgressivePassSpp = 1;
+constexpr int kProgressiveK = 32;
 
 // Rule 4's scene: its reason, or "" when the scene is not one.
 std::string denseBrightSmoke(const RenderScene& render) {
@@ -126,26 +129,46 @@ IntegratorChoice chooseIntegrator(const Scene& scene) {
 }
 
 void resolveAutoIntegrator(Scene* scene) {
-    if (scene->autoPasses) {
-        // The passes the previous choice made of film.spp: a named integrator takes spp again.
+    // Undo what the previous choice set: a named integrator takes film.spp, pass_spp and k
+    // again as the scene states them.
+    Scene::AutoProgressive& set = scene->autoSet;
+    if (set.passes) {
         scene->statedPasses = 0;
         scene->passes.maxPasses = 0;
-        scene->autoPasses = false;
     }
+    if (set.passSpp) scene->passes.sppPerPass = PassSettings{}.sppPerPass;
+    if (set.k) scene->photon.k = 0;
+    set = {};
     if (scene->integrator != "auto") return;
     IntegratorChoice choice = chooseIntegrator(*scene);
     scene->integrator = choice.name;
     scene->integratorWhy = "auto: " + choice.why;
-    if (choice.progressive && scene->statedPasses == 0) {
+    if (!choice.progressive) return;
+    // Rule 4's settings where the scene leaves them open (measured on the race scene,
+    // docs/performance.md "Passes of one sample"): a pass's error is mostly its photon map's,
+    // its time mostly its camera samples', so one sample a pass; and k = 32 nearest photons,
+    // whose wider discs halve a map's noise for 13 % more time.
+    if (scene->statedPassSpp == 0) {
+        scene->passes.sppPerPass = kProgressivePassSpp;
+        set.passSpp = true;
+    }
+    if (scene->photon.k == 0 && scene->photon.estimate == PhotonEstimate::Beam) {
+        scene->photon.k = kProgressiveK;
+        set.k = true;
+    }
+    if (scene->statedPasses == 0) {
         // film.spp as passes of pass_spp samples, a photon map each; --spp, --passes, the
         // time and noise targets and --quality treat them as passes the scene stated.
         const int k = scene->passes.sppPerPass;
         scene->statedPasses = std::max(1, (scene->settings.spp + k - 1) / k);
         scene->passes.maxPasses = scene->statedPasses;
-        scene->autoPasses = true;
-        scene->integratorWhy +=
-            "; the samples per pixel render as passes of pass_spp, a photon map each";
+        set.passes = true;
     }
+    char why[160];
+    std::snprintf(why, sizeof why, "; passes of %d spp, a photon map of %llu photons each, k %d",
+                  scene->passes.sppPerPass, (unsigned long long)scene->photon.photons,
+                  scene->photon.kOrDefault());
+    scene->integratorWhy += why;
 }
 
 }  // namespace mirage

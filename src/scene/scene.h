@@ -81,8 +81,13 @@ struct Scene {
     // pass_spp samples, a photon map each with the photon integrator (what k-nearest photon
     // estimates need to lose their noise: more photons in one map only shrink the radius).
     int statedPasses = 0;
-    // statedPasses was made by `auto` from film.spp (integrator_choice.cpp, rule 4), not stated.
-    bool autoPasses = false;
+    // [render] pass_spp as stated (0: not stated).
+    int statedPassSpp = 0;
+    // What `auto` set for rule 4 (integrator_choice.cpp) where the scene left it open, undone
+    // when an integrator is named: statedPasses made from film.spp, pass_spp, the estimate's k.
+    struct AutoProgressive {
+        bool passes = false, passSpp = false, k = false;
+    } autoSet;
     int majorantResolution = 64;
     ShutterFrames shutter;  // [camera] shutter (frames); render.camera holds it in seconds
     std::vector<VolumeRecord> volumes;

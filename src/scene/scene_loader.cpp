@@ -232,7 +232,9 @@ static void readSettings(const TableReader& top,
             r->fail("integrator", std::string(e.what()) + ", or auto (the default)");
         }
         scene.maxDepth = int(r->getInt("max_depth", 10000, 1, 1 << 30));
-        scene.passes.sppPerPass = int(r->getInt("pass_spp", 4, 1, kMaxSamplesPerPixel));
+        scene.passes.sppPerPass =
+            int(r->getInt("pass_spp", PassSettings{}.sppPerPass, 1, kMaxSamplesPerPixel));
+        if (r->has("pass_spp")) scene.statedPassSpp = scene.passes.sppPerPass;
         if (r->has("passes")) {
             scene.statedPasses = int(r->getInt("passes", 1, 1, kMaxSamplesPerPixel));
             scene.passes.maxPasses = scene.statedPasses;

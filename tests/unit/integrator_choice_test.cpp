@@ -52,8 +52,9 @@ TEST(IntegratorChoice, ScatteringMediaGetThePathTracer) {
 }
 
 // Rule 4: dense (optical depth ≥ 10), bright (albedo ≥ 0.9), grey smoke renders with progressive
-// photon passes, film.spp of them as passes of pass_spp samples; just below either threshold,
-// or with a surface in the scene, it stays with the path tracer.
+// photon passes, film.spp of them as passes of one sample (or the stated pass_spp) with k = 32
+// (or the stated k); just below either threshold, or with a surface in the scene, it stays with
+// the path tracer.
 TEST(IntegratorChoice, DenseBrightSmokeGetsProgressivePhotonPasses) {
     const std::string dir = test::tempDir();
     Scene dense = load(boxScene(dir, "dense", 0.25f, 9.75f, "", 10));  // depth 20, albedo 0.975
@@ -62,8 +63,14 @@ TEST(IntegratorChoice, DenseBrightSmokeGetsProgressivePhotonPasses) {
         << dense.integratorWhy;
     EXPECT_NE(dense.integratorWhy.find("optical depth 20)"), std::string::npos)
         << dense.integratorWhy;
-    EXPECT_EQ(dense.passes.maxPasses, 3);  // 10 samples in passes of 4
-    EXPECT_EQ(dense.statedPasses, 3);
+    EXPECT_EQ(dense.passes.maxPasses, 10);  // 10 samples in passes of 1
+    EXPECT_EQ(dense.statedPasses, 10);
+    EXPECT_EQ(dense.passes.sppPerPass, 1);
+    EXPECT_EQ(dense.photon.k, 32);
+    Scene own = load(boxScene(dir, "own", 0.25f, 9.75f, "[render]\npass_spp = 4\nk = 8\n", 10));
+    EXPECT_EQ(own.passes.maxPasses, 3);  // 10 samples in passes of 4
+    EXPECT_EQ(own.passes.sppPerPass, 4);
+    EXPECT_EQ(own.photon.k, 8);
     EXPECT_EQ(load(boxScene(dir, "thinner", 0.24f, 4.5f)).integrator, "volpath");  // depth 9.5
     EXPECT_EQ(load(boxScene(dir, "darker", 2.f, 16.f)).integrator, "volpath");     // albedo 0.89
     Scene floor = load(boxScene(dir, "floor", 0.25f, 9.75f,
@@ -78,11 +85,15 @@ TEST(IntegratorChoice, DenseBrightSmokeGetsProgressivePhotonPasses) {
     Scene named =
         load(boxScene(dir, "named_dense", 0.25f, 9.75f, "", 10), {"render.integrator=volpath"});
     EXPECT_EQ(named.passes.maxPasses, 0);
+    EXPECT_EQ(named.passes.sppPerPass, 4);
+    EXPECT_EQ(named.photon.k, 0);
     Scene chosen = load(boxScene(dir, "rechosen", 0.25f, 9.75f, "", 10));
     chosen.integrator = "volpath";  // what --integrator does after loading
     resolveAutoIntegrator(&chosen);
     EXPECT_EQ(chosen.passes.maxPasses, 0);
     EXPECT_EQ(chosen.statedPasses, 0);
+    EXPECT_EQ(chosen.passes.sppPerPass, 4);
+    EXPECT_EQ(chosen.photon.k, 0);
 }
 
 // What a user sees: `mirage render` of the dense box renders film.spp as passes (EXR metadata),
@@ -97,13 +108,21 @@ TEST(IntegratorChoice, DenseSmokeRendersItsSamplesAsPhotonPasses) {
         return test::renderMetadata(path, args, dir + "/" + exr);
     };
     std::map<std::string, std::string> plain = render("", "auto.exr");
-    EXPECT_EQ(plain["mirage:passes"], "2");
+    EXPECT_EQ(plain["mirage:passes"], "8");
     EXPECT_EQ(plain["mirage:samples"], std::to_string(8 * 8 * 8));
-    EXPECT_EQ(render("--spp 16", "more.exr")["mirage:passes"], "4");
+    EXPECT_EQ(render("--spp 16", "more.exr")["mirage:passes"], "16");
+    // --quality scales the passes and keeps each map's photons (4000 stated here, 10⁵ unstated):
+    // the preset's 10⁶ or 4·10⁶ photons are a one-map render's.
+    std::map<std::string, std::string> draft = render("--quality draft", "draft.exr");
+    EXPECT_EQ(draft["mirage:passes"], "2");
+    EXPECT_EQ(draft["mirage:photons_traced"], std::to_string(2 * 4000));
     std::map<std::string, std::string> path_traced = render("--integrator volpath", "vp.exr");
     EXPECT_EQ(path_traced.count("mirage:passes"), 0u);
     ASSERT_EQ(0, test::runMirage("info '" + path + "'", &out)) << out;
-    EXPECT_NE(out.find("2 passes of 4 spp (a photon map each)"), std::string::npos) << out;
+    EXPECT_NE(out.find("8 passes of 1 spp (a photon map each)"), std::string::npos) << out;
+    EXPECT_NE(out.find("passes of 1 spp, a photon map of 4000 photons each, k 32"),
+              std::string::npos)
+        << out;
     EXPECT_NE(out.find("integrator: auto: dense, bright, grey smoke"), std::string::npos) << out;
 }
 

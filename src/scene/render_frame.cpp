@@ -50,13 +50,15 @@ void applyFrameSettings(Scene& scene, const std::string& input, const FrameSetti
 // Measured on assets/scenes/fog_sphere.toml (docs/performance.md): the fastest measured
 // setting within 2.5× of relMSE 1e-1 (draft), 1e-2 (preview), 1e-3 (final); the photon preview
 // and final are the best measured (relMSE 0.036 and 0.011). These hold for a scene that states
-// no samples; one that does has them scaled by the last column (render_frame.h).
-// {name, spp, photons, k, path spp, scene scale}.
+// no samples; one that does has them scaled by the scene scale (render_frame.h). Auto's
+// progressive passes on dense smoke, measured on the race scene's 16 passes of one sample
+// (relMSE 0.011): 1 pass 0.10 (draft), 64 passes 0.0054 (final, the best measured).
+// {name, spp, photons, k, path spp, scene scale, auto pass scale}.
 const std::vector<QualityPreset>& qualityPresets() {
     static const std::vector<QualityPreset> presets = {
-        {"draft", 16, 100000, 16, 64, 0.25},
-        {"preview", 64, 1000000, 16, 256, 1.0},
-        {"final", 256, 4000000, 16, 4096, 4.0},
+        {"draft", 16, 100000, 16, 64, 0.25, 1.0 / 16.0},
+        {"preview", 64, 1000000, 16, 256, 1.0, 1.0},
+        {"final", 256, 4000000, 16, 4096, 4.0, 4.0},
     };
     return presets;
 }
@@ -86,7 +88,10 @@ void applyQualityPreset(Scene& scene, const QualityPreset& preset, const std::st
     // its own photon map, and so its samples and photons together; the photons of one map stay
     // as stated or at the default: the preset's photons are those of a one-map render.
     if (scene.statedPasses > 0 && !overridden("render.passes"))
-        scene.passes.maxPasses = int(scaled(scene.statedPasses));
+        scene.passes.maxPasses =
+            scene.autoSet.passes
+                ? int(std::max(1.0, std::round(scene.statedPasses * preset.autoPassScale)))
+                : int(scaled(scene.statedPasses));
     if (photon && scene.statedPasses == 0 && !overridden("render.photons"))
         scene.photon.photons = scene.statedPhotons > 0
                                    ? uint64_t(scaled(double(scene.statedPhotons)))

@@ -41,6 +41,9 @@ struct QualityPreset {
     int k = 0;              // photon integrator: photons per estimate
     int pathSpp = 0;        // single / volpath: samples per pixel
     double sceneScale = 1;  // × the samples and photons a scene states (Scene::statedSpp)
+    // × the passes `auto` made of film.spp on dense smoke (Scene::autoSet): measured on the
+    // race scene, where one pass in 16 is the draft's error.
+    double autoPassScale = 1;
 };
 const std::vector<QualityPreset>& qualityPresets();
 // Throws MirageError naming the presets for an unknown name.
@@ -53,7 +56,8 @@ const QualityPreset& qualityPreset(const std::string& name);
 // preset is the 4× render the noise checks compare against); elsewhere the preset's own
 // measured values apply. A curved-camera scene that asks for 16 samples gets 4, 16 or 64. A
 // stated render.k is kept at every preset. A scene in passes (stated, or made by `auto` on
-// dense smoke) has its passes scaled, each keeping its photon map's photons.
+// dense smoke) has its passes scaled, each keeping its photon map's photons; auto's passes
+// by their own measured scale (draft 1/16, preview 1, final 4).
 void applyQualityPreset(Scene& scene, const QualityPreset& preset, const std::string& integrator,
                         const std::vector<std::string>& overrides);
 

@@ -111,11 +111,14 @@ TEST(IntegratorChoice, DenseSmokeRendersItsSamplesAsPhotonPasses) {
     EXPECT_EQ(plain["mirage:passes"], "8");
     EXPECT_EQ(plain["mirage:samples"], std::to_string(8 * 8 * 8));
     EXPECT_EQ(render("--spp 16", "more.exr")["mirage:passes"], "16");
-    // --quality scales the passes and keeps each map's photons (4000 stated here, 10⁵ unstated):
-    // the preset's 10⁶ or 4·10⁶ photons are a one-map render's.
+    // --quality scales the passes (draft 1/16, final 4) and keeps each map's photons (4000
+    // stated here, 10⁵ unstated): the preset's 10⁶ or 4·10⁶ photons are a one-map render's.
     std::map<std::string, std::string> draft = render("--quality draft", "draft.exr");
-    EXPECT_EQ(draft["mirage:passes"], "2");
-    EXPECT_EQ(draft["mirage:photons_traced"], std::to_string(2 * 4000));
+    EXPECT_EQ(draft["mirage:passes"], "1");
+    EXPECT_EQ(draft["mirage:photons_traced"], "4000");
+    std::map<std::string, std::string> final = render("--quality final", "final.exr");
+    EXPECT_EQ(final["mirage:passes"], "32");
+    EXPECT_EQ(final["mirage:photons_traced"], std::to_string(32 * 4000));
     std::map<std::string, std::string> path_traced = render("--integrator volpath", "vp.exr");
     EXPECT_EQ(path_traced.count("mirage:passes"), 0u);
     ASSERT_EQ(0, test::runMirage("info '" + path + "'", &out)) << out;

@@ -38,7 +38,7 @@ constexpr size_t kParallelBuildMin = size_t(1) << 15;
 PhotonMap::PhotonMap(PhotonList photons) {
     MIRAGE_CHECK(photons.size() < size_t(std::numeric_limits<uint32_t>::max()));
     mPhotons.resize(photons.size());
-    mAxis.resize(photons.size());
+    mNodes.resize(photons.size());
     for (const Photon& ph : photons) mBounds.expand(ph.p);
     build(photons.data(), photons.data() + photons.size(), 0);
 }
@@ -51,7 +51,7 @@ void PhotonMap::build(Photon* begin, Photon* end, size_t slot) {
     if (m == 0) return;
     if (m == 1) {
         mPhotons[slot] = *begin;
-        mAxis[slot] = 0;
+        mNodes[slot] = {begin->p, 0};
         return;
     }
     // Split on the axis of widest extent (the first such axis on a tie, for determinism).
@@ -64,7 +64,7 @@ void PhotonMap::build(Photon* begin, Photon* end, size_t slot) {
     std::nth_element(begin, median, end,
                      [axis](const Photon& a, const Photon& c) { return a.p[axis] < c.p[axis]; });
     mPhotons[slot] = *median;
-    mAxis[slot] = uint8_t(axis);
+    mNodes[slot] = {median->p, uint32_t(axis)};
 
     auto left = [&] { build(begin, median, 2 * slot + 1); };
     auto right = [&] { build(median + 1, end, 2 * slot + 2); };
@@ -124,12 +124,12 @@ int PhotonMap::nearest(const Vec3& q, int k, float maxRadius, PhotonNeighbour* h
     size_t node = 0;
     for (;;) {
         while (node < n) {
-            const Photon& ph = mPhotons[node];
-            Vec3 d = ph.p - q;
+            const KdNode& nd = mNodes[node];
+            Vec3 d = nd.p - q;
             float d2 = dot(d, d);
             if (d2 <= maxD2) consider(uint32_t(node), d2);
-            int axis = mAxis[node];
-            float delta = q[axis] - ph.p[axis];
+            const int axis = int(nd.axis);
+            float delta = q[axis] - nd.p[axis];
             size_t left = 2 * node + 1, right = left + 1;
             size_t nearChild = delta <= 0.f ? left : right;
             size_t farChild = delta <= 0.f ? right : left;
@@ -155,7 +155,7 @@ std::vector<float> PhotonMap::photonRadii(int k, float minRadius, float maxRadiu
                       [&](const tbb::blocked_range<size_t>& r) {
                           std::vector<PhotonNeighbour> heap(static_cast<size_t>(k));
                           for (size_t i = r.begin(); i < r.end(); ++i) {
-                              int found = nearest(mPhotons[i].p, k, maxRadius, heap.data());
+                              int found = nearest(mNodes[i].p, k, maxRadius, heap.data());
                               float ri = found == k ? std::sqrt(heap[0].d2) : maxRadius;
                               radii[i] = clamp(ri, minRadius, maxRadius);
                           }

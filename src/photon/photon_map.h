@@ -4,8 +4,10 @@
 // Layout: the photons are permuted into heap order. Node i (0-based) has children 2i+1 and
 // 2i+2; the tree is complete except for its last level, which is filled from the left, so the
 // n photons occupy exactly slots 0..n−1 and no child pointers are stored. Each node splits at
-// its own photon on the axis of the widest extent of its subtree; that axis is the only side
-// data (one byte per photon), since Photon has no spare field.
+// its own photon on the axis of the widest extent of its subtree. The queries read a compact
+// copy of the tree, each node's position and split axis in 16 bytes (a Photon is 44): a
+// k-nearest search touches scattered nodes, and on dense smoke the radii's search was most of
+// a one-pass render's photon work (docs/performance.md, "Passes of one sample").
 //
 // Queries never allocate: k nearest neighbours go into a caller-provided bounded max-heap, and
 // the radius query calls a visitor. Ties in distance are broken by the photon's slot, so the
@@ -42,7 +44,7 @@ public:
     bool empty() const { return mPhotons.empty(); }
     const Photon& operator[](size_t i) const { return mPhotons[i]; }
     const PhotonList& photons() const { return mPhotons; }
-    int splitAxis(size_t i) const { return mAxis[i]; }
+    int splitAxis(size_t i) const { return int(mNodes[i].axis); }
     const Bounds3& bounds() const { return mBounds; }
 
     // The k photons nearest to q within maxRadius (inclusive), in buffer[0..count) as a max-heap
@@ -72,8 +74,14 @@ public:
 private:
     void build(Photon* begin, Photon* end, size_t slot);
 
+    // A node as the queries read it: the photon's position and the split axis.
+    struct KdNode {
+        Vec3 p;
+        uint32_t axis;
+    };
+
     PhotonList mPhotons;
-    std::vector<uint8_t> mAxis;
+    std::vector<KdNode> mNodes;  // mNodes[i] is mPhotons[i]'s position and split axis
     Bounds3 mBounds;
 };
 
@@ -88,11 +96,11 @@ void PhotonMap::forEachInRadius(const Vec3& q, float radius, F&& f) const {
     stack[top++] = 0;
     while (top > 0) {
         size_t node = stack[--top];
-        const Photon& ph = mPhotons[node];
-        Vec3 d = ph.p - q;
+        const KdNode& nd = mNodes[node];
+        Vec3 d = nd.p - q;
         float d2 = dot(d, d);
         if (d2 <= r2) f(uint32_t(node), d2);
-        float delta = q[mAxis[node]] - ph.p[mAxis[node]];
+        float delta = q[int(nd.axis)] - nd.p[int(nd.axis)];
         size_t left = 2 * node + 1, right = left + 1;
         // The left subtree lies at or below the splitting plane, the right at or above it. The
         // test is on squares, as the distance test is: a photon across the plane has

@@ -147,18 +147,6 @@ void BeamEstimator::query(const Ray& ray, float tMin, float tMax,
                 hits->end());
 }
 
-// The σs ratio's cap. A photon stored where the smoke is thin stands for a fluence of ΔΦ/σs(x_i):
-// rare, and heavy. Its disc (wide there: few photons) may reach a camera ray in smoke a
-// hundred times denser, and the ratio then makes one photon a blotch of pixels tens of times
-// too bright. In one pass of a race on mantaflow_smoke.0010, one such photon put 90 % of the
-// image's error into 4 pixels, and 8 passes had 3.4x the error of 2 (docs/performance.md, "A
-// cap on the density ratio"). Capped at 16 the heavy tail is gone: relMSE at 8 passes 0.279 →
-// 0.025 there, 0.040 → 0.033 on smoke1, whose mean moves by −1 % (0.999 → 0.989 of the
-// path tracer's). The cap bites only where a disc spans a 16-fold change of σs; as the
-// progressive radii shrink, a disc of a continuous (trilinear) field spans less and less of
-// a change, so the estimate stays consistent.
-constexpr float kMaxDensityRatio = 16.f;
-
 Vec3 BeamEstimator::estimate(const Ray& ray, float tMax, const RayOpticalDepth& depth,
                              std::vector<BeamHit>* hits, const ViewWeight& view,
                              const PhotonGroups& groups) const {
@@ -177,7 +165,7 @@ Vec3 BeamEstimator::estimate(const Ray& ray, float tMax, const RayOpticalDepth& 
         if (!(atPhoton > 0.f)) continue;
         const float here = probe.eventDensity(ray.at(h.t), ph);
         if (!(here > 0.f)) continue;
-        const float ratio = std::min(here / atPhoton, kMaxDensityRatio);
+        const float ratio = cappedDensityRatio(here, atPhoton);
         float w = kernelValue(h.d2, mRadii[h.slot]) * depth.transmittance(h.t, ph.lambda) *
                   mPhotons->phase(h.slot, wo) * ratio * view(ph.lambda);
         const Vec3 term = mPhotons->fluxXyz(h.slot) * w;

@@ -191,7 +191,8 @@ Vec3 pointEstimateAlongRay(const VolumePhotons& photons, const Ray& ray,
             float atPhoton = photons.sigmaS(slot);
             if (!(atPhoton > 0.f)) return 0.f;
             float here = probe.grey() ? greySigmaS : probe.eventDensity(x, p);
-            return depth.transmittance(t, p.lambda) * here / atPhoton * view(p.lambda);
+            return depth.transmittance(t, p.lambda) * cappedDensityRatio(here, atPhoton) *
+                   view(p.lambda);
         });
     }
     return sum * step;

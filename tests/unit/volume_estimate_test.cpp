@@ -355,7 +355,7 @@ TEST(BeamEstimate, SharpDensityEdgeKeepsEachSidesLight) {
 }
 
 // One photon stored in thin smoke (density 0.001) whose disc reaches a ray in dense smoke
-// (density 1): the σs ratio, 1000 there, is capped at 16 (beam_estimate.cpp, kMaxDensityRatio),
+// (density 1): the σs ratio, 1000 there, is capped at 16 (volume_estimate.h, kMaxDensityRatio),
 // so that a rare photon of the thin side does not light the dense side as a blotch. Against
 // the mirror ray on the thin side (ratio 1, the same kernel and phase), the dense side gets 16 ×
 // its transmittance; uncapped it would get about 780 times as much.
@@ -376,6 +376,40 @@ TEST(BeamEstimate, AThinSidePhotonLightsTheDenseSideAtMostSixteenfold) {
     // T to the photon's projection on the dense ray: 0.5 m of σs = 0.5/m from the box's face.
     const double expected = 16.0 * std::exp(-0.5 * sigmaS);
     EXPECT_NEAR(y[0] / y[1], expected, 0.03 * expected);
+}
+
+// The same photon and rays for the point estimate: its search ball (maxRadius, fewer than k
+// photons) reaches both rays alike, and the dense ray gets 16 × its mean transmittance over
+// the ball's chord, not ~780 times as much.
+TEST(VolumeEstimate, AThinSidePhotonLightsTheDenseSideAtMostSixteenfold) {
+    const float sigmaS = 0.5f, radius = 0.2f;
+    auto edge = [](int i, int, int) { return i < 16 ? 1.f : 0.001f; };
+    auto m = test::gridMedium(edge, 0, 31, kH, 0.f, sigmaS, 0.f);
+    Photon photon;
+    photon.p = Vec3(0.55f, 0.5f, 0.5f);
+    photon.wi = Vec3(0.f, -1.f, 0.f);
+    photon.lambda = 555.f;
+    photon.power = 1.f;
+    VolumePhotons photons(PhotonList{photon}, {m.get()});
+    RayOpticalDepth depth({m.get()});
+    ScatteringProbe probe({m.get()});
+    std::vector<PhotonNeighbour> buffer(2);
+    auto along = [&](float x) {
+        const Ray ray{Vec3(x, 0.5f, -1.f), Vec3(0, 0, 1), kInfinity};
+        depth.march(ray, kInfinity);
+        return pointEstimateAlongRay(photons, ray, depth, 2, radius, 0.005f, 0.5f, buffer.data(),
+                                     probe)
+            .y;
+    };
+    const float dense = along(0.45f), thin = along(0.65f);
+    ASSERT_GT(thin, 0.f);
+    // The chord: z = 0.5 ± √(r² − 0.1²) from the box's face; T = e^(−σs z) on it, ~1 on the
+    // thin side.
+    const double half = std::sqrt(double(radius) * radius - 0.01);
+    const double meanT = (std::exp(-sigmaS * (0.5 - half)) - std::exp(-sigmaS * (0.5 + half))) /
+                         (sigmaS * 2.0 * half);
+    const double expected = 16.0 * meanT;
+    EXPECT_NEAR(dense / thin, expected, 0.03 * expected);
 }
 
 TEST(BeamEstimate, FogInAGlassBallStaysInTheBall) {

@@ -354,21 +354,34 @@ TEST(BeamEstimate, SharpDensityEdgeKeepsEachSidesLight) {
     }
 }
 
+// One photon of 1 W stored in thin smoke (density 0.001, x = 0.55 m) beside dense smoke
+// (density 1, x < 0.5 m), σs = 0.5/m per unit density: the density-ratio cap's case.
+struct ThinSidePhoton {
+    static constexpr float kSigmaS = 0.5f;
+    std::unique_ptr<Medium> medium = test::gridMedium(
+        [](int i, int, int) { return i < 16 ? 1.f : 0.001f; }, 0, 31, kH, 0.f, kSigmaS, 0.f);
+    VolumePhotons photons{PhotonList{photon()}, {medium.get()}};
+
+    static Photon photon() {
+        Photon p;
+        p.p = Vec3(0.55f, 0.5f, 0.5f);
+        p.wi = Vec3(0.f, -1.f, 0.f);
+        p.lambda = 555.f;
+        p.power = 1.f;
+        return p;
+    }
+};
+
 // One photon stored in thin smoke (density 0.001) whose disc reaches a ray in dense smoke
 // (density 1): the σs ratio, 1000 there, is capped at 16 (volume_estimate.h, kMaxDensityRatio),
 // so that a rare photon of the thin side does not light the dense side as a blotch. Against
 // the mirror ray on the thin side (ratio 1, the same kernel and phase), the dense side gets 16 ×
 // its transmittance; uncapped it would get about 780 times as much.
 TEST(BeamEstimate, AThinSidePhotonLightsTheDenseSideAtMostSixteenfold) {
-    const float sigmaS = 0.5f;
-    auto edge = [](int i, int, int) { return i < 16 ? 1.f : 0.001f; };
-    auto m = test::gridMedium(edge, 0, 31, kH, 0.f, sigmaS, 0.f);
-    Photon photon;
-    photon.p = Vec3(0.55f, 0.5f, 0.5f);
-    photon.wi = Vec3(0.f, -1.f, 0.f);
-    photon.lambda = 555.f;
-    photon.power = 1.f;
-    VolumePhotons photons(PhotonList{photon}, {m.get()});
+    const float sigmaS = ThinSidePhoton::kSigmaS;
+    ThinSidePhoton side;
+    const auto& m = side.medium;
+    const VolumePhotons& photons = side.photons;
     const Ray dense{Vec3(0.45f, 0.5f, -1.f), Vec3(0, 0, 1), kInfinity};
     const Ray thin{Vec3(0.65f, 0.5f, -1.f), Vec3(0, 0, 1), kInfinity};
     const std::vector<double> y = beamAlong(photons, *m, {dense, thin}, 0.2f);
@@ -382,15 +395,10 @@ TEST(BeamEstimate, AThinSidePhotonLightsTheDenseSideAtMostSixteenfold) {
 // photons) reaches both rays alike, and the dense ray gets 16 × its mean transmittance over
 // the ball's chord, not ~780 times as much.
 TEST(VolumeEstimate, AThinSidePhotonLightsTheDenseSideAtMostSixteenfold) {
-    const float sigmaS = 0.5f, radius = 0.2f;
-    auto edge = [](int i, int, int) { return i < 16 ? 1.f : 0.001f; };
-    auto m = test::gridMedium(edge, 0, 31, kH, 0.f, sigmaS, 0.f);
-    Photon photon;
-    photon.p = Vec3(0.55f, 0.5f, 0.5f);
-    photon.wi = Vec3(0.f, -1.f, 0.f);
-    photon.lambda = 555.f;
-    photon.power = 1.f;
-    VolumePhotons photons(PhotonList{photon}, {m.get()});
+    const float sigmaS = ThinSidePhoton::kSigmaS, radius = 0.2f;
+    ThinSidePhoton side;
+    const auto& m = side.medium;
+    const VolumePhotons& photons = side.photons;
     RayOpticalDepth depth({m.get()});
     ScatteringProbe probe({m.get()});
     std::vector<PhotonNeighbour> buffer(2);

@@ -78,24 +78,23 @@ void applyQualityPreset(Scene& scene, const QualityPreset& preset, const std::st
         });
     };
     const bool photon = integratorInfo(integrator).photonPass;
-    auto scaled = [&](double stated) {
-        return std::max(1.0, std::round(stated * preset.sceneScale));
+    auto scaled = [&](double stated, double scale) {
+        return std::max(1.0, std::round(stated * scale));
     };
     if (!overridden("film.spp"))
-        scene.settings.spp = scene.statedSpp > 0 ? int(scaled(scene.statedSpp))
+        scene.settings.spp = scene.statedSpp > 0 ? int(scaled(scene.statedSpp, preset.sceneScale))
                                                  : (photon ? preset.spp : preset.pathSpp);
     // A scene in passes (stated, or made by `auto` on dense smoke) scales its passes, each with
     // its own photon map, and so its samples and photons together; the photons of one map stay
     // as stated or at the default: the preset's photons are those of a one-map render.
     if (scene.statedPasses > 0 && !overridden("render.passes"))
-        scene.passes.maxPasses =
-            scene.autoSet.passes
-                ? int(std::max(1.0, std::round(scene.statedPasses * preset.autoPassScale)))
-                : int(scaled(scene.statedPasses));
+        scene.passes.maxPasses = int(scaled(
+            scene.statedPasses, scene.autoSet.passes ? preset.autoPassScale : preset.sceneScale));
     if (photon && scene.statedPasses == 0 && !overridden("render.photons"))
-        scene.photon.photons = scene.statedPhotons > 0
-                                   ? uint64_t(scaled(double(scene.statedPhotons)))
-                                   : preset.photons;
+        scene.photon.photons =
+            scene.statedPhotons > 0
+                ? uint64_t(scaled(double(scene.statedPhotons), preset.sceneScale))
+                : preset.photons;
     // A stated k (nonzero) is the estimate's width the scene needs (fire_smoke.toml's smoke catches
     // few photons): kept, so that the final preset is the same estimator with 4× the photons.
     if (photon && !overridden("render.k") && scene.photon.k == 0) scene.photon.k = preset.k;

@@ -150,6 +150,9 @@ FrameFingerprint frameFingerprint(const Scene& scene, const std::string& input,
     m["integrator"] = integrator;
     m["max_depth"] = std::to_string(scene.maxDepth);
     m["photons"] = std::to_string(scene.photon.photons);
+    // Only where it differs, so that the fingerprints of earlier partial files still match.
+    if (scene.photon.photonsOfPass(0) != scene.photon.photons)
+        m["first_pass_photons"] = std::to_string(scene.photon.photonsOfPass(0));
     m["estimate"] = scene.photon.estimate == PhotonEstimate::Beam ? "beam" : "point";
     m["k"] = std::to_string(scene.photon.k);
     m["max_radius"] = std::to_string(scene.photon.maxRadius);
@@ -183,7 +186,7 @@ FrameFingerprint photonFingerprint(const Scene& scene, const std::string& input,
     std::map<std::string, std::string> m;
     m["frame"] = std::to_string(frame);
     m["max_depth"] = std::to_string(scene.maxDepth);
-    m["photons"] = std::to_string(scene.photon.photons);
+    m["photons"] = std::to_string(scene.photon.photonsOfPass(0));  // the saved pass is pass 0
     m["seed"] = std::to_string(scene.settings.seed);
     m["shutter_seconds"] = shutterText(scene);
     m["version"] = MIRAGE_VERSION;

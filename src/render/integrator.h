@@ -134,6 +134,9 @@ std::unique_ptr<Integrator> makeVolPathIntegrator(int maxDepth = 10000);
 enum class PhotonEstimate { Beam, Point };
 struct PhotonIntegratorSettings {
     uint64_t photons = 100000;     // emitted, over all lights
+    // Emitted in the first photon map, the only one of a render not in passes; 0: photons. A
+    // render in passes whose first pass is smaller starts sooner (photon_integrator.cpp).
+    uint64_t firstPassPhotons = 0;
     PhotonEstimate estimate = PhotonEstimate::Beam;
     int k = 0;                     // photons per estimate, ≥ 2; 0: 16 (beam radii), 32 (point)
     float maxRadius = 0.f;         // m; 0: a tenth of the diagonal of the media's bounds
@@ -151,6 +154,9 @@ struct PhotonIntegratorSettings {
     std::shared_ptr<const PhotonPassResult> savedPass;
 
     int kOrDefault() const { return k > 0 ? k : (estimate == PhotonEstimate::Beam ? 16 : 32); }
+    uint64_t photonsOfPass(int pass) const {
+        return pass == 0 && firstPassPhotons > 0 ? firstPassPhotons : photons;
+    }
 };
 
 // Volumetric photon mapping (Jensen & Christensen 1998) with the beam radiance estimate

@@ -32,12 +32,22 @@
 // N^-α; α = 2/3 balances the two, and the mean squared error falls as N^(-2/3) in the passes N.
 // Pass 0 is the one-map render, so a render that is not in passes is unchanged. A later pass
 // does not search its own k nearest photons for its radii: each photon takes the radius of the
-// nearest pass-0 photon (PhotonMap::radiiFrom), times radiusScale(p). The k-nearest search cost
-// as much as tracing the pass's photons on dense smoke (docs/performance.md), and pass 0's radii
-// are as good a bandwidth for a pass of as many photons; being independent of pass p's photons,
-// they make each pass a kernel estimate of fixed bandwidth, whose blur the alpha rule shrinks
-// as before. The point estimate and the surface maps are averaged over passes too but keep
-// their k-nearest radii (and the point estimate its pass-0 march step): their noise falls with
+// nearest photon of the first full pass (PhotonMap::radiiFrom), times radiusScale(p). The
+// k-nearest search cost as much as tracing the pass's photons on dense smoke
+// (docs/performance.md), and that pass's radii are as good a bandwidth for a pass of as many
+// photons; being independent of pass p's photons, they make each pass a kernel estimate of
+// fixed bandwidth, whose blur the alpha rule shrinks as before.
+//
+// The first pass may trace fewer photons than the others ([render] first_pass_photons: `auto`
+// makes it a fifth on dense smoke, so that a render of one pass costs about half as much for a
+// little more error, docs/performance.md). It then searches its own k nearest photons, and so
+// does pass 1, the first full pass, whose radii the passes after it read: a long render keeps
+// the bandwidth it had. (Radii read off the sparser first map, scaled by the cube root of the
+// photon counts, measured the same error at 16 passes within the seeds' spread, but they are
+// smoothed over 5k of a full pass's photons.)
+//
+// The point estimate and the surface maps are averaged over passes too but keep their
+// k-nearest radii (and the point estimate its pass-0 march step): their noise falls with
 // the passes, their blur does not.
 //
 // Transmittance from the camera to each photon is the deterministic march of
@@ -123,7 +133,7 @@ void addPassStats(const PhotonPassStats& pass, PhotonPassStats* sum) {
 PhotonPassSettings passSettings(const PhotonIntegratorSettings& s, const RenderScene& scene,
                                 int p) {
     PhotonPassSettings pass;
-    pass.photons = s.photons;
+    pass.photons = s.photonsOfPass(p);
     pass.seed = hashCombine(s.seed, 0x70686f746f6eull);  // "photon"
     if (p > 0) pass.seed = hashCombine(pass.seed, uint64_t(p));
     pass.maxBounces = s.maxBounces;
@@ -262,11 +272,13 @@ private:
         mRadiusScale = radiusScale(p);
 
         // The maps (kd-trees, per-photon XYZ and phase), then the estimate's own structures
-        // (the beam estimator reads the volume map: dropped first). Pass 0's volume map stays
-        // as the later passes' source of radii.
+        // (the beam estimator reads the volume map: dropped first). The first full pass's
+        // volume map stays as the later passes' source of radii.
         mBeam.reset();
-        if (p > 0 && !mFirstPhotons && mSettings.estimate == PhotonEstimate::Beam)
-            mFirstPhotons = std::move(mPhotons);
+        if (mPhotonsAreSource) {
+            mSourcePhotons = std::move(mPhotons);
+            mPhotonsAreSource = false;
+        }
         auto t0 = Clock::now();
         mGlobal = std::make_unique<SurfacePhotons>(std::move(lists.surfaceGlobal));
         mCaustic = std::make_unique<SurfacePhotons>(std::move(lists.surfaceCaustic));
@@ -278,10 +290,13 @@ private:
         if (mSettings.estimate == PhotonEstimate::Beam) {
             t0 = Clock::now();
             std::vector<float> radii =
-                mFirstPhotons
-                    ? mPhotons->map().radiiFrom(mFirstPhotons->map(), mFirstRadii, mMaxRadius)
+                mSourcePhotons
+                    ? mPhotons->map().radiiFrom(mSourcePhotons->map(), mSourceRadii, mMaxRadius)
                     : mPhotons->map().photonRadii(k, minRadius, mMaxRadius);
-            if (p == 0) mFirstRadii = radii;
+            if (!mSourcePhotons && mSettings.photonsOfPass(p) == mSettings.photons) {
+                mSourceRadii = radii;
+                mPhotonsAreSource = true;
+            }
             for (float& r : radii) r *= mRadiusScale;
             mStats.photonRadiiSeconds += secondsSince(t0);
             t0 = Clock::now();
@@ -451,9 +466,11 @@ private:
     std::vector<int> mSlotOfLight;  // each light's group slot (Photon::light → film/aov.h)
     PhotonPassStats mPassStats;     // summed over passes
     std::unique_ptr<VolumePhotons> mPhotons;
-    // Pass 0's volume map and beam radii (unscaled), the later passes' source of radii.
-    std::unique_ptr<VolumePhotons> mFirstPhotons;
-    std::vector<float> mFirstRadii;
+    // The first full pass's volume map and beam radii (unscaled), the later passes' source of
+    // radii; mPhotons is that map until the next pass (mPhotonsAreSource).
+    std::unique_ptr<VolumePhotons> mSourcePhotons;
+    std::vector<float> mSourceRadii;
+    bool mPhotonsAreSource = false;
     std::unique_ptr<BeamEstimator> mBeam;
     std::unique_ptr<SurfacePhotons> mGlobal, mCaustic;  // surface photon maps
     float mMaxRadius = 0.f, mStep = 0.f;

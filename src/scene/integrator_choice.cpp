@@ -86,6 +86,8 @@ constexpr float kDenseAlbedo = 0.9f;
 constexpr float kDenseOpticalDepth = 10.f;
 constexpr int kProgressivePassSpp = 1;
 constexpr int kProgressiveK = 32;
+// The first pass traces photons / this (docs/performance.md, "A smaller first pass").
+constexpr uint64_t kProgressiveFirstPassShare = 5;
 
 // Rule 4's scene: its reason, or "" when the scene is not one.
 std::string denseBrightSmoke(const RenderScene& render) {
@@ -138,6 +140,7 @@ void resolveAutoIntegrator(Scene* scene) {
     }
     if (set.passSpp) scene->passes.sppPerPass = PassSettings{}.sppPerPass;
     if (set.k) scene->photon.k = 0;
+    if (set.firstPassPhotons) scene->photon.firstPassPhotons = 0;
     set = {};
     if (scene->integrator != "auto") return;
     IntegratorChoice choice = chooseIntegrator(*scene);
@@ -156,6 +159,11 @@ void resolveAutoIntegrator(Scene* scene) {
         scene->photon.k = kProgressiveK;
         set.k = true;
     }
+    if (!scene->statedFirstPassPhotons) {
+        scene->photon.firstPassPhotons =
+            std::max<uint64_t>(1, scene->photon.photons / kProgressiveFirstPassShare);
+        set.firstPassPhotons = true;
+    }
     if (scene->statedPasses == 0) {
         // film.spp as passes of pass_spp samples, a photon map each; --spp, --passes, the
         // time and noise targets and --quality treat them as passes the scene stated.
@@ -164,10 +172,16 @@ void resolveAutoIntegrator(Scene* scene) {
         scene->passes.maxPasses = scene->statedPasses;
         set.passes = true;
     }
-    char why[160];
-    std::snprintf(why, sizeof why, "; passes of %d spp, a photon map of %llu photons each, k %d",
-                  scene->passes.sppPerPass, (unsigned long long)scene->photon.photons,
-                  scene->photon.kOrDefault());
+    char why[200];
+    std::snprintf(why, sizeof why, "; passes of %d spp, a photon map of %llu photons each",
+                  scene->passes.sppPerPass, (unsigned long long)scene->photon.photons);
+    scene->integratorWhy += why;
+    const uint64_t first = scene->photon.photonsOfPass(0);
+    if (first != scene->photon.photons) {
+        std::snprintf(why, sizeof why, " (the first %llu)", (unsigned long long)first);
+        scene->integratorWhy += why;
+    }
+    std::snprintf(why, sizeof why, ", k %d", scene->photon.kOrDefault());
     scene->integratorWhy += why;
 }
 

@@ -86,8 +86,10 @@ struct Scene {
     // What `auto` set for rule 4 (integrator_choice.cpp) where the scene left it open, undone
     // when an integrator is named: statedPasses made from film.spp, pass_spp, the estimate's k.
     struct AutoProgressive {
-        bool passes = false, passSpp = false, k = false;
+        bool passes = false, passSpp = false, k = false, firstPassPhotons = false;
     } autoSet;
+    // [render] first_pass_photons was stated (0 included: as many as the other passes).
+    bool statedFirstPassPhotons = false;
     int majorantResolution = 64;
     ShutterFrames shutter;  // [camera] shutter (frames); render.camera holds it in seconds
     std::vector<VolumeRecord> volumes;

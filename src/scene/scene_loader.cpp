@@ -246,6 +246,9 @@ static void readSettings(const TableReader& top,
         scene.majorantResolution = int(r->getInt("majorant_resolution", 64, 1, 1024));
         scene.photon.photons = uint64_t(r->getInt("photons", 100000, 0, int64_t(1) << 40));
         if (r->has("photons")) scene.statedPhotons = scene.photon.photons;
+        scene.photon.firstPassPhotons =
+            uint64_t(r->getInt("first_pass_photons", 0, 0, int64_t(1) << 40));
+        scene.statedFirstPassPhotons = r->has("first_pass_photons");
         std::string estimate = r->getString("estimate", "beam");
         if (estimate != "beam" && estimate != "point")
             r->fail("estimate",

@@ -67,10 +67,13 @@ TEST(IntegratorChoice, DenseBrightSmokeGetsProgressivePhotonPasses) {
     EXPECT_EQ(dense.statedPasses, 10);
     EXPECT_EQ(dense.passes.sppPerPass, 1);
     EXPECT_EQ(dense.photon.k, 32);
-    Scene own = load(boxScene(dir, "own", 0.25f, 9.75f, "[render]\npass_spp = 4\nk = 8\n", 10));
+    EXPECT_EQ(dense.photon.firstPassPhotons, 20000u);  // a fifth of the default 10⁵
+    Scene own = load(boxScene(dir, "own", 0.25f, 9.75f,
+                              "[render]\npass_spp = 4\nk = 8\nfirst_pass_photons = 0\n", 10));
     EXPECT_EQ(own.passes.maxPasses, 3);  // 10 samples in passes of 4
     EXPECT_EQ(own.passes.sppPerPass, 4);
     EXPECT_EQ(own.photon.k, 8);
+    EXPECT_EQ(own.photon.firstPassPhotons, 0u);
     EXPECT_EQ(load(boxScene(dir, "thinner", 0.24f, 4.5f)).integrator, "volpath");  // depth 9.5
     EXPECT_EQ(load(boxScene(dir, "darker", 2.f, 16.f)).integrator, "volpath");     // albedo 0.89
     Scene floor = load(boxScene(dir, "floor", 0.25f, 9.75f,
@@ -87,6 +90,7 @@ TEST(IntegratorChoice, DenseBrightSmokeGetsProgressivePhotonPasses) {
     EXPECT_EQ(named.passes.maxPasses, 0);
     EXPECT_EQ(named.passes.sppPerPass, 4);
     EXPECT_EQ(named.photon.k, 0);
+    EXPECT_EQ(named.photon.firstPassPhotons, 0u);
     Scene chosen = load(boxScene(dir, "rechosen", 0.25f, 9.75f, "", 10));
     chosen.integrator = "volpath";  // what --integrator does after loading
     resolveAutoIntegrator(&chosen);
@@ -94,6 +98,7 @@ TEST(IntegratorChoice, DenseBrightSmokeGetsProgressivePhotonPasses) {
     EXPECT_EQ(chosen.statedPasses, 0);
     EXPECT_EQ(chosen.passes.sppPerPass, 4);
     EXPECT_EQ(chosen.photon.k, 0);
+    EXPECT_EQ(chosen.photon.firstPassPhotons, 0u);
 }
 
 // What a user sees: `mirage render` of the dense box renders film.spp as passes (EXR metadata),
@@ -113,17 +118,18 @@ TEST(IntegratorChoice, DenseSmokeRendersItsSamplesAsPhotonPasses) {
     EXPECT_EQ(render("--spp 16", "more.exr")["mirage:passes"], "16");
     // --quality scales the passes (draft 1/16, final 4) and keeps each map's photons (4000
     // stated here, 10⁵ unstated): the preset's 10⁶ or 4·10⁶ photons are a one-map render's.
+    // The first pass traces a fifth of them.
     std::map<std::string, std::string> draft = render("--quality draft", "draft.exr");
     EXPECT_EQ(draft["mirage:passes"], "1");
-    EXPECT_EQ(draft["mirage:photons_traced"], "4000");
+    EXPECT_EQ(draft["mirage:photons_traced"], "800");
     std::map<std::string, std::string> final = render("--quality final", "final.exr");
     EXPECT_EQ(final["mirage:passes"], "32");
-    EXPECT_EQ(final["mirage:photons_traced"], std::to_string(32 * 4000));
+    EXPECT_EQ(final["mirage:photons_traced"], std::to_string(800 + 31 * 4000));
     std::map<std::string, std::string> path_traced = render("--integrator volpath", "vp.exr");
     EXPECT_EQ(path_traced.count("mirage:passes"), 0u);
     ASSERT_EQ(0, test::runMirage("info '" + path + "'", &out)) << out;
     EXPECT_NE(out.find("8 passes of 1 spp (a photon map each)"), std::string::npos) << out;
-    EXPECT_NE(out.find("passes of 1 spp, a photon map of 4000 photons each, k 32"),
+    EXPECT_NE(out.find("passes of 1 spp, a photon map of 4000 photons each (the first 800), k 32"),
               std::string::npos)
         << out;
     EXPECT_NE(out.find("integrator: auto: dense, bright, grey smoke"), std::string::npos) << out;

@@ -52,7 +52,7 @@ void applyFrameSettings(Scene& scene, const std::string& input, const FrameSetti
 // and final are the best measured (relMSE 0.036 and 0.011). These hold for a scene that states
 // no samples; one that does has them scaled by the scene scale (render_frame.h). Auto's
 // progressive passes on dense smoke, measured on the race scene's 16 passes of one sample
-// (relMSE 0.011): 1 pass 0.10 (draft), 64 passes 0.0054 (final, the best measured).
+// (relMSE 0.011): 1 pass 0.11 (draft), 64 passes 0.0051 (final, the best measured).
 // {name, spp, photons, k, path spp, scene scale, auto pass scale}.
 const std::vector<QualityPreset>& qualityPresets() {
     static const std::vector<QualityPreset> presets = {

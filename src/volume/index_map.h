@@ -14,13 +14,19 @@
 
 namespace mirage {
 
+// Whether a row-major 3×3 matrix is diagonal: each axis then maps on its own.
+template <typename T>
+bool isDiagonal3x3(const T* m) {
+    return m[1] == T(0) && m[2] == T(0) && m[3] == T(0) && m[5] == T(0) && m[6] == T(0) &&
+           m[7] == T(0);
+}
+
 class IndexMap {
 public:
     IndexMap() = default;
     explicit IndexMap(const nanovdb::Map& map) : mMap(&map) {
         const float* m = map.mInvMatF;
-        mDiagonal =
-            m[1] == 0.f && m[2] == 0.f && m[3] == 0.f && m[5] == 0.f && m[6] == 0.f && m[7] == 0.f;
+        mDiagonal = isDiagonal3x3(m);
         for (int a = 0; a < 3; ++a) {
             mScale[a] = m[4 * a];
             mOffset[a] = map.mVecF[a];

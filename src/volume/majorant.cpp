@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "volume/index_map.h"
 
 namespace mirage {
 
@@ -218,11 +219,7 @@ public:
     }
 
 private:
-    bool axisAligned() const {
-        const double* m = mGrid.map().mMatD;
-        return m[1] == 0.0 && m[2] == 0.0 && m[3] == 0.0 && m[5] == 0.0 && m[6] == 0.0 &&
-               m[7] == 0.0;
-    }
+    bool axisAligned() const { return isDiagonal3x3(mGrid.map().mMatD); }
     // The world coordinate on axis a of index coordinate i on that axis (axis-aligned map).
     double axisToWorld(int a, double i) const {
         nanovdb::Vec3d p(0.0);

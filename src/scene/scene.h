@@ -84,7 +84,8 @@ struct Scene {
     // [render] pass_spp as stated (0: not stated).
     int statedPassSpp = 0;
     // What `auto` set for rule 4 (integrator_choice.cpp) where the scene left it open, undone
-    // when an integrator is named: statedPasses made from film.spp, pass_spp, the estimate's k.
+    // when an integrator is named: statedPasses made from film.spp, pass_spp, the estimate's k,
+    // the first pass's photons.
     struct AutoProgressive {
         bool passes = false, passSpp = false, k = false, firstPassPhotons = false;
     } autoSet;

@@ -355,6 +355,15 @@ float Medium::sigmaSAt(const Vec3& pAtTime, Context& ctx, float lambdaNm) const 
     float sigmaS = 0.f;
     if (!inRegion(pAtTime, ctx)) return 0.f;
     const Vec3 p = advected(ctx, pAtTime);
+    if (ctx.mGrey) {
+        // The grey path's coefficients (set once in the context), as evalGridsAt reads them:
+        // no spectrum or component law to evaluate per lookup (the photon estimates call this
+        // once per photon they gather).
+        for (size_t i = 0; i < mShader.components.size(); ++i)
+            if (ctx.mPath[i].sigmaS[0] > 0.f)
+                sigmaS += ctx.mPath[i].sigmaS[0] * gridValue(ctx, int(i), p);
+        return sigmaS;
+    }
     for (size_t i = 0; i < mShader.components.size(); ++i) {
         const MediumComponent& comp = mShader.components[i];
         // A component that does not scatter at λ needs no grid lookup.

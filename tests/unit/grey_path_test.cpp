@@ -68,6 +68,9 @@ TEST(GreyPath, SameCoefficientsAsTheSpectralPath) {
             ASSERT_FLOAT_EQ(a.sigmaS[i], b.sigmaS[i]);
             ASSERT_FLOAT_EQ(a.sigmaSComponent[1][i], b.sigmaSComponent[1][i]);
         }
+        // The photon estimates' σs at one wavelength (Medium::sigmaSAt) takes the grey path too.
+        ASSERT_FLOAT_EQ(grey->sigmaSAt(p, cg, w.lambda[0]), spectral->sigmaSAt(p, cs, w.lambda[0]));
+        ASSERT_FLOAT_EQ(grey->sigmaSAt(p, cg, w.lambda[0]), a.sigmaS[0]);
         EXPECT_EQ(cg.wavelengths().lambda[0], w.lambda[0]);  // the path's λ still recorded
     }
 }

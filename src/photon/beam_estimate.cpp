@@ -153,8 +153,9 @@ Vec3 BeamEstimator::estimate(const Ray& ray, float tMax, const RayOpticalDepth& 
     if (depth.empty()) return Vec3(0.f);
     // Not clipped to the span of `depth`: the σs ratio decides where a disc counts. One whose
     // photon projects where nothing scatters (outside every medium's box or region) adds
-    // nothing; T is held at its end values beyond the span.
-    query(ray, 0.f, tMax, hits);
+    // nothing; T is held at its end values beyond the span. Clipped where the ray turns
+    // opaque: what lies beyond is seen through T < e^−30.
+    query(ray, 0.f, std::min(tMax, depth.reach()), hits);
     ScatteringProbe& probe = mProbes->perThread.local();
     probe.setTimeOffset(depth.timeOffset());  // σs along the ray at the ray's time
     const Vec3 wo = -ray.d;

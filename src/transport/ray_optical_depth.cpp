@@ -53,7 +53,6 @@ RayOpticalDepth::RayOpticalDepth(const std::vector<const Medium*>& media, float 
     }
     mSpectral = std::move(linear);
     mSpectral.insert(mSpectral.end(), nonLinear.begin(), nonLinear.end());
-    mIntegrand.resize(size_t(mChannels));
 }
 
 void RayOpticalDepth::march(const Ray& ray, float tMax) {
@@ -83,45 +82,67 @@ void RayOpticalDepth::march(const Ray& ray, float tMax) {
     }
     if (mSpans.empty() || !(t0 < t1)) {
         mT0 = mT1 = 0.f;
+        mOpaque = false;
         return;
     }
     mT0 = t0;
     mT1 = t1;
+    mOpaque = false;
     float nodes = std::ceil((t1 - t0) / h);
     mNodes = !(nodes >= 1.f) ? 1 : (nodes > float(kMaxNodes) ? kMaxNodes : int(nodes));
     mH = (t1 - t0) / float(mNodes);
 
     const size_t C = size_t(mChannels);
-    mTau.resize((size_t(mNodes) + 1) * C);
-    std::fill(mTau.begin(), mTau.begin() + C, 0.f);
+    mTau.assign((size_t(mNodes) + 1) * C, 0.f);
+    // Each medium adds its intervals' integrals to mTau[j + 1] (span order, as the sum at a
+    // node always was), its invariants held outside the loop over nodes; then one running sum
+    // turns the increments into τ. A medium stops once its own grey τ passes kOpaqueDepth: the
+    // others only add to it, so the sum is opaque there too.
+    for (const Span& s : mSpans) addSpan(ray, s);
     for (int j = 0; j < mNodes; ++j) {
-        float a = t0 + float(j) * mH;
-        float b = j + 1 == mNodes ? t1 : t0 + float(j + 1) * mH;
-        std::fill(mIntegrand.begin(), mIntegrand.end(), 0.f);
-        for (const Span& s : mSpans) {
-            // Midpoint rule on the part of the interval inside this medium's box.
-            float lo = std::max(a, s.t0), hi = std::min(b, s.t1);
-            if (!(hi > lo)) continue;
-            MediumInfo& info = mMedia[size_t(s.medium)];
-            Vec3 p = s.objectRay.at(0.5f * (lo + hi));
-            const Medium& medium = *info.medium;
-            const bool convex = !medium.region() || medium.region()->convex();
-            if ((!convex || !medium.excluded().empty()) &&
-                !medium.inRegionWorld(ray.at(0.5f * (lo + hi))))
-                continue;
-            const auto& grids = info.medium->grids();
-            const Vec3 q = medium.lookupPoint(info.context, p);  // p unless blurred
-            for (const Term& term : info.terms) {
-                size_t g = size_t(term.grid);
-                float v = term.grid < 0 ? 1.f : grids[g].sample(info.accessors[g], q);
-                float x = term.scale * v;
-                if (term.exponent != 1.f) x = x > 0.f ? std::pow(x, term.exponent) : 0.f;
-                mIntegrand[size_t(term.channel)] += (hi - lo) * x;
-            }
-        }
         const float* prev = &mTau[size_t(j) * C];
         float* next = &mTau[size_t(j + 1) * C];
-        for (size_t c = 0; c < C; ++c) next[c] = prev[c] + mIntegrand[c];
+        for (size_t c = 0; c < C; ++c) next[c] += prev[c];
+        if (next[0] > kOpaqueDepth && j + 1 < mNodes) {
+            mNodes = j + 1;
+            mT1 = t0 + float(j + 1) * mH;
+            mOpaque = true;
+            break;
+        }
+    }
+}
+
+void RayOpticalDepth::addSpan(const Ray& ray, const Span& s) {
+    MediumInfo& info = mMedia[size_t(s.medium)];
+    const Medium& medium = *info.medium;
+    const auto& grids = medium.grids();
+    const bool convex = !medium.region() || medium.region()->convex();
+    const bool testRegion = !convex || !medium.excluded().empty();
+    const size_t C = size_t(mChannels);
+    // The nodes whose intervals overlap the span.
+    const int jBegin = std::max(0, int(std::floor((s.t0 - mT0) / mH)) - 1);
+    const int jEnd = std::min(mNodes, int(std::ceil((s.t1 - mT0) / mH)) + 1);
+    float greyTau = 0.f;  // this medium's own, a lower bound on the ray's
+    for (int j = jBegin; j < jEnd; ++j) {
+        const float a = mT0 + float(j) * mH;
+        const float b = j + 1 == mNodes ? mT1 : mT0 + float(j + 1) * mH;
+        // Midpoint rule on the part of the interval inside this medium's box.
+        const float lo = std::max(a, s.t0), hi = std::min(b, s.t1);
+        if (!(hi > lo)) continue;
+        const float mid = 0.5f * (lo + hi);
+        if (testRegion && !medium.inRegionWorld(ray.at(mid))) continue;
+        const Vec3 q = medium.lookupPoint(info.context, s.objectRay.at(mid));  // p unless blurred
+        float* inc = &mTau[size_t(j + 1) * C];
+        for (const Term& term : info.terms) {
+            const size_t g = size_t(term.grid);
+            const float v = term.grid < 0 ? 1.f : grids[g].sample(info.accessors[g], q);
+            float x = term.scale * v;
+            if (term.exponent != 1.f) x = x > 0.f ? std::pow(x, term.exponent) : 0.f;
+            const float add = (hi - lo) * x;
+            inc[term.channel] += add;
+            if (term.channel == 0) greyTau += add;
+        }
+        if (greyTau > kOpaqueDepth) break;
     }
 }
 

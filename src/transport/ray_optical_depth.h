@@ -43,6 +43,11 @@ namespace mirage {
 class RayOpticalDepth {
 public:
     static constexpr int kMaxNodes = 8192;
+    // The grey optical depth at which the march stops: T = e^−30 ≈ 10^−13 there, so nothing
+    // beyond can add to a photon estimate more than 10^−13 of what it would add unattenuated,
+    // far below any estimate's noise. Only the grey channel is tested: the spectral ones only
+    // add to τ, so the grey τ is a lower bound at every wavelength.
+    static constexpr float kOpaqueDepth = 30.f;
 
     explicit RayOpticalDepth(const std::vector<const Medium*>& media, float stepVoxels = 0.5f);
 
@@ -61,6 +66,9 @@ public:
     float tEnd() const { return mT1; }
     bool empty() const { return !(mT0 < mT1); }
     float step() const { return mH; }
+    // The ray parameter beyond which the last ray is opaque (T < e^−kOpaqueDepth at every
+    // wavelength): where the march stopped, or infinity if it crossed every medium.
+    float reach() const { return mOpaque ? mT1 : kInfinity; }
     // True when every component is grey: T does not depend on λ.
     bool grey() const { return mSpectral.empty(); }
 
@@ -99,6 +107,7 @@ private:
     // The last march: nodes at mT0 + j·mH, j = 0..mNodes, τ per channel per node.
     float mT0 = 0.f, mT1 = 0.f, mH = 1.f;
     int mNodes = 0;
+    bool mOpaque = false;     // the march stopped at kOpaqueDepth, before the media's far side
     std::vector<float> mTau;  // (mNodes + 1) × mChannels
     // Per medium crossed by the last ray: its object-space ray and span.
     struct Span {
@@ -107,7 +116,8 @@ private:
         float t0, t1;
     };
     std::vector<Span> mSpans;
-    std::vector<float> mIntegrand;  // scratch, one value per channel
+    // Adds span s's integral over each node interval to the increments in mTau.
+    void addSpan(const Ray& ray, const Span& s);
 };
 
 }  // namespace mirage

@@ -72,6 +72,16 @@ float volume(const Bounds3& b) {
     return e.x * e.y * e.z;
 }
 
+// The sharpest field a grid holds: each voxel 0 or 1 at random, so the density jumps by 1
+// across one voxel's trilinear ramp, in every direction.
+float binarySmoke(int i, int j, int k) {
+    uint32_t h = uint32_t(i) * 73856093u ^ uint32_t(j) * 19349663u ^ uint32_t(k) * 83492791u;
+    h ^= h >> 13;
+    h *= 0x5bd1e995u;
+    h ^= h >> 15;
+    return (h & 1u) ? 1.f : 0.f;
+}
+
 }  // namespace
 
 TEST(RayOpticalDepth, MatchesQuadratureForGreyAndSpectralComponents) {
@@ -110,6 +120,31 @@ TEST(RayOpticalDepth, MatchesQuadratureForGreyAndSpectralComponents) {
     depth.march(Ray{Vec3(5, 5, 5), Vec3(0, 1, 0), kInfinity}, kInfinity);
     EXPECT_TRUE(depth.empty());
     EXPECT_EQ(depth.transmittance(10.f, 500.f), 1.f);
+}
+
+TEST(RayOpticalDepth, StopsWhereTheRayTurnsOpaque) {
+    // Dense grey smoke: the march stops once τ passes kOpaqueDepth, and the beam estimate clips
+    // its query there (reach()); T up to that point is the full march's.
+    auto m = test::gridMedium([](int, int, int) { return 1.f; }, 0, 31, kH, 100.f, 900.f);
+    RayOpticalDepth depth({m.get()});
+    const Ray ray{Vec3(0.5f, 0.5f, -1.f), Vec3(0, 0, 1), kInfinity};
+    depth.march(ray, kInfinity);
+    ASSERT_FALSE(depth.empty());
+    const float entry = depth.tBegin();
+    // σt = 1000/m: τ = 30 at 3 cm into the box; the march stops within one step beyond.
+    EXPECT_LT(depth.reach(), entry + 0.03f + 2.f * depth.step());
+    EXPECT_GT(depth.reach(), entry + 0.03f - 1e-4f);
+    const double tau =
+        test::opticalDepth(m->grids()[0], ray.at(entry), ray.at(entry + 0.04f), 1000.0);
+    EXPECT_NEAR(-std::log(depth.transmittance(entry + 0.04f, 550.f)), tau, 1e-3 * tau);
+    EXPECT_LT(tau, double(RayOpticalDepth::kOpaqueDepth));
+    EXPECT_LT(depth.transmittance(depth.reach(), 550.f),
+              std::exp(-RayOpticalDepth::kOpaqueDepth) * 1.01f);
+    // Thin smoke is marched to the far side: nothing is opaque.
+    auto thin = test::gridMedium([](int, int, int) { return 1.f; }, 0, 31, kH, 1.f, 9.f);
+    RayOpticalDepth thinDepth({thin.get()});
+    thinDepth.march(ray, kInfinity);
+    EXPECT_EQ(thinDepth.reach(), kInfinity);
 }
 
 TEST(BeamEstimate, QueryEqualsBruteForce) {
@@ -476,8 +511,8 @@ TEST(RayOpticalDepth, MarchBiasOnSharpSmokeIsBelowThePhotonNoise) {
     // The photon estimates take T from a midpoint-rule march (ray_optical_depth.h), a bias that
     // does not fall with more photons. It must stay far below the estimate's noise at every
     // quality preset; the smallest is the final preset's, relMSE 0.011 on the preset scene
-    // (docs/performance.md, "Quality presets"): ~10 % RMS per pixel. The march step does not depend on the
-    // preset, so one measurement serves all three.
+    // (docs/performance.md, "Quality presets"): ~10 % RMS per pixel. The march step does not depend
+    // on the preset, so one measurement serves all three.
     //
     // The sharpest field a grid holds: binary smoke, each voxel of a 32³ grid 0 or 1 at random
     // (density jumps by 1 across one voxel's trilinear ramp, in every direction), at σt = 4/m
@@ -485,16 +520,9 @@ TEST(RayOpticalDepth, MarchBiasOnSharpSmokeIsBelowThePhotonNoise) {
     // Per random ray, what an estimate integrates is ∫ T(t) σs L dt; with L uniform that is
     // I = ∫ T(t) σt(t) dt, by a fine quadrature of the trilinear field with the march's T and
     // with the exact T. The relative error of I is the pixel's bias from the march.
-    auto binary = [](int i, int j, int k) {
-        uint32_t h = uint32_t(i) * 73856093u ^ uint32_t(j) * 19349663u ^ uint32_t(k) * 83492791u;
-        h ^= h >> 13;
-        h *= 0x5bd1e995u;
-        h ^= h >> 15;
-        return (h & 1u) ? 1.f : 0.f;
-    };
     const double finalPresetNoise = std::sqrt(0.011);
     for (float sigmaT : {4.f, 40.f}) {
-        auto m = test::gridMedium(binary, 0, 31, kH, 0.1f * sigmaT, 0.9f * sigmaT, 0.f);
+        auto m = test::gridMedium(binarySmoke, 0, 31, kH, 0.1f * sigmaT, 0.9f * sigmaT, 0.f);
         auto acc = m->grids()[0].accessor();
         RayOpticalDepth depth({m.get()});
         double sum = 0, sum2 = 0, worst = 0;

@@ -3,10 +3,15 @@
 
 Reads a CSV with columns renderer, spp, seconds, relmse (one row per render, one renderer named
 `cycles`). For every Cycles row, each other renderer's time to reach that relMSE is read off
-its polyline of log(relMSE) against log(seconds) (pipeline/equal_error.py's interpolation; a
-target beyond a renderer's measured range is extrapolated from its last two points, marked ~).
+its polyline of log(relMSE) against log(seconds) (pipeline/equal_error.py's interpolation).
+Outside a renderer's measured range:
+- an error below its best render's is extrapolated from its last two points, marked ~;
+- an error above its worst render's (its cheapest render is already better than that) is
+  given as a bound, ≤ that render's time, which is what a user can get; the straight-line
+  extrapolation to a cheaper render that does not exist follows it, marked ~.
 
 Usage: race_ratio.py race.csv   → one line per Cycles row and renderer.
+       race_ratio.py --self-test → checks the three cases on a made-up race.
 """
 import csv
 import math
@@ -23,25 +28,60 @@ def extrapolate(pts, target):
     return math.exp(math.log(t0) + slope * (math.log(target) - math.log(e0)))
 
 
-def main():
-    if len(sys.argv) != 2:
-        sys.exit("usage: race_ratio.py race.csv")
-    with open(sys.argv[1], newline="") as f:
-        rows = list(csv.DictReader(f))
+def ratio_lines(rows):
     curves = {}
     for r in rows:
         curves.setdefault(r["renderer"], []).append((float(r["seconds"]), float(r["relmse"])))
     cycles = sorted(curves.pop("cycles", []))
+    lines = []
     for tc, ec in cycles:
         for name, pts in sorted(curves.items()):
             pts = sorted(pts)
-            inside = min(e for _, e in pts) <= ec <= max(e for _, e in pts)
-            if not inside and len(pts) < 2:
-                print(f"  at Cycles' relMSE {ec:.4g}: {name}: one measurement, no curve to read it off")
+            lo, hi = min(e for _, e in pts), max(e for _, e in pts)
+            head = f"  at Cycles' relMSE {ec:.4g} ({tc:.2f} s): {name}"
+            if lo <= ec <= hi:
+                t = time_at(pts, ec)
+                lines.append(f"{head} {t:.2f} s, ratio {name} / cycles {t / tc:.2f}")
                 continue
-            t = time_at(pts, ec) if inside else extrapolate(pts, ec)
-            print(f"  at Cycles' relMSE {ec:.4g} ({tc:.2f} s): {name} {'' if inside else '~'}"
-                  f"{t:.2f} s, ratio {name} / cycles {'' if inside else '~'}{t / tc:.2f}")
+            if len(pts) < 2:
+                lines.append(f"{head}: one measurement, no curve to read it off")
+                continue
+            t = extrapolate(pts, ec)
+            if ec > hi:
+                cheapest, err = min(pts)
+                lines.append(f"{head} <={cheapest:.2f} s (its cheapest render, relMSE {err:.4g}, "
+                             f"is already below), ratio {name} / cycles <={cheapest / tc:.2f}; "
+                             f"extrapolated ~{t:.2f} s, ~{t / tc:.2f}")
+            else:
+                lines.append(f"{head} ~{t:.2f} s, ratio {name} / cycles ~{t / tc:.2f}")
+    return lines
+
+
+def self_test():
+    rows = [{"renderer": n, "seconds": str(t), "relmse": str(e)} for n, t, e in [
+        ("cycles", 1.0, 1.0), ("cycles", 4.0, 0.25), ("cycles", 16.0, 0.0625),
+        ("mirage", 0.5, 0.5), ("mirage", 2.0, 0.125)]]
+    lines = ratio_lines(rows)
+    assert len(lines) == 3, lines
+    # Above Mirage's worst error: its cheapest render bounds the time.
+    assert "<=0.50 s" in lines[0] and "<=0.50;" in lines[0] and "~0.25 s" in lines[0], lines[0]
+    # Inside: log-log interpolation (error ∝ 1/t here, so 0.25 at 1 s).
+    assert lines[1].endswith("mirage 1.00 s, ratio mirage / cycles 0.25"), lines[1]
+    # Below its best error: extrapolated, marked ~.
+    assert lines[2].endswith("~4.00 s, ratio mirage / cycles ~0.25"), lines[2]
+    print("race_ratio self-test: ok")
+
+
+def main():
+    if sys.argv[1:] == ["--self-test"]:
+        self_test()
+        return
+    if len(sys.argv) != 2:
+        sys.exit("usage: race_ratio.py race.csv | --self-test")
+    with open(sys.argv[1], newline="") as f:
+        rows = list(csv.DictReader(f))
+    for line in ratio_lines(rows):
+        print(line)
 
 
 if __name__ == "__main__":

@@ -59,6 +59,7 @@ void RayOpticalDepth::march(const Ray& ray, float tMax) {
     MIRAGE_DCHECK(std::abs(length(ray.d) - 1.f) < 1e-3f);
     mSpans.clear();
     mNodes = 0;
+    mOpaque = false;
     float t0 = kInfinity, t1 = -kInfinity, h = kInfinity;
     for (size_t i = 0; i < mMedia.size(); ++i) {
         const Medium& m = *mMedia[i].medium;
@@ -82,12 +83,10 @@ void RayOpticalDepth::march(const Ray& ray, float tMax) {
     }
     if (mSpans.empty() || !(t0 < t1)) {
         mT0 = mT1 = 0.f;
-        mOpaque = false;
         return;
     }
     mT0 = t0;
     mT1 = t1;
-    mOpaque = false;
     float nodes = std::ceil((t1 - t0) / h);
     mNodes = !(nodes >= 1.f) ? 1 : (nodes > float(kMaxNodes) ? kMaxNodes : int(nodes));
     mH = (t1 - t0) / float(mNodes);

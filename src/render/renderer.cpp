@@ -156,7 +156,9 @@ Film render(const RenderScene& scene, Integrator& integrator, const RenderSettin
             uint64_t before = ts.tracking.lookups, cappedBefore = ts.tracking.cappedFlights;
             uint64_t aboveBefore = ts.tracking.aboveMajorant;
             for (int tile = r.begin(); tile < r.end(); ++tile) {
-                if (done[tile].load(std::memory_order_relaxed) || interruptRequested()) continue;
+                if (done[tile].load(std::memory_order_relaxed) || interruptRequested() ||
+                    (checkpoint && std::chrono::steady_clock::now() >= checkpoint->deadline))
+                    continue;
                 samples += renderTile(scene, integrator, s, pass, camera, achromatic, tile, ts,
                                       &film, deep);
                 done[tile].store(1, std::memory_order_release);

@@ -5,6 +5,7 @@
 // region of the frame render the same bits as those pixels of the whole frame (a farm's tiles).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -90,6 +91,9 @@ struct TileCheckpoint {
     std::function<void(const Film&, const std::vector<uint8_t>& done)> tileFinished;
     // Test hook: raise the interrupt flag (as SIGINT) after this many tiles finish in this run.
     int64_t stopAfterTiles = -1;
+    // No tile starts after this time (a time limit's end, render/passes.h); the tiles left are
+    // undone, as after an interrupt. Default: none.
+    std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
 };
 
 // One pass of a render in passes (render/passes.h): the samples of each pixel it adds, and which

@@ -35,6 +35,7 @@ struct RenderOptions {
     int passes = 0;                // --passes N: a render in passes, at most N
     double timeLimit = 0;          // --time-limit SECONDS; 0 = none
     double noiseThreshold = 0;     // --noise-threshold E; 0 = none
+    int coarseSpp = 0;             // --coarse SPP: the coarse image alone; 0 = none
     std::string region;            // --region X0,Y0,X1,Y1; "" = the whole frame
     std::string photonsFile;       // --photons-file: a saved photon pass ($F patterns expand)
     bool photonsOnly = false;      // `mirage photons`: the photon pass alone, -o a .photons file

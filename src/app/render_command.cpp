@@ -20,6 +20,7 @@
 #include "film/deep.h"
 #include "film/image_io.h"
 #include "film/partial_film.h"
+#include "render/coarse_image.h"
 #include "scene/memory_budget.h"
 #include "scene/render_frame.h"
 #include "scene/scene.h"
@@ -127,6 +128,7 @@ void applyPassOptions(const RenderOptions& o, PassSettings* passes) {
     if (o.passes > 0 || o.timeLimit > 0 || o.noiseThreshold > 0) passes->maxPasses = o.passes;
     passes->timeLimit = o.timeLimit;
     passes->noiseThreshold = o.noiseThreshold;
+    passes->coarseSpp = o.coarseSpp;
     if (passes->enabled() && o.passes == 0 && o.spp > 0) {
         passes->sppPerPass = std::min(passes->sppPerPass, o.spp);
         passes->maxPasses = (o.spp + passes->sppPerPass - 1) / passes->sppPerPass;
@@ -313,7 +315,9 @@ int stopInterrupted(FrameCheckpoint& cp, const RenderedFrame& rendered, int fram
 
 // The samples per pixel of the frame: film.spp, or in a render in passes the most a pixel took.
 int framePixelSamples(const Scene& scene, const RenderedFrame& rendered) {
-    return rendered.passes ? rendered.passes->passes * scene.passes.sppPerPass : scene.settings.spp;
+    if (!rendered.passes) return scene.settings.spp;
+    const PassReport& r = *rendered.passes;
+    return r.coarseSpp > 0 ? r.coarseSpp : r.passes * scene.passes.sppPerPass;
 }
 
 // Every sample or photon the guards dropped, and every path a cap cut, both passes.
@@ -328,7 +332,7 @@ DroppedWork droppedWork(const RenderedFrame& rendered) {
 
 // A render in passes: how far it went and why it stopped. Re-rendering with --passes <passes>
 // (and the same pass_spp and noise threshold) reproduces the image bit for bit.
-void addPassMetadata(const PassSettings& settings, const PassReport& r,
+void addPassMetadata(const PassSettings& settings, const RenderSettings& s, const PassReport& r,
                      std::map<std::string, std::string>* metadata) {
     auto num = [](double v) {
         char buf[32];
@@ -341,6 +345,12 @@ void addPassMetadata(const PassSettings& settings, const PassReport& r,
     (*metadata)["estimated_error"] = num(r.estimatedError);
     (*metadata)["stopped_by"] = r.stop;
     (*metadata)["time_spent"] = num(r.seconds);  // what --time-limit is compared with
+    if (r.coarseSpp > 0) {                       // --coarse <coarse_spp> reproduces it
+        const RenderSettings c = coarseSettings(s);
+        (*metadata)["coarse_spp"] = std::to_string(r.coarseSpp);
+        (*metadata)["coarse_integrator"] = r.coarseIntegrator;
+        (*metadata)["coarse_resolution"] = std::to_string(c.width) + "x" + std::to_string(c.height);
+    }
     if (settings.timeLimit > 0) (*metadata)["time_limit"] = num(settings.timeLimit);
     if (settings.noiseThreshold > 0) (*metadata)["noise_threshold"] = num(settings.noiseThreshold);
 }
@@ -389,7 +399,7 @@ ExrOptions outputExr(RenderSession& rs, const FrameJob& job, RenderedFrame& rend
         exr.metadata["above_majorant"] = std::to_string(stats.aboveMajorant);
     }
     if (!scene.integratorWhy.empty()) exr.metadata["integrator_choice"] = scene.integratorWhy;
-    if (rendered.passes) addPassMetadata(scene.passes, *rendered.passes, &exr.metadata);
+    if (rendered.passes) addPassMetadata(scene.passes, s, *rendered.passes, &exr.metadata);
     if (stats.tilesResumed > 0) exr.metadata["resumed_tiles"] = std::to_string(stats.tilesResumed);
     // Which frame this is, whatever region of it: `mirage assemble` joins only regions that
     // agree on it. A region is the EXR's data window, the display window the whole frame.
@@ -434,7 +444,15 @@ void printFrameSummary(const FrameJob& job, const RenderedFrame& rendered,
                      "their majorant %llu\n",
                      frame, scene.shutter.open, scene.shutter.close, scene.output.fps,
                      (unsigned long long)stats.aboveMajorant);
-    if (rendered.passes) {
+    if (rendered.passes && rendered.passes->coarseSpp > 0) {
+        const PassReport& r = *rendered.passes;
+        const RenderSettings c = coarseSettings(s);
+        std::fprintf(stderr,
+                     "frame %d: the coarse image, %dx%d at %d spp by %s, magnified (stopped by "
+                     "%s), estimated relative error %.4g\n",
+                     frame, c.width, c.height, r.coarseSpp, r.coarseIntegrator.c_str(),
+                     r.stop.c_str(), r.estimatedError);
+    } else if (rendered.passes) {
         const PassReport& r = *rendered.passes;
         std::fprintf(
             stderr,

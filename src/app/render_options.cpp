@@ -111,7 +111,8 @@ Command addRenderCommand(CLI::App& app) {
         ->add_option("--time-limit", o->timeLimit,
                      "Render in passes until SECONDS are spent (set-up and photon passes "
                      "included): no pass starts that the last one's time says would overrun; "
-                     "the image is always whole passes")
+                     "the image is always whole passes, or, when not even the first fits, the "
+                     "coarse image (--coarse) that fits")
         ->check(CLI::Range(1e-3, 1e9));
     render
         ->add_option("--noise-threshold", o->noiseThreshold,
@@ -120,6 +121,17 @@ Command addRenderCommand(CLI::App& app) {
                      "most E; adaptive: passes after the second sample only pixels above E")
         ->check(CLI::Range(1e-6, 10.0));
     render
+        ->add_option("--coarse", o->coarseSpp,
+                     "Render only the coarse image: the frame at half its resolution with SPP "
+                     "samples per pixel (the path tracer where the integrator traces photons), "
+                     "magnified bilinearly; what a --time-limit shorter than one full pass "
+                     "delivers (mirage:coarse_spp), the same image bit for bit")
+        ->check(CLI::Range(1, kMaxSamplesPerPixel))
+        ->excludes("--passes")
+        ->excludes("--time-limit")
+        ->excludes("--noise-threshold")
+        ->excludes("--resume");
+    render
         ->add_option("--region", o->region,
                      "Render only pixels X0,Y0,X1,Y1 of the frame (X1, Y1 exclusive): the EXR's "
                      "data window is the region, its display window the frame, and the pixels "
@@ -127,7 +139,8 @@ Command addRenderCommand(CLI::App& app) {
                      "regions); not with --time-limit or --noise-threshold, whose stop "
                      "would depend on the region")
         ->excludes("--time-limit")
-        ->excludes("--noise-threshold");
+        ->excludes("--noise-threshold")
+        ->excludes("--coarse");
     render->add_option("--photons-file", o->photonsFile,
                        "Render with the photon pass saved by mirage photons for this frame "
                        "($F4, $F or #### take the frame) instead of tracing it; refused when "

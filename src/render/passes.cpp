@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
+#include <optional>
 
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "film/film_error.h"
+#include "render/coarse_image.h"
 
 namespace mirage {
 
@@ -58,6 +60,39 @@ std::string stopBefore(const PassSettings& settings, const PassState& state, dou
     return "";
 }
 
+// The coarse image's part of a render (passes.h): renders it into `image`, and says why the
+// render stops there, or "" when full passes follow.
+std::string startCoarse(const RenderScene& scene, Integrator& integrator, const RenderSettings& s,
+                        const PassSettings& settings, double before,
+                        std::chrono::steady_clock::time_point frameStart,
+                        std::optional<CoarseImage>* image) {
+    CoarseImage& coarse = image->emplace(s);
+    if (settings.coarseSpp > 0)
+        return addCoarseSamples(scene, integrator, s, settings.coarseSpp, &coarse)
+                   ? "coarse image (--coarse)"
+                   : "interrupted";
+    const auto t0 = std::chrono::steady_clock::now();
+    if (!addCoarseSamples(scene, integrator, s, 1, &coarse)) return "interrupted";
+    const double perSample = secondsFrom(t0);
+    for (;;) {
+        const double left = settings.timeLimit - (before + secondsFrom(frameStart));
+        if (kPassInCoarseSamples * perSample <= left) return "";
+        if (coarse.spp * perSample > left) return "time limit (coarse image: no full pass fits)";
+        if (!addCoarseSamples(scene, integrator, s, coarse.spp, &coarse)) return "interrupted";
+    }
+}
+
+// The report of a render whose image is its coarse image.
+void reportCoarse(const CoarseImage& coarse, const Integrator& integrator, PassReport* report) {
+    report->passes = 0;
+    report->coarseSpp = coarse.spp;
+    report->coarseIntegrator = integrator.name();
+    report->samples =
+        uint64_t(coarse.film.width()) * uint64_t(coarse.film.height()) * uint64_t(coarse.spp);
+    report->estimatedError = estimateFilmError(coarse.film).relError();
+    report->lastPassPixels = size_t(coarse.film.width()) * size_t(coarse.film.height());
+}
+
 }  // namespace
 
 int PassSettings::passCap() const {
@@ -67,7 +102,8 @@ int PassSettings::passCap() const {
 
 Film renderPasses(const RenderScene& scene, Integrator& integrator, const RenderSettings& s,
                   const PassSettings& settings, std::chrono::steady_clock::time_point frameStart,
-                  RenderStats* stats, PassReport* report, PassCheckpoint* checkpoint) {
+                  RenderStats* stats, PassReport* report, PassCheckpoint* checkpoint,
+                  const CoarseStage& coarse) {
     MIRAGE_CHECK(settings.sppPerPass >= 1);
     const bool resumed = checkpoint && checkpoint->initial;
     // A region's passes (--region with --passes) fill the region's film; an adaptive mask is
@@ -76,6 +112,7 @@ Film renderPasses(const RenderScene& scene, Integrator& integrator, const Render
     const PixelWindow win = renderWindow(s);
     MIRAGE_CHECK(settings.noiseThreshold <= 0 ||
                  (win.width() == s.width && win.height() == s.height));
+    MIRAGE_CHECK(settings.coarseSpp <= 0 || (coarse.integrator && coarseImagePossible(s)));
     PassState state(resumed ? *checkpoint->initial
                             : Film(win.width(), win.height(), aovLayout(scene, s)));
     const double before = resumed ? checkpoint->secondsDone : 0.0;
@@ -83,6 +120,13 @@ Film renderPasses(const RenderScene& scene, Integrator& integrator, const Render
         state.passes = checkpoint->passesDone;
         assess(settings, &state);
     }
+    std::optional<CoarseImage> coarseImage;
+    std::string stop;
+    if (coarse.integrator && !resumed && coarseImagePossible(s) &&
+        (settings.coarseSpp > 0 || settings.timeLimit > 0))
+        stop =
+            startCoarse(scene, *coarse.integrator, s, settings, before, frameStart, &coarseImage);
+    if (stop.empty() && coarse.prepareFullPasses) coarse.prepareFullPasses();
     RenderSettings passSettings = s;
     passSettings.spp = settings.sppPerPass;
     passSettings.progress = Progress::Mode::Quiet;  // one line per pass instead
@@ -92,8 +136,7 @@ Film renderPasses(const RenderScene& scene, Integrator& integrator, const Render
     double lastPass = 0;
     size_t lastPixels = 0;
     int passesNow = 0;
-    std::string stop;
-    for (;;) {
+    while (stop.empty()) {
         stop = stopBefore(settings, state, before + secondsFrom(frameStart), lastPass);
         if (!stop.empty()) break;
         if (interruptRequested()) {
@@ -104,12 +147,19 @@ Film renderPasses(const RenderScene& scene, Integrator& integrator, const Render
         integrator.beginPass(scene, state.passes);
         TileCheckpoint from;
         from.initial = &state.film;
+        // With a coarse image to fall back on, the first full pass ends at the time limit.
+        if (coarseImage && state.passes == 0)
+            from.deadline =
+                frameStart + std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                 std::chrono::duration<double>(settings.timeLimit - before));
         const PassSamples samples{state.passes * settings.sppPerPass,
                                   state.pixels.empty() ? nullptr : &state.pixels};
         RenderStats pass;
         Film next = render(scene, integrator, passSettings, &pass, &from, samples);
         if (pass.interrupted) {  // a pass cut short is dropped: the film keeps whole passes
-            stop = "interrupted";
+            stop = interruptRequested() || !coarseImage
+                       ? "interrupted"
+                       : "time limit (coarse image: the first full pass did not fit)";
             break;
         }
         addPassStats(pass, &sum);
@@ -130,6 +180,8 @@ Film renderPasses(const RenderScene& scene, Integrator& integrator, const Render
             passesNow >= checkpoint->stopAfterPasses)
             requestInterrupt(SIGINT);
     }
+    const bool coarseIsTheImage = coarseImage && state.passes == 0 && stop != "interrupted";
+    if (coarseIsTheImage) state.film = magnifyCoarse(*coarseImage, s);
     sum.seconds = secondsFrom(passesStart);  // the later passes' photon maps included
     sum.nonFiniteSamples = state.film.nonFiniteSamples();
     sum.interrupted = stop == "interrupted";
@@ -145,6 +197,7 @@ Film renderPasses(const RenderScene& scene, Integrator& integrator, const Render
         report->seconds = before + secondsFrom(frameStart);
         report->lastPassPixels = lastPixels;
         report->stop = stop;
+        if (coarseIsTheImage) reportCoarse(*coarseImage, *coarse.integrator, report);
     }
     return std::move(state.film);
 }

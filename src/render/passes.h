@@ -10,6 +10,14 @@
 // would exceed it. With a noise threshold, from pass kMinAdaptivePasses on, a pass samples only
 // the pixels whose estimated error (the worst of their 3×3 neighbourhood) is above it.
 //
+// A time limit shorter than one full pass: with a time limit, the render first takes one sample
+// of the coarse image (render/coarse_image.h), whose time predicts a full pass's
+// (kPassInCoarseSamples of them). Where that does not fit in the time left, the coarse image
+// doubles its samples while the next doubling fits, and is the image; where it fits, full passes
+// follow, the first of them cut at the time limit (no tile starts after it), and a first pass so
+// cut leaves the coarse image as the image. Once a full pass is finished the coarse image is
+// dropped: the image is whole passes only, as without it.
+//
 // Determinism: which pixels a pass samples depends only on the film after the passes before,
 // and an integrator's pass state only on the pass index (Integrator::beginPass), so N passes
 // give the same bits for any thread count, and re-rendering with `--passes N`, N the count a
@@ -38,8 +46,11 @@ struct PassSettings {
     int sppPerPass = 4;         // [render] pass_spp
     double timeLimit = 0;       // --time-limit, seconds since the frame began; 0: none
     double noiseThreshold = 0;  // --noise-threshold, relative error (film_error.h); 0: none
+    int coarseSpp = 0;          // --coarse: the coarse image alone, of this many samples; 0: none
     // A render in passes at all: otherwise the frame is one render of film.spp samples.
-    bool enabled() const { return maxPasses > 0 || timeLimit > 0 || noiseThreshold > 0; }
+    bool enabled() const {
+        return maxPasses > 0 || timeLimit > 0 || noiseThreshold > 0 || coarseSpp > 0;
+    }
     int passCap() const;
 };
 
@@ -54,8 +65,15 @@ struct PassCheckpoint {
     int64_t stopAfterPasses = -1;  // test hook: raise the interrupt flag after this many passes
 };
 
+// A full pass costs about this many samples of the coarse image: 4× its pixels, and on the race
+// scene one pass of the default photon mapper took as long as 13 coarse samples of the path
+// tracer, one pass of the path tracer's 4 samples as long as 16.
+constexpr double kPassInCoarseSamples = 16;
+
 struct PassReport {
     int passes = 0;             // whole passes in the image (resumed ones included)
+    int coarseSpp = 0;          // the image is the coarse image of this many samples; 0: passes
+    std::string coarseIntegrator;  // what rendered the coarse image (coarseSpp > 0)
     uint64_t samples = 0;       // camera samples in the image
     double estimatedError = 0;  // √ of the estimated relMSE (film_error.h)
     double seconds = 0;         // since the frame began, all runs
@@ -63,12 +81,23 @@ struct PassReport {
     std::string stop;           // why it stopped: passes, time limit, noise threshold, interrupted
 };
 
+// The coarse image of a render in passes (above, and render/coarse_image.h).
+struct CoarseStage {
+    Integrator* integrator = nullptr;  // renders it; null: no coarse image
+    // The frame integrator's set-up (its preprocess), left until a full pass needs it when the
+    // coarse image does not (a photon mapper's first map); null: done before.
+    std::function<void()> prepareFullPasses;
+};
+
 // Renders passes of `passes.sppPerPass` samples until a stop (above); `frameStart` is when the
 // frame began (its time limit counts from there). `stats` sums the passes' render statistics,
 // its seconds the wall time of all passes, photon maps of passes after the first included
 // (stats->interrupted: an interrupt stopped it; the film holds the passes finished before).
+// `coarse.integrator` renders the coarse image (null: none; then a time limit never cuts a
+// pass); it is used only when coarseImagePossible(settings) and the render does not resume.
 Film renderPasses(const RenderScene& scene, Integrator& integrator, const RenderSettings& settings,
                   const PassSettings& passes, std::chrono::steady_clock::time_point frameStart,
-                  RenderStats* stats, PassReport* report, PassCheckpoint* checkpoint = nullptr);
+                  RenderStats* stats, PassReport* report, PassCheckpoint* checkpoint = nullptr,
+                  const CoarseStage& coarse = {});
 
 }  // namespace mirage

@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "core/text.h"
 #include "film/color.h"
+#include "render/coarse_image.h"
 
 namespace mirage {
 
@@ -114,6 +115,34 @@ PhotonIntegratorSettings photonSettingsFor(const Scene& scene) {
     return photon;
 }
 
+namespace {
+
+// What renders the coarse image (render/coarse_image.h): the frame's own integrator when it
+// traces no photons; else the path tracer, which renders the same light without a photon map.
+// None where camera rays curve ([refraction]): there the photon mapper takes even direct light
+// from its maps, which straight shadow rays would not match. Throws MirageError for a --coarse
+// that cannot be rendered.
+Integrator* coarseIntegrator(const Scene& scene, Integrator& frameIntegrator,
+                             std::unique_ptr<Integrator>* owned) {
+    const bool asked = scene.passes.coarseSpp > 0;
+    if (asked && !coarseImagePossible(scene.settings))
+        throw MirageError(
+            "--coarse renders the whole frame's beauty alone: not with --region "
+            "or render passes (--aov, [output] aovs)");
+    if (scene.refraction) {
+        if (asked)
+            throw MirageError(
+                "--coarse needs straight camera rays; the scene bends them "
+                "([refraction])");
+        return nullptr;
+    }
+    if (!frameIntegrator.info().photonPass) return &frameIntegrator;
+    *owned = makeVolPathIntegrator(scene.maxDepth);
+    return owned->get();
+}
+
+}  // namespace
+
 RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
                           const ColorPipeline& color, TileCheckpoint* checkpoint,
                           PassCheckpoint* passCheckpoint) {
@@ -138,7 +167,7 @@ RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
         if (scene.passes.enabled())
             throw MirageError("deep output (" + s.deep.path +
                               ") is made by one render of film.spp samples, not by a render in "
-                              "passes (--passes, --time-limit, --noise-threshold)");
+                              "passes (--passes, --time-limit, --noise-threshold, --coarse)");
         if (!s.region.empty())
             throw MirageError("deep output (" + s.deep.path +
                               ") covers the whole frame: render it without --region");
@@ -146,13 +175,25 @@ RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
     }
     // Sized by the whole frame's samples, not the region's or the passes': a frame rendered in
     // regions or in any number of passes gets the same per-frame caches, and so the same bits.
-    frame.integrator->preprocess(
-        scene.render, uint64_t(s.width) * uint64_t(s.height) * uint64_t(std::max(s.spp, 1)));
+    auto prepare = [&] {
+        frame.integrator->preprocess(
+            scene.render, uint64_t(s.width) * uint64_t(s.height) * uint64_t(std::max(s.spp, 1)));
+    };
+    std::unique_ptr<Integrator> coarseOwned;
+    CoarseStage coarse;
+    if (scene.passes.enabled())
+        coarse.integrator = coarseIntegrator(scene, *frame.integrator, &coarseOwned);
+    // A coarse image by another integrator leaves the frame integrator's set-up to the first
+    // full pass: a render that ends with the coarse image does not trace a photon map.
+    if (coarseOwned)
+        coarse.prepareFullPasses = prepare;
+    else
+        prepare();
     if (scene.passes.enabled()) {
         frame.passes.emplace();
-        frame.film =
-            std::make_unique<Film>(renderPasses(scene.render, *frame.integrator, s, scene.passes,
-                                                t0, &frame.stats, &*frame.passes, passCheckpoint));
+        frame.film = std::make_unique<Film>(renderPasses(scene.render, *frame.integrator, s,
+                                                         scene.passes, t0, &frame.stats,
+                                                         &*frame.passes, passCheckpoint, coarse));
     } else {
         frame.film = std::make_unique<Film>(render(scene.render, *frame.integrator, s, &frame.stats,
                                                    checkpoint, {}, frame.deep.get()));

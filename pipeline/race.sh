@@ -9,7 +9,9 @@
 #             default (integrator auto at the same spp: what `mirage render` does unasked), and
 #             the progressive photon mapper (--integrator photon --passes P, one photon map per
 #             pass), all against the same volpath reference: a biased method's bias counts,
-#             and a render in passes is timed by mirage:time_spent, its photon passes included.
+#             and a render in passes is timed by mirage:time_spent, its photon passes included;
+#             and Mirage given only a time (`mirage render --time-limit T`, the rows "mirage
+#             timed", whose spp column holds T): below one full pass that is the coarse image.
 # Usage: pipeline/race.sh [single | multiple | both]   (default single)
 # Other caches: CACHE=path.vdb races that file's `density` grid instead of smoke1, with the same
 # medium, sun and resolution, and the camera cycles_vdb.py frames it with (read from its
@@ -18,7 +20,8 @@
 # ("sobol random": Mirage's [render] sampler values raced; "default" sets none), MIRAGE
 # (build/mirage: another build to race, e.g. an older one against the same references),
 # PHOTON_PASSES ("2 8 24": pass counts of the photon rows; "" for none), PHOTONS (100000:
-# photons per pass), PASS_SPP (4: samples per pixel per pass), MIRAGE_SHARED_DATA.
+# photons per pass), PASS_SPP (4: samples per pixel per pass), TIME_LIMITS ("0.03 0.1 0.3 1 3":
+# seconds of the timed rows; "" for none), MIRAGE_SHARED_DATA.
 # Installs Blender when missing (pipeline/install-deps.sh blender). Prints one table per mode (also
 # OUT/<cache>.<integrator>.csv) and the equal-error time ratios.
 set -euo pipefail
@@ -40,6 +43,7 @@ SAMPLERS=${SAMPLERS:-sobol random}
 PHOTON_PASSES=${PHOTON_PASSES-2 8 24}
 PHOTONS=${PHOTONS:-100000}
 PASS_SPP=${PASS_SPP:-4}
+TIME_LIMITS=${TIME_LIMITS-0.03 0.1 0.3 1 3}
 MIRAGE=${MIRAGE:-build/mirage}
 command -v blender >/dev/null || pipeline/install-deps.sh blender >/dev/null
 [ -x build/mirage ] || pipeline/build.sh build >/dev/null
@@ -105,6 +109,15 @@ default_render() {  # spp exr
     awk -F'"' '/mirage:time_spent/ {t = $2} /mirage:frame_seconds/ {f = $2} END {print (t != "" ? t : f)}'
 }
 
+# Mirage as a user runs it with a time and nothing else: the default integrator and
+# --time-limit. Prints mirage:time_spent (what the limit is compared with).
+timed_render() {  # seconds exr
+  "$MIRAGE" render tests/bench/smoke1_race.toml --set "volume.0.file=$SMOKE" "${CAMERA[@]}" \
+    --set render.integrator=auto --time-limit "$1" --threads "$THREADS" --seed 0 -o "$2" \
+    --quiet >/dev/null
+  oiiotool --info -v "$2" | awk -F'"' '/mirage:time_spent/ {print $2}'
+}
+
 race() {  # bounces integrator
   local bounces=$1 integrator=$2 tag="$OUT/$NAME.$2"
   printf '\n%s.vdb 256x256, %d threads: Cycles --volume-bounces %d against mirage --integrator %s\n' \
@@ -133,6 +146,10 @@ race() {  # bounces integrator
     for spp in $SPPS; do
       row "mirage default" "$spp" "$(default_render "$spp" "$tag.default.exr")" \
         "$tag.default.exr" "$tag.mirage_ref.exr"
+    done
+    for limit in $TIME_LIMITS; do
+      row "mirage timed" "$limit" "$(timed_render "$limit" "$tag.timed.exr")" \
+        "$tag.timed.exr" "$tag.mirage_ref.exr"
     done
     for passes in $PHOTON_PASSES; do
       row "mirage photon" "$((passes * PASS_SPP))" "$(photon "$passes" "$tag.photon.exr")" \

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -182,6 +183,31 @@ RenderSettings smallRenderSettings(int spp, uint64_t seed, int width, int height
     rs.seed = seed;
     rs.progress = Progress::Mode::Quiet;
     return rs;
+}
+
+RenderScene sunlitSmokeBox() {
+    RenderScene scene;
+    scene.media.push_back(gridMedium(
+        [](int i, int j, int k) { return 0.5f + 0.5f * std::sin(0.4f * i + 0.3f * j + 0.2f * k); },
+        0, 15, 1.0 / 16, 0.5f, 4.f, 0.3f));
+    scene.lights.push_back(makeDistantLight(Vec3(0.3f, -1, 0.2f), 470.f, Spectrum(1.f)));
+    scene.camera.position = Vec3(0.5f, 0.5f, 3.f);
+    scene.camera.lookAt = Vec3(0.5f, 0.5f, 0.5f);
+    scene.camera.fovDeg = 30.f;
+    return scene;
+}
+
+bool sameFilm(const Film& a, const Film& b) {
+    if (a.width() != b.width() || a.height() != b.height()) return false;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) {
+            const Film::Pixel &p = a.pixel(x, y), &q = b.pixel(x, y);
+            if (std::memcmp(p.xyz, q.xyz, sizeof p.xyz) != 0 ||
+                std::memcmp(p.xyzSq, q.xyzSq, sizeof p.xyzSq) != 0 ||
+                std::memcmp(&p.alpha, &q.alpha, sizeof p.alpha) != 0 || p.samples != q.samples)
+                return false;
+        }
+    return true;
 }
 
 ImageError compareImages(const Image& image, const Image& ref) {

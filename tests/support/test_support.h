@@ -91,6 +91,12 @@ constexpr SamplerKind kSamplerKinds[] = {SamplerKind::Sobol, SamplerKind::Random
 // Small test renders: width × height pixels in 8-pixel tiles, quiet.
 RenderSettings smallRenderSettings(int spp, uint64_t seed, int width = 32, int height = 32);
 
+// A 1 m box of heterogeneous smoke (σa 0.5, σs 4 per unit density, g 0.3) under a sun, seen
+// whole with a margin of background: every pixel's value depends on its samples.
+RenderScene sunlitSmokeBox();
+// Whether two films hold the same bits: sums, squared sums, alpha and sample counts.
+bool sameFilm(const Film& a, const Film& b);
+
 // An image against a reference over the pixels the reference covers (alpha ≥ 0.5: background
 // and fringes excluded), in scene-linear RGB, each channel on its own relative to that
 // channel's mean in the reference: an error in one colour is not diluted by the other two (a

@@ -21,32 +21,6 @@ using namespace mirage;
 
 namespace {
 
-bool sameFilm(const Film& a, const Film& b) {
-    if (a.width() != b.width() || a.height() != b.height()) return false;
-    for (int y = 0; y < a.height(); ++y)
-        for (int x = 0; x < a.width(); ++x) {
-            const Film::Pixel &p = a.pixel(x, y), &q = b.pixel(x, y);
-            if (std::memcmp(p.xyz, q.xyz, sizeof p.xyz) != 0 ||
-                std::memcmp(p.xyzSq, q.xyzSq, sizeof p.xyzSq) != 0 ||
-                std::memcmp(&p.alpha, &q.alpha, sizeof p.alpha) != 0 || p.samples != q.samples)
-                return false;
-        }
-    return true;
-}
-
-// A 1 m box of heterogeneous smoke under a sun, seen whole with a margin of background.
-RenderScene smokeBox() {
-    RenderScene scene;
-    scene.media.push_back(test::gridMedium(
-        [](int i, int j, int k) { return 0.5f + 0.5f * std::sin(0.4f * i + 0.3f * j + 0.2f * k); },
-        0, 15, 1.0 / 16, 0.5f, 4.f, 0.3f));
-    scene.lights.push_back(makeDistantLight(Vec3(0.3f, -1, 0.2f), 470.f, Spectrum(1.f)));
-    scene.camera.position = Vec3(0.5f, 0.5f, 3.f);
-    scene.camera.lookAt = Vec3(0.5f, 0.5f, 0.5f);
-    scene.camera.fovDeg = 30.f;
-    return scene;
-}
-
 // A render in passes with a coarse stage by the path tracer; `prepared` counts the calls of the
 // deferred set-up.
 Film renderWithCoarse(const RenderScene& scene, const RenderSettings& s, const PassSettings& p,
@@ -105,7 +79,7 @@ TEST(FilmResample, MagnifyIsExactOnALinearImageAndLeavesOutEmptyPixels) {
 }
 
 TEST(CoarseImage, SamplesContinueSoOneOneAndTwoAreTheBitsOfFour) {
-    const RenderScene scene = smokeBox();
+    const RenderScene scene = test::sunlitSmokeBox();
     const RenderSettings s = test::smallRenderSettings(4, 5, 30, 18);
     auto volpath = makeVolPathIntegrator();
     CoarseImage stepped(s), once(s);
@@ -114,7 +88,7 @@ TEST(CoarseImage, SamplesContinueSoOneOneAndTwoAreTheBitsOfFour) {
     for (int spp : {1, 1, 2}) ASSERT_TRUE(addCoarseSamples(scene, *volpath, s, spp, &stepped));
     ASSERT_TRUE(addCoarseSamples(scene, *volpath, s, 4, &once));
     EXPECT_EQ(stepped.spp, 4);
-    EXPECT_TRUE(sameFilm(stepped.film, once.film));
+    EXPECT_TRUE(test::sameFilm(stepped.film, once.film));
     const Film big = magnifyCoarse(once, s);
     EXPECT_EQ(big.width(), 30);
     EXPECT_EQ(big.height(), 18);
@@ -124,7 +98,7 @@ TEST(CoarseImage, SamplesContinueSoOneOneAndTwoAreTheBitsOfFour) {
 // A time limit that no full pass fits in: the image is the coarse image, whose sample count
 // --coarse reproduces, and the frame integrator's set-up never runs.
 TEST(CoarseImage, ATimeLimitBelowAFullPassDeliversTheCoarseImage) {
-    const RenderScene scene = smokeBox();
+    const RenderScene scene = test::sunlitSmokeBox();
     const RenderSettings s = test::smallRenderSettings(4, 5, 24, 24);
     PassSettings limited;
     limited.sppPerPass = 4;
@@ -137,7 +111,7 @@ TEST(CoarseImage, ATimeLimitBelowAFullPassDeliversTheCoarseImage) {
     EXPECT_EQ(report.stop, "time limit (coarse image: no full pass fits)");
     EXPECT_EQ(report.samples, 12u * 12u);
     EXPECT_EQ(prepared, 0);
-    EXPECT_TRUE(sameFilm(film, coarseOf(scene, s, 1)));
+    EXPECT_TRUE(test::sameFilm(film, coarseOf(scene, s, 1)));
 
     PassSettings asked;
     asked.coarseSpp = 3;
@@ -145,13 +119,13 @@ TEST(CoarseImage, ATimeLimitBelowAFullPassDeliversTheCoarseImage) {
     EXPECT_EQ(report.coarseSpp, 3);
     EXPECT_EQ(report.stop, "coarse image (--coarse)");
     EXPECT_EQ(prepared, 0);
-    EXPECT_TRUE(sameFilm(three, coarseOf(scene, s, 3)));
+    EXPECT_TRUE(test::sameFilm(three, coarseOf(scene, s, 3)));
 }
 
 // A time limit that full passes fit in: the coarse image is dropped and the image is the bits of
 // the same passes rendered without a coarse stage; the set-up runs once, before them.
 TEST(CoarseImage, FullPassesThatFitDropTheCoarseImage) {
-    const RenderScene scene = smokeBox();
+    const RenderScene scene = test::sunlitSmokeBox();
     const RenderSettings s = test::smallRenderSettings(4, 5, 24, 24);
     PassSettings p;
     p.sppPerPass = 2;
@@ -168,12 +142,12 @@ TEST(CoarseImage, FullPassesThatFitDropTheCoarseImage) {
     p.timeLimit = 0;
     const Film plain =
         renderPasses(scene, *volpath, s, p, std::chrono::steady_clock::now(), nullptr, nullptr);
-    EXPECT_TRUE(sameFilm(film, plain));
+    EXPECT_TRUE(test::sameFilm(film, plain));
 }
 
 // The deadline a time limit sets on the first full pass: no tile starts after it.
 TEST(CoarseImage, NoTileStartsAfterTheDeadline) {
-    const RenderScene scene = smokeBox();
+    const RenderScene scene = test::sunlitSmokeBox();
     const RenderSettings s = test::smallRenderSettings(2, 5, 24, 24);
     auto volpath = makeVolPathIntegrator();
     TileCheckpoint late;

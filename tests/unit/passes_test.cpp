@@ -24,32 +24,6 @@ using namespace mirage;
 
 namespace {
 
-bool sameFilm(const Film& a, const Film& b) {
-    if (a.width() != b.width() || a.height() != b.height()) return false;
-    for (int y = 0; y < a.height(); ++y)
-        for (int x = 0; x < a.width(); ++x) {
-            const Film::Pixel &p = a.pixel(x, y), &q = b.pixel(x, y);
-            if (std::memcmp(p.xyz, q.xyz, sizeof p.xyz) != 0 ||
-                std::memcmp(p.xyzSq, q.xyzSq, sizeof p.xyzSq) != 0 ||
-                std::memcmp(&p.alpha, &q.alpha, sizeof p.alpha) != 0 || p.samples != q.samples)
-                return false;
-        }
-    return true;
-}
-
-// A 1 m box of heterogeneous smoke under a sun, seen whole with a margin of background.
-RenderScene smokeBox() {
-    RenderScene scene;
-    scene.media.push_back(test::gridMedium(
-        [](int i, int j, int k) { return 0.5f + 0.5f * std::sin(0.4f * i + 0.3f * j + 0.2f * k); },
-        0, 15, 1.0 / 16, 0.5f, 4.f, 0.3f));
-    scene.lights.push_back(makeDistantLight(Vec3(0.3f, -1, 0.2f), 470.f, Spectrum(1.f)));
-    scene.camera.position = Vec3(0.5f, 0.5f, 3.f);
-    scene.camera.lookAt = Vec3(0.5f, 0.5f, 0.5f);
-    scene.camera.fovDeg = 30.f;
-    return scene;
-}
-
 PassSettings passes(int maxPasses, int spp = 2) {
     PassSettings p;
     p.maxPasses = maxPasses;
@@ -99,7 +73,7 @@ TEST(FilmError, EstimatedRelMseMatchesTheErrorAgainstAConvergedRender) {
     // 512 spp (whose own noise adds 16/512 of the measured error), in XYZ over the covered
     // pixels as the estimator counts them. The estimate runs low by ~15 %: a pixel whose mean
     // came out high (a bright sample) has a larger m² in its denominator.
-    RenderScene scene = smokeBox();
+    RenderScene scene = test::sunlitSmokeBox();
     auto single = makeSingleScatterIntegrator();
     RenderSettings s = test::smallRenderSettings(16, 3, 24, 24);
     s.sampler = SamplerKind::Random;  // the estimator assumes independent samples
@@ -132,7 +106,7 @@ TEST(FilmError, EstimatedRelMseMatchesTheErrorAgainstAConvergedRender) {
 }
 
 TEST(Passes, NPassesOfKSamplesAreOneRenderOfNKSamples) {
-    RenderScene scene = smokeBox();
+    RenderScene scene = test::sunlitSmokeBox();
     auto volpath = makeVolPathIntegrator();
     RenderSettings s = test::smallRenderSettings(6, 5, 20, 18);
     Film once = render(scene, *volpath, s, nullptr);
@@ -141,11 +115,11 @@ TEST(Passes, NPassesOfKSamplesAreOneRenderOfNKSamples) {
     EXPECT_EQ(report.passes, 3);
     EXPECT_EQ(report.stop, "passes");
     EXPECT_EQ(report.samples, uint64_t(6) * 20 * 18);
-    EXPECT_TRUE(sameFilm(once, inPasses));
+    EXPECT_TRUE(test::sameFilm(once, inPasses));
 }
 
 TEST(Passes, ATimeLimitedRenderIsReproducedByItsPassCount) {
-    RenderScene scene = smokeBox();
+    RenderScene scene = test::sunlitSmokeBox();
     const RenderSettings s = test::smallRenderSettings(1, 7, 24, 24);
     for (bool photon : {false, true}) {
         auto integrator = photon ? photonMapper(9) : makeVolPathIntegrator();
@@ -159,7 +133,7 @@ TEST(Passes, ATimeLimitedRenderIsReproducedByItsPassCount) {
             tbb::global_control gc(tbb::global_control::max_allowed_parallelism, size_t(threads));
             auto again = photon ? photonMapper(9) : makeVolPathIntegrator();
             Film counted = renderInPasses(scene, *again, s, passes(report.passes));
-            EXPECT_TRUE(sameFilm(timed, counted))
+            EXPECT_TRUE(test::sameFilm(timed, counted))
                 << (photon ? "photon" : "volpath") << ", " << report.passes << " passes, "
                 << threads << " thread(s)";
         }
@@ -167,7 +141,7 @@ TEST(Passes, ATimeLimitedRenderIsReproducedByItsPassCount) {
 }
 
 TEST(Passes, NoiseThresholdIsMetAndLaterPassesSampleOnlyNoisyPixels) {
-    RenderScene scene = smokeBox();
+    RenderScene scene = test::sunlitSmokeBox();
     auto single = makeSingleScatterIntegrator();
     const RenderSettings s = test::smallRenderSettings(1, 2, 24, 24);
     PassSettings p = passes(0, 4);
@@ -191,7 +165,7 @@ TEST(Passes, NoiseThresholdIsMetAndLaterPassesSampleOnlyNoisyPixels) {
 }
 
 TEST(Passes, InterruptedAndResumedEqualsOneGo) {
-    RenderScene scene = smokeBox();
+    RenderScene scene = test::sunlitSmokeBox();
     const RenderSettings s = test::smallRenderSettings(1, 3, 20, 20);
     PassSettings p = passes(5, 2);
     p.noiseThreshold = 1e-4;  // adaptive masks in play, never met
@@ -221,7 +195,7 @@ TEST(Passes, InterruptedAndResumedEqualsOneGo) {
         auto second = photon ? photonMapper(4) : makeVolPathIntegrator();
         Film resumed = renderInPasses(scene, *second, s, p, &report, &resume);
         EXPECT_EQ(report.passes, 5);
-        EXPECT_TRUE(sameFilm(oneGo, resumed)) << (photon ? "photon" : "volpath");
+        EXPECT_TRUE(test::sameFilm(oneGo, resumed)) << (photon ? "photon" : "volpath");
     }
 }
 

@@ -147,8 +147,10 @@ Film renderPasses(const RenderScene& scene, Integrator& integrator, const Render
         integrator.beginPass(scene, state.passes);
         TileCheckpoint from;
         from.initial = &state.film;
-        // With a coarse image to fall back on, the first full pass ends at the time limit.
-        if (coarseImage && state.passes == 0)
+        // A pass ends at the time limit (no tile starts after it) where there is an image to
+        // fall back on: the passes before it, or the coarse image.
+        const bool cutAtLimit = settings.timeLimit > 0 && (state.passes > 0 || coarseImage);
+        if (cutAtLimit)
             from.deadline =
                 frameStart + std::chrono::duration_cast<std::chrono::nanoseconds>(
                                  std::chrono::duration<double>(settings.timeLimit - before));
@@ -157,9 +159,12 @@ Film renderPasses(const RenderScene& scene, Integrator& integrator, const Render
         RenderStats pass;
         Film next = render(scene, integrator, passSettings, &pass, &from, samples);
         if (pass.interrupted) {  // a pass cut short is dropped: the film keeps whole passes
-            stop = interruptRequested() || !coarseImage
-                       ? "interrupted"
-                       : "time limit (coarse image: the first full pass did not fit)";
+            if (interruptRequested() || !cutAtLimit)
+                stop = "interrupted";
+            else
+                stop = state.passes == 0
+                           ? "time limit (coarse image: the first full pass did not fit)"
+                           : "time limit";
             break;
         }
         addPassStats(pass, &sum);

@@ -7,8 +7,11 @@
 // Stopping, checked before each pass after the first: the pass cap; the estimated relative
 // error of the image (film/film_error.h) at or below the noise threshold; the time limit, when
 // the time spent (the frame's set-up and photon passes included) plus the last pass's duration
-// would exceed it. With a noise threshold, from pass kMinAdaptivePasses on, a pass samples only
-// the pixels whose estimated error (the worst of their 3×3 neighbourhood) is above it.
+// would exceed it. A pass after the first that is still running at the time limit (the last
+// pass's duration is a guess: the progressive photon mapper's later maps are larger than its
+// first) starts no tile after it and is dropped. With a noise threshold, from pass
+// kMinAdaptivePasses on, a pass samples only the pixels whose estimated error (the worst of their
+// 3×3 neighbourhood) is above it.
 //
 // A time limit shorter than one full pass: with a time limit, the render first takes one sample
 // of the coarse image (render/coarse_image.h), whose time predicts a full pass's

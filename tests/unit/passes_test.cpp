@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <thread>
 
 #include "core/interrupt.h"
 #include "film/film_error.h"
@@ -138,6 +139,38 @@ TEST(Passes, ATimeLimitedRenderIsReproducedByItsPassCount) {
                 << threads << " thread(s)";
         }
     }
+}
+
+// An integrator whose second pass's set-up outlasts the time limit (a photon map larger than
+// the first, as the progressive photon mapper's are): that pass starts no tile and is dropped.
+class SlowSecondPass : public Integrator {
+public:
+    const IntegratorInfo& info() const override { return mInner->info(); }
+    void beginPass(const RenderScene&, int pass) override {
+        if (pass == 1) std::this_thread::sleep_for(std::chrono::milliseconds(1300));
+    }
+    RadianceSample Li(const RenderScene& scene, const Ray& ray, const SampledWavelengths& w,
+                      Sampler& sampler, ThreadState& ts) const override {
+        return mInner->Li(scene, ray, w, sampler, ts);
+    }
+    bool lightShapedRadiance() const override { return mInner->lightShapedRadiance(); }
+
+private:
+    std::unique_ptr<Integrator> mInner = makeVolPathIntegrator();
+};
+
+TEST(Passes, APassStillRunningAtTheTimeLimitIsDropped) {
+    const RenderScene scene = test::sunlitSmokeBox();
+    const RenderSettings s = test::smallRenderSettings(1, 7, 16, 16);
+    SlowSecondPass slow;
+    PassSettings limited = passes(0);
+    limited.timeLimit = 1.0;
+    PassReport report;
+    const Film timed = renderInPasses(scene, slow, s, limited, &report);
+    EXPECT_EQ(report.stop, "time limit");
+    EXPECT_EQ(report.passes, 1);  // pass 1 began after the limit: no tile of it is in the image
+    auto volpath = makeVolPathIntegrator();
+    EXPECT_TRUE(test::sameFilm(timed, renderInPasses(scene, *volpath, s, passes(1))));
 }
 
 TEST(Passes, NoiseThresholdIsMetAndLaterPassesSampleOnlyNoisyPixels) {

@@ -99,23 +99,17 @@ photon() {  # passes exr
   oiiotool --info -v "$2" | awk -F'"' '/mirage:time_spent/ {print $2}'
 }
 
-# Mirage as a user runs it: the default integrator at the scene's settings and `spp` samples
-# per pixel (on dense smoke, progressive photon passes). Prints mirage:time_spent for a render
-# in passes, else mirage:frame_seconds.
-default_render() {  # spp exr
+# Mirage as a user runs it: the default integrator at the scene's settings and ARGS, such as
+# `--spp N` (on dense smoke, progressive photon passes) or `--time-limit T` (below one full
+# pass, the coarse image). Prints mirage:time_spent for a render in passes (what a time limit
+# is compared with), else mirage:frame_seconds.
+default_render() {  # exr args...
+  local exr=$1
+  shift
   "$MIRAGE" render tests/bench/smoke1_race.toml --set "volume.0.file=$SMOKE" "${CAMERA[@]}" \
-    --set render.integrator=auto --spp "$1" --threads "$THREADS" --seed 0 -o "$2" --quiet >/dev/null
-  oiiotool --info -v "$2" |
+    --set render.integrator=auto "$@" --threads "$THREADS" --seed 0 -o "$exr" --quiet >/dev/null
+  oiiotool --info -v "$exr" |
     awk -F'"' '/mirage:time_spent/ {t = $2} /mirage:frame_seconds/ {f = $2} END {print (t != "" ? t : f)}'
-}
-
-# Mirage as a user runs it with a time and nothing else: the default integrator and
-# --time-limit. Prints mirage:time_spent (what the limit is compared with).
-timed_render() {  # seconds exr
-  "$MIRAGE" render tests/bench/smoke1_race.toml --set "volume.0.file=$SMOKE" "${CAMERA[@]}" \
-    --set render.integrator=auto --time-limit "$1" --threads "$THREADS" --seed 0 -o "$2" \
-    --quiet >/dev/null
-  oiiotool --info -v "$2" | awk -F'"' '/mirage:time_spent/ {print $2}'
 }
 
 race() {  # bounces integrator
@@ -144,11 +138,11 @@ race() {  # bounces integrator
   # volpath reference.
   if [ "$integrator" = volpath ]; then
     for spp in $SPPS; do
-      row "mirage default" "$spp" "$(default_render "$spp" "$tag.default.exr")" \
+      row "mirage default" "$spp" "$(default_render "$tag.default.exr" --spp "$spp")" \
         "$tag.default.exr" "$tag.mirage_ref.exr"
     done
     for limit in $TIME_LIMITS; do
-      row "mirage timed" "$limit" "$(timed_render "$limit" "$tag.timed.exr")" \
+      row "mirage timed" "$limit" "$(default_render "$tag.timed.exr" --time-limit "$limit")" \
         "$tag.timed.exr" "$tag.mirage_ref.exr"
     done
     for passes in $PHOTON_PASSES; do

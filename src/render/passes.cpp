@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "core/clock.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "film/film_error.h"
@@ -14,10 +15,6 @@
 namespace mirage {
 
 namespace {
-
-double secondsFrom(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // One pass's render statistics into the running sums.
 void addPassStats(const RenderStats& pass, RenderStats* sum) {
@@ -73,9 +70,9 @@ std::string startCoarse(const RenderScene& scene, Integrator& integrator, const 
                    : "interrupted";
     const auto t0 = std::chrono::steady_clock::now();
     if (!addCoarseSamples(scene, integrator, s, 1, &coarse)) return "interrupted";
-    const double perSample = secondsFrom(t0);
+    const double perSample = secondsSince(t0);
     for (;;) {
-        const double left = settings.timeLimit - (before + secondsFrom(frameStart));
+        const double left = settings.timeLimit - (before + secondsSince(frameStart));
         if (kPassInCoarseSamples * perSample <= left) return "";
         if (coarse.spp * perSample > left) return "time limit (coarse image: no full pass fits)";
         if (!addCoarseSamples(scene, integrator, s, coarse.spp, &coarse)) return "interrupted";
@@ -137,7 +134,7 @@ Film renderPasses(const RenderScene& scene, Integrator& integrator, const Render
     size_t lastPixels = 0;
     int passesNow = 0;
     while (stop.empty()) {
-        stop = stopBefore(settings, state, before + secondsFrom(frameStart), lastPass);
+        stop = stopBefore(settings, state, before + secondsSince(frameStart), lastPass);
         if (!stop.empty()) break;
         if (interruptRequested()) {
             stop = "interrupted";
@@ -171,7 +168,7 @@ Film renderPasses(const RenderScene& scene, Integrator& integrator, const Render
         state.film = std::move(next);
         ++state.passes;
         ++passesNow;
-        lastPass = secondsFrom(t0);
+        lastPass = secondsSince(t0);
         lastPixels = state.pixels.empty()
                          ? size_t(win.width()) * size_t(win.height())
                          : size_t(std::count(state.pixels.begin(), state.pixels.end(), uint8_t(1)));
@@ -180,14 +177,14 @@ Film renderPasses(const RenderScene& scene, Integrator& integrator, const Render
             std::fprintf(stderr, "pass %d: %zu pixels, %.2fs, estimated error %.4g\n", state.passes,
                          lastPixels, lastPass, state.error.relError());
         if (checkpoint && checkpoint->passFinished)
-            checkpoint->passFinished(state.film, state.passes, before + secondsFrom(frameStart));
+            checkpoint->passFinished(state.film, state.passes, before + secondsSince(frameStart));
         if (checkpoint && checkpoint->stopAfterPasses >= 0 &&
             passesNow >= checkpoint->stopAfterPasses)
             requestInterrupt(SIGINT);
     }
     const bool coarseIsTheImage = coarseImage && state.passes == 0 && stop != "interrupted";
     if (coarseIsTheImage) state.film = magnifyCoarse(*coarseImage, s);
-    sum.seconds = secondsFrom(passesStart);  // the later passes' photon maps included
+    sum.seconds = secondsSince(passesStart);  // the later passes' photon maps included
     sum.nonFiniteSamples = state.film.nonFiniteSamples();
     sum.interrupted = stop == "interrupted";
     sum.tilesDone = sum.interrupted ? 0 : sum.tiles;
@@ -199,7 +196,7 @@ Film renderPasses(const RenderScene& scene, Integrator& integrator, const Render
             for (int x = 0; x < state.film.width(); ++x)
                 report->samples += state.film.pixel(x, y).samples;
         report->estimatedError = state.error.relError();
-        report->seconds = before + secondsFrom(frameStart);
+        report->seconds = before + secondsSince(frameStart);
         report->lastPassPixels = lastPixels;
         report->stop = stop;
         if (coarseIsTheImage) reportCoarse(*coarseImage, *coarse.integrator, report);

@@ -11,10 +11,6 @@
 
 namespace mirage {
 
-double secondsSince(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 void applyFrameSettings(Scene& scene, const std::string& input, const FrameSettings& cli) {
     RenderSettings& s = scene.settings;
     if (!cli.resolution.empty()) {

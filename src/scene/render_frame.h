@@ -3,12 +3,12 @@
 // then integrator → photon pass (preprocess) → render → develop.
 #pragma once
 
-#include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/clock.h"
 #include "film/film.h"
 #include "render/integrator.h"
 #include "render/renderer.h"
@@ -82,7 +82,5 @@ PhotonIntegratorSettings photonSettingsFor(const Scene& scene);
 RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
                           const ColorPipeline& color, TileCheckpoint* checkpoint = nullptr,
                           PassCheckpoint* passCheckpoint = nullptr);
-
-double secondsSince(std::chrono::steady_clock::time_point t0);
 
 }  // namespace mirage

@@ -186,10 +186,14 @@ RenderedFrame renderFrame(const Scene& scene, const std::string& integrator,
     else
         prepare();
     if (scene.passes.enabled()) {
-        frame.passes.emplace();
-        frame.film = std::make_unique<Film>(renderPasses(scene.render, *frame.integrator, s,
-                                                         scene.passes, t0, &frame.stats,
-                                                         &*frame.passes, passCheckpoint, coarse));
+        PassRun run;
+        run.frameStart = t0;
+        run.checkpoint = passCheckpoint;
+        run.coarse = coarse;
+        PassResult r = renderPasses(scene.render, *frame.integrator, s, scene.passes, run);
+        frame.film = std::make_unique<Film>(std::move(r.film));
+        frame.stats = r.stats;
+        frame.passes = r.report;
     } else {
         frame.film = std::make_unique<Film>(render(scene.render, *frame.integrator, s, &frame.stats,
                                                    checkpoint, {}, frame.deep.get()));

@@ -1,7 +1,5 @@
 #include "app/render_checkpoint.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -224,20 +222,6 @@ PartialFilm loadPartialForResume(const std::string& partialPath, const FrameFing
                               "x" + std::to_string(p.film->height()) + ", tiles of " +
                               std::to_string(p.tileSize) + ")");
     return p;
-}
-
-bool isCompleteFrame(const std::string& exrPath) {
-    std::error_code ec;
-    if (!fs::is_regular_file(exrPath, ec)) return false;
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(exrPath);
-    if (!in) {
-        OIIO::geterror();  // clear OIIO's pending error: an unreadable file is just not complete
-        return false;
-    }
-    const OIIO::ParamValue* p = in->spec().find_attribute("mirage:complete");
-    bool complete = p && p->get_string() == "true";
-    in->close();
-    return complete;
 }
 
 int64_t testStopAfterTiles() {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "film/exr_header.h"
 #include "film/partial_film.h"
 
 namespace mirage {
@@ -36,9 +37,6 @@ FrameFingerprint photonFingerprint(const Scene& scene, const std::string& input,
 // size. Throws MirageError with a clear message otherwise (naming the settings that differ).
 PartialFilm loadPartialForResume(const std::string& partialPath, const FrameFingerprint& expected,
                                  int width, int height, int tileSize);
-
-// True when `exrPath` is a finished Mirage frame (metadata mirage:complete = "true").
-bool isCompleteFrame(const std::string& exrPath);
 
 // Test hooks from the environment: MIRAGE_TEST_STOP_AFTER_TILES (raise the interrupt flag after
 // N tiles; -1 when unset) and MIRAGE_PARTIAL_INTERVAL (least seconds between partial writes;

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "app/commands.h"
-#include "app/render_checkpoint.h"
 #include "core/text.h"
 #include "film/exr_assembly.h"
+#include "film/exr_header.h"
 
 namespace mirage {
 

@@ -14,12 +14,12 @@
 
 #include "app/commands.h"
 #include "app/farm_scripts.h"
-#include "app/render_checkpoint.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "film/color.h"
+#include "film/exr_header.h"
+#include "frame/frame_settings.h"
 #include "render/integrator.h"
-#include "scene/render_frame.h"
 #include "scene/scene.h"
 
 namespace mirage {
@@ -85,7 +85,13 @@ FarmPlan makePlan(const FarmOptions& o) {
     const std::vector<int> all = parseFrameRange(o.frames);
     ColorPipeline color;
     Scene scene = loadScene(o.input, LoadOptions{all.front(), o.overrides}, color);
-    applyFrameSettings(scene, o.input, FrameSettings{o.resolution, o.spp, o.seed, true, {}});
+    FrameRequest settings;
+    settings.input = o.input;
+    settings.resolution = o.resolution;
+    settings.spp = o.spp;
+    settings.seed = o.seed;
+    settings.quiet = true;
+    applyFrameSettings(scene, settings);
     const std::string integrator = o.integrator.empty() ? scene.integrator : o.integrator;
     p.photons = integratorInfo(integrator).photonPass;
     for (int t = 0; t < p.tiles.count(); ++t)

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mirage {
@@ -56,6 +57,18 @@ inline AddOption required(AddOption add) {
     return [add](CLI::App& c, const std::string& names, const std::string& help) {
         return add(c, names, help)->required();
     };
+}
+
+// The rows of `table` named in `help`, in its order, each with the help text given there (a
+// command that takes some of another's options, bound and checked alike).
+inline std::vector<CliOption> selectOptions(
+    const std::vector<CliOption>& table,
+    const std::vector<std::pair<std::string, std::string>>& help) {
+    std::vector<CliOption> rows;
+    for (const auto& [names, text] : help)
+        for (const CliOption& row : table)
+            if (row.names == names) rows.push_back({row.names, text, row.add, row.excludes});
+    return rows;
 }
 
 // Adds the rows to `command` in order.

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli_table.h"
 #include "frame/frame_request.h"
 #include "tools/command.h"
 
@@ -25,6 +26,8 @@ struct RenderOptions {
 };
 int runRender(const RenderOptions& o);
 Command addRenderCommand(CLI::App& app);
+// The options of `mirage render` bound to `o` (render_options.cpp), in the order of its --help.
+std::vector<CliOption> renderOptionRows(RenderOptions* o);
 
 // `mirage photons SCENE --frame N -o N.photons`: runRender with photonsOnly (photons_command.cpp).
 Command addPhotonsCommand(CLI::App& app);

@@ -13,38 +13,32 @@ namespace mirage {
 
 namespace {
 
-// The options, in the order of --help: those of `mirage render` that decide the photon pass.
+// The options of `mirage render` that decide the photon pass, bound and checked as there, with
+// help of their own, in the order of --help; the photon file (-o) is required.
 std::vector<CliOption> photonRows(RenderOptions* o) {
-    FrameRequest& r = o->request;
-    return {
-        {"input", "Scene .toml, or a .vdb/.nvdb", required(value(&r.input))},
-        {"-o,--output",
-         "The photon file; $F4, $F or #### take the frame (a sequence without a "
-         "pattern gets .#### before the extension)",
-         required(value(&r.output))},
-        {"--frame", "Frame number (default 1)", value(&o->frame)},
-        {"--frames", "Frames A to B (inclusive), e.g. 1-24", value(&o->frames), {"--frame"}},
-        {"--set",
-         "Override scene values before loading, as for mirage render (the render "
-         "must be given the same)",
-         allValues(&r.overrides)},
-        {"--seed", "Random seed (default: film.seed); the render must match",
-         value(&r.seed, CLI::Range(int64_t(0), INT64_MAX))},
-        {"--integrator", "An integrator with a photon pass (photon); default: the scene's",
-         value(&r.integrator)},
-        {"--quality", "draft, preview or final: the preset's photon count",
-         value(&r.quality, CLI::IsMember({"draft", "preview", "final"}))},
-        {"--shutter",
-         "Motion blur shutter WIDTH in frames, as for mirage render (photons sample "
-         "times in it)",
-         value(&r.shutter, CLI::Range(0.0, 2.0))},
-        {"--motion-blur", "A 180° shutter (--shutter 0.5)", flag(&r.motionBlur), {"--shutter"}},
-        {"--threads", "Worker threads (default: all cores)",
-         value(&o->threads, CLI::Range(1, 4096))},
-        {"--skip-existing", "Skip frames whose photon file is already intact (size and checksum)",
-         flag(&r.skipExisting)},
-        {"-q,--quiet", "No progress output", flag(&r.quiet)},
-    };
+    std::vector<CliOption> rows = selectOptions(
+        renderOptionRows(o),
+        {{"input", "Scene .toml, or a .vdb/.nvdb"},
+         {"-o,--output",
+          "The photon file; $F4, $F or #### take the frame (a sequence without a "
+          "pattern gets .#### before the extension)"},
+         {"--frame", "Frame number (default 1)"},
+         {"--frames", "Frames A to B (inclusive), e.g. 1-24"},
+         {"--set",
+          "Override scene values before loading, as for mirage render (the render "
+          "must be given the same)"},
+         {"--seed", "Random seed (default: film.seed); the render must match"},
+         {"--integrator", "An integrator with a photon pass (photon); default: the scene's"},
+         {"--quality", "draft, preview or final: the preset's photon count"},
+         {"--shutter",
+          "Motion blur shutter WIDTH in frames, as for mirage render (photons sample "
+          "times in it)"},
+         {"--motion-blur", "A 180° shutter (--shutter 0.5)"},
+         {"--threads", "Worker threads (default: all cores)"},
+         {"--skip-existing", "Skip frames whose photon file is already intact (size and checksum)"},
+         {"-q,--quiet", "No progress output"}});
+    rows[1].add = required(rows[1].add);
+    return rows;
 }
 
 }  // namespace

@@ -175,11 +175,17 @@ std::vector<CliOption> renderRows(RenderOptions* o) {
 
 }  // namespace
 
+std::vector<CliOption> renderOptionRows(RenderOptions* o) {
+    std::vector<CliOption> table;
+    for (auto rows : {inputRows, samplingRows, outputRows, renderRows})
+        for (CliOption& row : rows(o)) table.push_back(std::move(row));
+    return table;
+}
+
 Command addRenderCommand(CLI::App& app) {
     auto o = std::make_shared<RenderOptions>();
     auto* render = app.add_subcommand("render", "Render a scene file (.toml) or a bare VDB");
-    for (auto rows : {inputRows, samplingRows, outputRows, renderRows})
-        addOptions(*render, rows(o.get()));
+    addOptions(*render, renderOptionRows(o.get()));
     return {render, [o] { return runRender(*o); }};
 }
 

@@ -7,10 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "app/cli_table.h"
 #include "app/commands.h"
-#include "app/render_checkpoint.h"
 #include "core/text.h"
 #include "film/exr_assembly.h"
+#include "film/exr_header.h"
 
 namespace mirage {
 
@@ -45,11 +46,12 @@ Command addAssembleCommand(CLI::App& app) {
         "assemble",
         "Join regions of a frame (mirage render --region) into the frame: every channel and "
         "layer, checked to come from one frame and cover it exactly once; written atomically");
-    cmd->add_option("regions", o->tiles, "The regions' EXR files")->required();
-    cmd->add_option("-o,--output", o->output, "The frame's EXR")->required();
-    cmd->add_flag("--skip-existing", o->skipExisting,
-                  "Do nothing when the output is already complete (mirage:complete = true)");
-    cmd->add_flag("-q,--quiet", o->quiet, "No summary");
+    addOptions(*cmd, {{"regions", "The regions' EXR files", required(value(&o->tiles))},
+                      {"-o,--output", "The frame's EXR", required(value(&o->output))},
+                      {"--skip-existing",
+                       "Do nothing when the output is already complete (mirage:complete = true)",
+                       flag(&o->skipExisting)},
+                      {"-q,--quiet", "No summary", flag(&o->quiet)}});
     return {cmd, [o] { return runAssemble(*o); }};
 }
 

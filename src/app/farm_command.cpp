@@ -12,14 +12,15 @@
 #include <string>
 #include <vector>
 
+#include "app/cli_table.h"
 #include "app/commands.h"
 #include "app/farm_scripts.h"
-#include "app/render_checkpoint.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "film/color.h"
+#include "film/exr_header.h"
+#include "frame/frame_settings.h"
 #include "render/integrator.h"
-#include "scene/render_frame.h"
 #include "scene/scene.h"
 
 namespace mirage {
@@ -85,7 +86,13 @@ FarmPlan makePlan(const FarmOptions& o) {
     const std::vector<int> all = parseFrameRange(o.frames);
     ColorPipeline color;
     Scene scene = loadScene(o.input, LoadOptions{all.front(), o.overrides}, color);
-    applyFrameSettings(scene, o.input, FrameSettings{o.resolution, o.spp, o.seed, true, {}});
+    FrameRequest settings;
+    settings.input = o.input;
+    settings.resolution = o.resolution;
+    settings.spp = o.spp;
+    settings.seed = o.seed;
+    settings.quiet = true;
+    applyFrameSettings(scene, settings);
     const std::string integrator = o.integrator.empty() ? scene.integrator : o.integrator;
     p.photons = integratorInfo(integrator).photonPass;
     for (int t = 0; t < p.tiles.count(); ++t)
@@ -164,6 +171,43 @@ int runFarm(const FarmOptions& o) {
     return 0;
 }
 
+// The options, in the order of --help: the shot and its farm, then those passed on to every
+// task as to mirage render.
+std::vector<CliOption> farmRows(FarmOptions* o) {
+    return {
+        {"input", "Scene .toml (or .vdb), as for mirage render", required(value(&o->input))},
+        {"--frames", "Frames A to B (inclusive), e.g. 1-240", required(value(&o->frames))},
+        {"--tiles",
+         "Split each frame into C x R regions rendered as separate tasks (default "
+         "1x1)",
+         value(&o->tiles)},
+        {"-d,--dir",
+         "Folder of the shot: scripts/, logs/, photons/, tiles/, frames/ (default "
+         "farm-<scene name>); shared by every node",
+         value(&o->dir)},
+        {"--partition", "Slurm partition (default: the cluster's)", value(&o->partition)},
+        {"--time-limit", "Slurm time limit of each task, e.g. 2:00:00 (default: the partition's)",
+         value(&o->timeLimit)},
+        {"--cpus", "CPUs per task (--cpus-per-task and mirage --threads)",
+         value(&o->cpus, CLI::Range(1, 4096))},
+        {"--dry-run", "Print the scripts and their dependencies; submit nothing, write nothing",
+         flag(&o->dryRun)},
+        {"--skip-existing",
+         "Leave out frames already complete; tasks skip regions and photon files "
+         "already complete (a resubmitted shot renders only what is missing)",
+         flag(&o->skipExisting)},
+        {"--set", "Scene overrides, as for mirage render", allValues(&o->overrides)},
+        {"--resolution", "Image size WxH, as for mirage render", value(&o->resolution)},
+        {"--spp", "Samples per pixel, as for mirage render",
+         value(&o->spp, CLI::Range(1, 1 << 20))},
+        {"--seed", "Random seed, as for mirage render",
+         value(&o->seed, CLI::Range(int64_t(0), INT64_MAX))},
+        {"--integrator", "As for mirage render", value(&o->integrator)},
+        {"--quality", "draft, preview or final, as for mirage render",
+         value(&o->quality, CLI::IsMember({"draft", "preview", "final"}))},
+    };
+}
+
 }  // namespace
 
 Command addFarmCommand(CLI::App& app) {
@@ -172,33 +216,7 @@ Command addFarmCommand(CLI::App& app) {
         "farm",
         "Render a shot on a Slurm farm: writes batch scripts (a photon pass per frame, a render "
         "per frame and tile, an assembly per frame) and submits them with sbatch");
-    cmd->add_option("input", o->input, "Scene .toml (or .vdb), as for mirage render")->required();
-    cmd->add_option("--frames", o->frames, "Frames A to B (inclusive), e.g. 1-240")->required();
-    cmd->add_option("--tiles", o->tiles,
-                    "Split each frame into C x R regions rendered as separate tasks (default "
-                    "1x1)");
-    cmd->add_option("-d,--dir", o->dir,
-                    "Folder of the shot: scripts/, logs/, photons/, tiles/, frames/ (default "
-                    "farm-<scene name>); shared by every node");
-    cmd->add_option("--partition", o->partition, "Slurm partition (default: the cluster's)");
-    cmd->add_option("--time-limit", o->timeLimit,
-                    "Slurm time limit of each task, e.g. 2:00:00 (default: the partition's)");
-    cmd->add_option("--cpus", o->cpus, "CPUs per task (--cpus-per-task and mirage --threads)")
-        ->check(CLI::Range(1, 4096));
-    cmd->add_flag("--dry-run", o->dryRun,
-                  "Print the scripts and their dependencies; submit nothing, write nothing");
-    cmd->add_flag("--skip-existing", o->skipExisting,
-                  "Leave out frames already complete; tasks skip regions and photon files "
-                  "already complete (a resubmitted shot renders only what is missing)");
-    cmd->add_option("--set", o->overrides, "Scene overrides, as for mirage render")->take_all();
-    cmd->add_option("--resolution", o->resolution, "Image size WxH, as for mirage render");
-    cmd->add_option("--spp", o->spp, "Samples per pixel, as for mirage render")
-        ->check(CLI::Range(1, 1 << 20));
-    cmd->add_option("--seed", o->seed, "Random seed, as for mirage render")
-        ->check(CLI::Range(int64_t(0), INT64_MAX));
-    cmd->add_option("--integrator", o->integrator, "As for mirage render");
-    cmd->add_option("--quality", o->quality, "draft, preview or final, as for mirage render")
-        ->check(CLI::IsMember({"draft", "preview", "final"}));
+    addOptions(*cmd, farmRows(o.get()));
     return {cmd, [o] { return runFarm(*o); }};
 }
 

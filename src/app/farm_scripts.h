@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "app/frame_regions.h"
+#include "frame/frame_regions.h"
 
 namespace mirage {
 

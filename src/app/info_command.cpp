@@ -1,6 +1,5 @@
 // `mirage info`: what a VDB file holds, or what a scene loads and which physics it switches on.
 #include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <cstdio>
 #include <memory>
@@ -9,20 +8,13 @@
 #include "core/text.h"
 #include "film/color.h"
 #include "film/cryptomatte.h"
-#include "photon/medium_emitter.h"
-#include "scene/scene.h"
-#include "volume/vdb_file.h"
+#include "scene/scene_info.h"
 
 namespace mirage {
 
 namespace {
 
-void printGrids(const std::string& file) {
-    if (file.size() > 5 && file.substr(file.size() - 5) == ".nvdb") {
-        std::printf("  %s (NanoVDB file)\n", file.c_str());
-        return;
-    }
-    VdbFileInfo info = inspectVdbFile(file);
+void printGrids(const std::string& file, const VdbFileInfo& info) {
     std::printf("  %s: OpenVDB file version %s, %zu grid(s)\n", file.c_str(),
                 info.fileVersion.c_str(), info.grids.size());
     for (size_t i = 0; i < info.grids.size(); ++i) {
@@ -43,127 +35,81 @@ void printGrids(const std::string& file) {
     }
 }
 
-// Light `i`'s group, as the lightgroup_* passes name it ("" when no light has a group).
-std::string lightGroupOf(const RenderScene& scene, size_t i) {
-    if (scene.lightGroups.empty()) return "";
-    return scene.lightGroupNames()[size_t(scene.lightGroupSlot(i) - 1)];
-}
-
-// What the render writes beside the beauty: the passes and light groups, holdouts and deep
-// output (docs/aovs.md). A scene pays only for what it asks for, so each says whether it is on.
-void printOutput(const Scene& scene) {
-    const RenderSettings& s = scene.settings;
-    std::printf("output: %s (%s, %s)\n", scene.output.path.c_str(),
-                scene.output.halfFloat ? "half float" : "float",
-                scene.output.multipart ? "one part per pass" : "one part");
-    std::printf("  passes: %s\n", s.aovs.empty()
-                                      ? "none (the beauty alone; [output] aovs or --aov adds them)"
-                                      : joinList(s.aovs).c_str());
-    if (!scene.render.lightGroups.empty())
-        std::printf("  light groups: %s, and emission (lightgroup_*)\n",
-                    joinList(scene.render.lightGroupNames()).c_str());
-    for (const char* kind : {"volume", "shape"}) {
-        const std::string pass = cryptomattePass(kind);
-        if (std::find(s.aovs.begin(), s.aovs.end(), pass) == s.aovs.end()) continue;
-        const CryptoObjects& o = scene.render.cryptoObjects;
-        std::printf("  cryptomatte: layers %s00–%02d, %d ranks, of the %ss %s\n", pass.c_str(),
-                    kCryptomatteRanks / 2 - 1, kCryptomatteRanks, kind,
-                    joinList(std::string(kind) == "volume" ? o.volumes : o.shapes).c_str());
+// The grids bound to the shader's slots, the expressions, and the grids left unloaded.
+void printGridUse(const VolumeInfo& v) {
+    for (const SlotInfo& g : v.slots) {
+        // The dense copy's size, or why lookups go through the tree (volume/dense_block.h).
+        const std::string dense = g.denseBytes ? "dense copy " + formatBytes(g.denseBytes)
+                                  : g.activeVoxels
+                                      ? std::string("no dense copy (over its memory budget)")
+                                      : std::string("empty");
+        std::printf("    slot '%s' ← grid '%s': %llu active voxels, NanoVDB %s, %s, max %g\n",
+                    g.slot.c_str(), g.grid.c_str(), (unsigned long long)g.activeVoxels,
+                    formatBytes(g.treeBytes).c_str(), dense.c_str(), g.maxValue);
     }
-    std::vector<std::string> holdouts;
-    for (size_t i = 0; i < scene.render.media.size(); ++i)
-        if (scene.render.media[i]->holdout()) holdouts.push_back("volume " + std::to_string(i));
-    const GeometryScene* g = scene.render.geometry.get();
-    for (size_t i = 0; g && i < g->shapeCount(); ++i)
-        if (g->shape(int(i)).holdout) holdouts.push_back("shape " + std::to_string(i));
-    std::printf("  holdouts: %s\n", holdouts.empty() ? "none" : joinList(holdouts).c_str());
-    if (s.deep.path.empty())
-        std::printf("  deep: off ([output] deep or --deep writes a deep EXR)\n");
-    else
-        std::printf("  deep: %s (merged within alpha %g, colour %g)\n", s.deep.path.c_str(),
-                    double(s.deep.alphaTolerance), double(s.deep.colorTolerance));
+    for (const ExpressionRecord& e : v.expressions)
+        std::printf(
+            "    expression (%s, %s): %s; active voxels only; OpenVDB AX compile + "
+            "run %.3f s\n      %s\n",
+            e.origin.c_str(), e.expression.where.str().c_str(), describeAccess(e.access).c_str(),
+            e.seconds, boundedMessage(e.expression.code, 200).c_str());
+    for (const auto& u : v.unusedGrids)
+        std::printf("    grid '%s' is read by no shader slot or expression: not loaded\n",
+                    u.c_str());
 }
 
-}  // namespace
-
-int runInfo(const InfoOptions& o) {
-    ColorPipeline color(o.ocioConfig);
-    LoadOptions load{o.frame, o.overrides};
-    const double shutterWidth = o.motionBlur ? 0.5 : o.shutter;
-    if (shutterWidth >= 0) load.shutter = ShutterFrames{-0.5 * shutterWidth, 0.5 * shutterWidth};
-    Scene scene = loadScene(o.input, load, color);
-    std::printf("%s\n", o.input.c_str());
-    std::printf("volumes:\n");
-    for (size_t i = 0; i < scene.volumes.size(); ++i) {
-        const VolumeRecord& v = scene.volumes[i];
-        const Medium& m = *scene.render.media[i];
-        if (v.file.empty())
-            std::printf("  homogeneous box (no grids)\n");
-        else
-            printGrids(v.file);
-        std::printf("  shader '%s' (%s), density_scale %g\n", v.shader.c_str(),
-                    m.shader().source.c_str(), v.densityScale);
-        for (const std::string& n : v.notes) std::printf("    %s\n", n.c_str());
-        for (size_t b = 0; b < v.bindings.size(); ++b) {
-            const FloatGrid& g = m.grids()[b];
-            // The dense copy's size, or why lookups go through the tree (volume/dense_block.h).
-            const std::string dense = g.denseBytes() ? "dense copy " + formatBytes(g.denseBytes())
-                                      : g.activeVoxels()
-                                          ? std::string("no dense copy (over its memory budget)")
-                                          : std::string("empty");
-            std::printf("    slot '%s' ← grid '%s': %llu active voxels, NanoVDB %s, %s, max %g\n",
-                        v.bindings[b].first.c_str(), v.bindings[b].second.c_str(),
-                        (unsigned long long)g.activeVoxels(), formatBytes(g.treeBytes()).c_str(),
-                        dense.c_str(), g.maxValue());
-        }
-        for (const ExpressionRecord& e : v.expressions)
-            std::printf("    expression (%s, %s): %s; active voxels only; OpenVDB AX compile + "
-                        "run %.3f s\n      %s\n",
-                        e.origin.c_str(), e.expression.where.str().c_str(),
-                        describeAccess(e.access).c_str(), e.seconds,
-                        boundedMessage(e.expression.code, 200).c_str());
-        for (const auto& u : v.unusedGrids)
-            std::printf("    grid '%s' is read by no shader slot or expression: not loaded\n",
-                        u.c_str());
-        if (!v.file.empty()) {
-            // Described even with the shutter closed (the render then does not load it).
-            VelocityRecord velocity = v.velocity;
-            if (!velocity.grid.empty() && !velocity.velocity.valid())
-                velocity.velocity = loadVelocityGrid(v.file, velocity.grid);
-            std::printf("    velocity: %s\n", describeVelocity(velocity).c_str());
-            if (m.moving())
-                std::printf("    motion blur: lookups advected by up to %g m within the shutter; "
-                            "majorant dilated by it\n",
-                            double(m.blurRadius()));
-        }
-        if (m.transformMoves())
+// Velocity and keyed motion, the coefficients' path, emission, bounds and majorant.
+void printVolumePhysics(const VolumeInfo& v) {
+    if (!v.file.empty()) {
+        std::printf("    velocity: %s\n", v.velocity.c_str());
+        if (v.moving)
             std::printf(
-                "    transform keyed: the volume moves rigidly within the shutter "
-                "(each path sees it where its time places it)\n");
-        std::printf("    coefficients: %s\n",
-                    m.greyPath() ? "grey path (every σ wavelength-independent, none fluoresces)"
-                                 : "spectral path (σ evaluated at each path's 4 wavelengths)");
-        if (m.emissive() && !m.homogeneous()) {
-            MediumEmitter emitter(m);
-            std::printf("    emission: intensity %g, %zu emitting voxels above %g K, %.4g W over "
-                        "360–830 nm (the photon pass emits ∝ this)\n",
-                        m.shader().emission->intensity, emitter.emittingVoxels(),
-                        m.shader().emission->minTemperature, emitter.tablePower());
-        }
-        Bounds3 b = m.worldBounds();
-        std::printf("    world bounds (%g, %g, %g)..(%g, %g, %g) m, majorant %dx%dx%d cells, "
-                    "max σt %g 1/m\n",
-                    b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z, m.majorant().res(0),
-                    m.majorant().res(1), m.majorant().res(2), m.majorant().maxValue());
+                "    motion blur: lookups advected by up to %g m within the shutter; "
+                "majorant dilated by it\n",
+                v.blurRadius);
     }
+    if (v.transformMoves)
+        std::printf(
+            "    transform keyed: the volume moves rigidly within the shutter "
+            "(each path sees it where its time places it)\n");
+    std::printf("    coefficients: %s\n",
+                v.greyPath ? "grey path (every σ wavelength-independent, none fluoresces)"
+                           : "spectral path (σ evaluated at each path's 4 wavelengths)");
+    if (const std::optional<EmissionInfo>& e = v.emission)
+        std::printf(
+            "    emission: intensity %g, %zu emitting voxels above %g K, %.4g W over "
+            "360–830 nm (the photon pass emits ∝ this)\n",
+            e->intensity, e->voxels, e->minTemperature, e->power);
+    const Bounds3& b = v.worldBounds;
+    std::printf(
+        "    world bounds (%g, %g, %g)..(%g, %g, %g) m, majorant %dx%dx%d cells, "
+        "max σt %g 1/m\n",
+        b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z, v.majorantCells[0], v.majorantCells[1],
+        v.majorantCells[2], v.maxSigmaT);
+}
+
+void printVolume(const VolumeInfo& v) {
+    if (v.file.empty())
+        std::printf("  homogeneous box (no grids)\n");
+    else if (!v.vdb)
+        std::printf("  %s (NanoVDB file)\n", v.file.c_str());
+    else
+        printGrids(v.file, *v.vdb);
+    std::printf("  shader '%s' (%s), density_scale %g\n", v.shader.c_str(), v.shaderSource.c_str(),
+                v.densityScale);
+    for (const std::string& n : v.notes) std::printf("    %s\n", n.c_str());
+    printGridUse(v);
+    printVolumePhysics(v);
+}
+
+// The lights, the camera and its motion, the shutter.
+void printLightsAndCamera(const SceneInfo& info) {
     std::printf("lights:\n");
-    for (size_t i = 0; i < scene.render.lights.size(); ++i) {
-        const std::string group = lightGroupOf(scene.render, i);
-        std::printf("  %s%s\n", scene.render.lights[i]->describe().c_str(),
-                    group.empty() ? "" : ("; light group '" + group + "'").c_str());
-    }
-    if (scene.render.lights.empty()) std::printf("  (none)\n");
-    const CameraDesc& c = scene.render.camera;
+    for (const LightInfo& l : info.lights)
+        std::printf("  %s%s\n", l.description.c_str(),
+                    l.group.empty() ? "" : ("; light group '" + l.group + "'").c_str());
+    if (info.lights.empty()) std::printf("  (none)\n");
+    const CameraDesc& c = info.camera;
     std::printf("camera: position (%g, %g, %g), look_at (%g, %g, %g), fov %g°\n", c.position.x,
                 c.position.y, c.position.z, c.lookAt.x, c.lookAt.y, c.lookAt.z, c.fovDeg);
     if (c.keys.size() > 1 || c.orbitDegreesPerSecond != 0.f)
@@ -173,29 +119,75 @@ int runInfo(const InfoOptions& o) {
                               : "still within the closed shutter");
     if (c.motionBlur())
         std::printf("shutter: [%g, %g] frames at %g fps ([%g, %g] s): motion blur\n",
-                    scene.shutter.open, scene.shutter.close, scene.output.fps,
-                    double(c.shutterOpen), double(c.shutterClose));
+                    info.shutter.open, info.shutter.close, info.fps, double(c.shutterOpen),
+                    double(c.shutterClose));
     else
         std::printf("shutter: closed (no motion blur; [camera] shutter or --shutter opens it)\n");
-    // [render] passes: the samples come in passes, and the photon integrator makes a map per pass.
-    const std::string samples =
-        scene.passes.maxPasses > 0
-            ? std::to_string(scene.passes.maxPasses) + " passes of " +
-                  std::to_string(scene.passes.sppPerPass) + " spp" +
-                  (integratorInfo(scene.integrator).photonPass ? " (a photon map each)" : "")
-            : std::to_string(scene.settings.spp) + " spp";
+}
+
+// The film, its samples (in passes, a photon map each with the photon integrator), the
+// integrator and why, and the colour management.
+void printFilm(const SceneInfo& info) {
+    const RenderSettings& film = info.film;
+    const std::string samples = info.passes.maxPasses > 0
+                                    ? std::to_string(info.passes.maxPasses) + " passes of " +
+                                          std::to_string(info.passes.sppPerPass) + " spp" +
+                                          (info.photonMapPerPass ? " (a photon map each)" : "")
+                                    : std::to_string(film.spp) + " spp";
     std::printf("film: %dx%d, %s, tile %d, seed %llu; integrator '%s' (%s); colour: %s (%s)\n",
-                scene.settings.width, scene.settings.height, samples.c_str(),
-                scene.settings.tileSize, (unsigned long long)scene.settings.seed,
-                scene.integrator.c_str(), integratorInfo(scene.integrator).description.c_str(),
-                color.workingSpace().c_str(), color.configDescription().c_str());
-    std::printf("integrator: %s\n", scene.integratorWhy.empty()
+                film.width, film.height, samples.c_str(), film.tileSize,
+                (unsigned long long)film.seed, info.integrator.c_str(),
+                info.integratorDescription.c_str(), info.workingSpace.c_str(),
+                info.ocioConfig.c_str());
+    std::printf("integrator: %s\n", info.integratorWhy.empty()
                                         ? "named by [render] integrator or --set"
-                                        : scene.integratorWhy.c_str());
-    printOutput(scene);
+                                        : info.integratorWhy.c_str());
+}
+
+// What the render writes beside the beauty: the passes and light groups, holdouts and deep
+// output (docs/aovs.md). A scene pays only for what it asks for, so each says whether it is on.
+void printOutput(const OutputInfo& out) {
+    std::printf("output: %s (%s, %s)\n", out.path.c_str(), out.halfFloat ? "half float" : "float",
+                out.multipart ? "one part per pass" : "one part");
+    std::printf("  passes: %s\n", out.passes.empty()
+                                      ? "none (the beauty alone; [output] aovs or --aov adds them)"
+                                      : joinList(out.passes).c_str());
+    if (!out.lightGroups.empty())
+        std::printf("  light groups: %s, and emission (lightgroup_*)\n",
+                    joinList(out.lightGroups).c_str());
+    for (const CryptomatteInfo& c : out.cryptomattes)
+        std::printf("  cryptomatte: layers %s00–%02d, %d ranks, of the %ss %s\n", c.pass.c_str(),
+                    kCryptomatteRanks / 2 - 1, kCryptomatteRanks, c.kind.c_str(),
+                    joinList(c.objects).c_str());
+    std::printf("  holdouts: %s\n", out.holdouts.empty() ? "none" : joinList(out.holdouts).c_str());
+    if (out.deep.path.empty())
+        std::printf("  deep: off ([output] deep or --deep writes a deep EXR)\n");
+    else
+        std::printf("  deep: %s (merged within alpha %g, colour %g)\n", out.deep.path.c_str(),
+                    double(out.deep.alphaTolerance), double(out.deep.colorTolerance));
+}
+
+void printSceneInfo(const std::string& input, const SceneInfo& info) {
+    std::printf("%s\n", input.c_str());
+    std::printf("volumes:\n");
+    for (const VolumeInfo& v : info.volumes) printVolume(v);
+    printLightsAndCamera(info);
+    printFilm(info);
+    printOutput(info.output);
     std::printf("physics:\n");
-    for (const auto& t : scene.physics())
+    for (const auto& t : info.physics)
         std::printf("  [%s] %-22s %s\n", t.active ? "on " : "off", t.name.c_str(), t.why.c_str());
+}
+
+}  // namespace
+
+int runInfo(const InfoOptions& o) {
+    ColorPipeline color(o.ocioConfig);
+    LoadOptions load{o.frame, o.overrides};
+    const double shutterWidth = o.motionBlur ? 0.5 : o.shutter;
+    if (shutterWidth >= 0) load.shutter = ShutterFrames{-0.5 * shutterWidth, 0.5 * shutterWidth};
+    const Scene scene = loadScene(o.input, load, color);
+    printSceneInfo(o.input, describeScene(scene, color));
     return 0;
 }
 

@@ -1,44 +1,19 @@
-// What `mirage render` needs to survive being killed: the fingerprint that ties a partial file
-// to the scene and settings that made it, the checks of --resume and --skip-existing, and the
-// test hooks read from the environment.
+// What `mirage render` needs to survive being killed: the check of --resume against the frame's
+// fingerprint (frame/frame_fingerprint.h), and the test hooks read from the environment.
 #pragma once
 
 #include <cstdint>
-#include <map>
 #include <string>
-#include <vector>
 
 #include "film/partial_film.h"
+#include "frame/frame_fingerprint.h"
 
 namespace mirage {
-
-struct Scene;
-
-// The settings that decide a frame's pixels, as "key=value" lines (sorted by key), and the
-// fingerprint: FNV-1a 64 of those lines, the scene file's text, and each grid file's size and
-// modification time, in hex. A resumed render must match both. withRegion = false: the
-// fingerprint of the whole frame a region belongs to (every tile of a frame agrees on it).
-struct FrameFingerprint {
-    std::string settings;
-    std::string hash;
-};
-FrameFingerprint frameFingerprint(const Scene& scene, const std::string& input,
-                                  const std::string& integrator, int frame,
-                                  const std::vector<std::string>& overrides,
-                                  bool withRegion = true);
-// The same for what decides a frame's photon pass (`mirage photons`, --photons-file): the scene
-// and grid files, the frame, the seed, photons, bounce cap and shutter, and the --set keys
-// other than film.* and output.*. Resolution, samples and the estimate do not enter.
-FrameFingerprint photonFingerprint(const Scene& scene, const std::string& input, int frame,
-                                   const std::vector<std::string>& overrides);
 
 // Reads `partialPath` and checks that it belongs to `fingerprint` and the frame's size and tile
 // size. Throws MirageError with a clear message otherwise (naming the settings that differ).
 PartialFilm loadPartialForResume(const std::string& partialPath, const FrameFingerprint& expected,
                                  int width, int height, int tileSize);
-
-// True when `exrPath` is a finished Mirage frame (metadata mirage:complete = "true").
-bool isCompleteFrame(const std::string& exrPath);
 
 // Test hooks from the environment: MIRAGE_TEST_STOP_AFTER_TILES (raise the interrupt flag after
 // N tiles; -1 when unset) and MIRAGE_PARTIAL_INTERVAL (least seconds between partial writes;

@@ -106,6 +106,17 @@ struct ColorPipeline::Impl {
         return m;
     }
 
+    // The matrices between the config's XYZ and the working space.
+    void setWorkingMatrices() {
+        xyzToWorking = linearMatrix(xyzSpace, working);
+        if (!(std::abs(xyzToWorking.determinant()) > 1e-12))
+            throw MirageError("OCIO config " + description + ": the transform from '" + xyzSpace +
+                              "' to '" + working + "' is singular");
+        workingToXyz = xyzToWorking.inverse();
+    }
+
+    std::vector<float> workingChromaticities() const;
+
     std::vector<std::string> views(const std::string& display) const {
         std::vector<std::string> names;
         for (int i = 0; i < config->getNumViews(display.c_str()); ++i)
@@ -168,11 +179,7 @@ ColorPipeline::ColorPipeline(const std::string& configPath, const std::string& w
                           joinNames(colorSpaceNames(im.config)));
     }
 
-    im.xyzToWorking = im.linearMatrix(im.xyzSpace, im.working);
-    if (!(std::abs(im.xyzToWorking.determinant()) > 1e-12))
-        throw MirageError("OCIO config " + im.description + ": the transform from '" + im.xyzSpace +
-                          "' to '" + im.working + "' is singular");
-    im.workingToXyz = im.xyzToWorking.inverse();
+    im.setWorkingMatrices();
 }
 
 ColorPipeline::~ColorPipeline() = default;
@@ -194,16 +201,27 @@ const Mat3& ColorPipeline::workingToXyz() const { return mImpl->workingToXyz; }
 // adapted to the ACES white, a consistent description that a reader adapts back to its display.
 // Without that role the D65 description is used.
 std::vector<float> ColorPipeline::workingChromaticities() const {
-    Mat3 toXyz = mImpl->workingToXyz;
-    if (mImpl->config->hasRole(kAcesRole)) {
+    return mImpl->workingChromaticities();
+}
+
+std::vector<float> ColorPipeline::chromaticitiesOf(const std::string& space) const {
+    Impl other = *mImpl;
+    other.working = other.resolveColorSpace(space, "working colour space");
+    other.setWorkingMatrices();
+    return other.workingChromaticities();
+}
+
+std::vector<float> ColorPipeline::Impl::workingChromaticities() const {
+    Mat3 toXyz = workingToXyz;
+    if (config->hasRole(kAcesRole)) {
         // AP0 → CIE XYZ, SMPTE ST 2065-1:2012 section 4.3 (white x = 0.32168, y = 0.33767).
         Mat3 ap0ToXyz;
         ap0ToXyz.m = {0.9525523959,  0.0, 0.0000936786, 0.3439664498, 0.7281660966,
                       -0.0721325464, 0.0, 0.0,          1.0088251844};
-        std::string aces = mImpl->resolveColorSpace(kAcesRole,
-                                                    "colour space for role "
-                                                    "aces_interchange");
-        toXyz = ap0ToXyz * mImpl->linearMatrix(mImpl->working, aces);
+        std::string aces = resolveColorSpace(kAcesRole,
+                                             "colour space for role "
+                                             "aces_interchange");
+        toXyz = ap0ToXyz * linearMatrix(working, aces);
     }
     std::vector<float> xy;
     auto push = [&xy](const Vec3d& xyz) {

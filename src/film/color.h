@@ -30,6 +30,10 @@ public:
     // for EXR metadata: through ACES2065-1 when the config has the aces_interchange role (so
     // ACEScg gets AP1 and the ACES white), else through CIE XYZ D65 (see color.cpp).
     std::vector<float> workingChromaticities() const;
+    // The same for another scene-linear space of the config, as if it were the working space
+    // (an EXR written in [output] color_space). Throws MirageError for an unknown or a
+    // non-linear space.
+    std::vector<float> chromaticitiesOf(const std::string& space) const;
 
     // In-place conversion of interleaved RGB(A) pixels from the working space to another
     // colour space, or through a display/view for previews.

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "film/exr_output.h"
+#include "film/oiio_file.h"
 #include "spectrum/cie.h"
 
 namespace mirage {
@@ -169,8 +169,8 @@ void writeDeepExr(const std::string& path, const DeepFilm& film, bool halfFloat,
                 deep.set_deep_value(pixel, 5, int(s), p.zBack);
             }
         }
-    writeOpenExrAtomically(
-        path, spec, [&](OIIO::ImageOutput& out) { return out.write_deep_image(deep); },
+    writeImageAtomically(
+        path, {spec}, [&](OIIO::ImageOutput& out, size_t) { return out.write_deep_image(deep); },
         "deep image");
 }
 

@@ -1,11 +1,8 @@
 // Image files through OpenImageIO: scene-linear OpenEXR with colour tags and Mirage metadata,
 // 8-bit display previews, and the EXR reader the tests and the tradeoff instrument use.
 //
-// Every write goes to a temporary `<dir>/.<name>.tmp-…` (core/atomic_file.h) and is renamed
-// over `<dir>/<name>` only once the file is complete and closed: rename within one folder is atomic
-// on POSIX file systems, so a reader (a compositor watching the folder, a render farm's checker)
-// sees the old file or the new one, never half of one, and a render killed mid-write leaves the
-// previous good file alone.
+// Every write goes through the atomic writer of oiio_file.h: a reader (a compositor watching the
+// folder, a render farm's checker) sees the old file or the new one, never half of one.
 
 #include "film/image_io.h"
 
@@ -15,7 +12,6 @@
 #include <cctype>
 #include <filesystem>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
 #include "film/color.h"
 #include "film/oiio_file.h"
@@ -55,46 +51,6 @@ std::string lowerExtension(const std::string& path) {
 }
 
 }  // namespace
-
-void writeAtomically(const std::string& path, const OIIO::ImageSpec& spec, const float* pixels,
-                     OIIO::stride_t xstride) {
-    writeSubimagesAtomically(path, {spec}, {pixels}, xstride);
-}
-
-void writeSubimagesAtomically(const std::string& path, const std::vector<OIIO::ImageSpec>& specs,
-                              const std::vector<const float*>& pixels, OIIO::stride_t xstride) {
-    MIRAGE_CHECK(!specs.empty() && specs.size() == pixels.size());
-    fs::path target(path);
-    if (target.filename().empty() || target.filename() == "." || target.filename() == "..")
-        fail(path, "not a file name");
-    fs::path dir = target.parent_path();
-    std::error_code ec;
-    if (!dir.empty() && !fs::is_directory(dir, ec)) {
-        fs::create_directories(dir, ec);
-        if (ec) fail(path, "cannot create the folder '" + dir.string() + "': " + ec.message());
-    }
-    // The temporary name has no image extension: the writer is chosen by the target's.
-    replaceFileAtomically(
-        path,
-        [&](const std::string& tmp) {
-            std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(target.string());
-            if (!out) fail(path, "no image writer for this file type: " + OIIO::geterror());
-            const bool several = specs.size() > 1;
-            if (several && !out->supports("multiimage"))
-                fail(path, "this file type holds one image, not " + std::to_string(specs.size()));
-            if (!(several ? out->open(tmp, int(specs.size()), specs.data())
-                          : out->open(tmp, specs[0])))
-                fail(path, "cannot open '" + tmp + "' for writing: " + out->geterror());
-            bool ok = true;
-            for (size_t i = 0; i < specs.size() && ok; ++i) {
-                if (i > 0) ok = out->open(tmp, specs[i], OIIO::ImageOutput::AppendSubimage);
-                ok = ok && out->write_image(OIIO::TypeFloat, pixels[i], xstride);
-            }
-            ok = out->close() && ok;
-            if (!ok) fail(path, "cannot write: " + out->geterror());
-        },
-        "cannot move the finished file into place");
-}
 
 namespace {
 

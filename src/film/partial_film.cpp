@@ -9,7 +9,7 @@
 
 #include "core/error.h"
 #include "core/text.h"
-#include "film/exr_output.h"
+#include "film/oiio_file.h"
 
 namespace mirage {
 
@@ -177,9 +177,9 @@ void writePartialFilm(const std::string& path, const Film& film, int tileSize,
     }
 
     // Temporary file next to the target, then rename (atomic within one folder).
-    writeOpenExrAtomically(
-        path, spec,
-        [&](OIIO::ImageOutput& out) {
+    writeImageAtomically(
+        path, {spec},
+        [&](OIIO::ImageOutput& out, size_t) {
             return out.write_image(OIIO::TypeUnknown, record.data(), words * 4);
         },
         "partial file");

@@ -2,9 +2,9 @@
 
 #include <embree3/rtcore.h>
 
-#include <chrono>
 #include <cstring>
 
+#include "core/clock.h"
 #include "core/error.h"
 #include "geometry/embree_commit.h"
 #include "geometry/embree_ray.h"
@@ -230,10 +230,9 @@ std::shared_ptr<const Region> GeometryScene::interiorRegion(int shape) const {
 }
 
 void GeometryScene::commit() {
-    auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     commitEmbreeScene(mEmbree->scene);
-    mBuildSeconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    mBuildSeconds = secondsSince(t0);
     mCommitted = true;
     if (!mEmbree->error.empty()) throw MirageError("surfaces: " + mEmbree->error);
 }

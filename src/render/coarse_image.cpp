@@ -29,6 +29,7 @@ bool addCoarseSamples(const RenderScene& scene, Integrator& integrator, const Re
     s.spp = spp;
     TileCheckpoint from;
     from.initial = &image->film;
+    from.cancel = image->cancel;
     RenderStats stats;
     Film next = render(scene, integrator, s, &stats, &from, PassSamples{image->spp, nullptr});
     if (stats.interrupted) return false;

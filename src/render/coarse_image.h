@@ -18,6 +18,8 @@
 
 namespace mirage {
 
+class CancelToken;
+
 // The coarse image's pixels per frame pixel, in each axis.
 constexpr int kCoarseDivisor = 2;
 
@@ -32,11 +34,13 @@ RenderSettings coarseSettings(const RenderSettings& frame);
 struct CoarseImage {
     Film film;    // at coarseSettings(frame)'s resolution
     int spp = 0;  // samples per coarse pixel so far
+    // The caller's stop (core/cancel.h) for its renders; null: SIGINT/SIGTERM.
+    const CancelToken* cancel = nullptr;
     explicit CoarseImage(const RenderSettings& frame);
 };
 
 // Adds `spp` samples to every pixel of `image` (its samples [image->spp, image->spp + spp)).
-// Returns false, leaving `image` as it was, when an interrupt stopped the render.
+// Returns false, leaving `image` as it was, when a stop (image->cancel, a signal) came.
 bool addCoarseSamples(const RenderScene& scene, Integrator& integrator, const RenderSettings& frame,
                       int spp, CoarseImage* image);
 

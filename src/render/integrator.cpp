@@ -1,26 +1,20 @@
 #include "render/integrator.h"
 
-#include <cstdio>
-
 #include "core/error.h"
 #include "core/text.h"
+#include "film/exr_header.h"
 
 namespace mirage {
 
 std::vector<std::pair<std::string, std::string>> PhotonStats::metadata() const {
-    auto num = [](double v) {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%.6g", v);
-        return std::string(buf);
-    };
     return {{"photons_traced", std::to_string(photonsTraced)},
             {"photons_stored", std::to_string(photonsStored)},
-            {"photon_pass_seconds", num(photonPassSeconds)},
-            {"photons_per_second", num(photonsPerSecond)},
-            {"photon_map_build_seconds", num(photonMapBuildSeconds)},
-            {"photon_radii_seconds", num(photonRadiiSeconds)},
-            {"disc_bvh_build_seconds", num(discBvhBuildSeconds)},
-            {"estimate_seconds", num(estimateSeconds)}};
+            {"photon_pass_seconds", headerNumber(photonPassSeconds)},
+            {"photons_per_second", headerNumber(photonsPerSecond)},
+            {"photon_map_build_seconds", headerNumber(photonMapBuildSeconds)},
+            {"photon_radii_seconds", headerNumber(photonRadiiSeconds)},
+            {"disc_bvh_build_seconds", headerNumber(discBvhBuildSeconds)},
+            {"estimate_seconds", headerNumber(estimateSeconds)}};
 }
 
 bool photonsCurve(const IndexField* field, const Bounds3& b) {

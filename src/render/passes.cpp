@@ -6,18 +6,15 @@
 #include <cstdio>
 #include <optional>
 
+#include "core/cancel.h"
+#include "core/clock.h"
 #include "core/error.h"
-#include "core/interrupt.h"
 #include "film/film_error.h"
 #include "render/coarse_image.h"
 
 namespace mirage {
 
 namespace {
-
-double secondsFrom(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // One pass's render statistics into the running sums.
 void addPassStats(const RenderStats& pass, RenderStats* sum) {
@@ -60,28 +57,6 @@ std::string stopBefore(const PassSettings& settings, const PassState& state, dou
     return "";
 }
 
-// The coarse image's part of a render (passes.h): renders it into `image`, and says why the
-// render stops there, or "" when full passes follow.
-std::string startCoarse(const RenderScene& scene, Integrator& integrator, const RenderSettings& s,
-                        const PassSettings& settings, double before,
-                        std::chrono::steady_clock::time_point frameStart,
-                        std::optional<CoarseImage>* image) {
-    CoarseImage& coarse = image->emplace(s);
-    if (settings.coarseSpp > 0)
-        return addCoarseSamples(scene, integrator, s, settings.coarseSpp, &coarse)
-                   ? "coarse image (--coarse)"
-                   : "interrupted";
-    const auto t0 = std::chrono::steady_clock::now();
-    if (!addCoarseSamples(scene, integrator, s, 1, &coarse)) return "interrupted";
-    const double perSample = secondsFrom(t0);
-    for (;;) {
-        const double left = settings.timeLimit - (before + secondsFrom(frameStart));
-        if (kPassInCoarseSamples * perSample <= left) return "";
-        if (coarse.spp * perSample > left) return "time limit (coarse image: no full pass fits)";
-        if (!addCoarseSamples(scene, integrator, s, coarse.spp, &coarse)) return "interrupted";
-    }
-}
-
 // The report of a render whose image is its coarse image.
 void reportCoarse(const CoarseImage& coarse, const Integrator& integrator, PassReport* report) {
     report->passes = 0;
@@ -93,6 +68,163 @@ void reportCoarse(const CoarseImage& coarse, const Integrator& integrator, PassR
     report->lastPassPixels = size_t(coarse.film.width()) * size_t(coarse.film.height());
 }
 
+// One render in passes, step by step (renderPasses, below): the film so far, the coarse image,
+// and the sums of the passes' statistics.
+class PassRender {
+public:
+    PassRender(const RenderScene& scene, Integrator& integrator, const RenderSettings& s,
+               const PassSettings& settings, const PassRun& run)
+        : mScene(scene),
+          mIntegrator(integrator),
+          mS(s),
+          mSettings(settings),
+          mRun(run),
+          mResumed(run.checkpoint && run.checkpoint->initial),
+          mBefore(mResumed ? run.checkpoint->secondsDone : 0.0),
+          mState(mResumed ? *run.checkpoint->initial
+                          : Film(renderWindow(s).width(), renderWindow(s).height(),
+                                 aovLayout(scene, s))),
+          mPassSettings(s) {
+        mPassSettings.spp = settings.sppPerPass;
+        mPassSettings.progress = Progress::Mode::Quiet;  // one line per pass instead
+        if (!mResumed) return;
+        mState.passes = run.checkpoint->passesDone;
+        assess(settings, &mState);
+    }
+
+    // The coarse image, where the render begins with it: why the render stops there, or "" when
+    // full passes follow.
+    std::string startCoarse() {
+        const CoarseStage& coarse = mRun.coarse;
+        if (!coarse.integrator || mResumed || !coarseImagePossible(mS) ||
+            (mSettings.coarseSpp <= 0 && mSettings.timeLimit <= 0))
+            return "";
+        CoarseImage& image = mCoarse.emplace(mS);
+        image.cancel = mRun.cancel;
+        if (mSettings.coarseSpp > 0)
+            return addCoarseSamples(mScene, *coarse.integrator, mS, mSettings.coarseSpp, &image)
+                       ? "coarse image (--coarse)"
+                       : "interrupted";
+        const auto t0 = Clock::now();
+        if (!addCoarseSamples(mScene, *coarse.integrator, mS, 1, &image)) return "interrupted";
+        const double perSample = secondsSince(t0);
+        for (;;) {
+            const double left = mSettings.timeLimit - elapsed();
+            if (kPassInCoarseSamples * perSample <= left) return "";
+            if (image.spp * perSample > left) return "time limit (coarse image: no full pass fits)";
+            if (!addCoarseSamples(mScene, *coarse.integrator, mS, image.spp, &image))
+                return "interrupted";
+        }
+    }
+
+    // The next full pass: why the render stops before it or during it (a pass cut short is
+    // dropped: the film keeps whole passes), or "" once it is in the film.
+    // From here the passes' wall time counts (mirage:render_seconds).
+    void startPasses() { mPassesStart = Clock::now(); }
+
+    std::string nextPass() {
+        const std::string stop = stopBefore(mSettings, mState, elapsed(), mLastPass);
+        if (!stop.empty()) return stop;
+        if (stopRequested(mRun.cancel)) return "interrupted";
+        const auto t0 = Clock::now();
+        mIntegrator.beginPass(mScene, mState.passes);
+        TileCheckpoint from = passControl();
+        const PassSamples samples{mState.passes * mSettings.sppPerPass,
+                                  mState.pixels.empty() ? nullptr : &mState.pixels};
+        RenderStats pass;
+        Film next = render(mScene, mIntegrator, mPassSettings, &pass, &from, samples);
+        if (pass.interrupted) return whyCut(from);
+        addPass(std::move(next), pass, secondsSince(t0));
+        return "";
+    }
+
+    PassResult finish(const std::string& stop) {
+        const bool coarseIsTheImage = mCoarse && mState.passes == 0 && stop != "interrupted";
+        if (coarseIsTheImage) mState.film = magnifyCoarse(*mCoarse, mS);
+        RenderStats& sum = mSum;
+        sum.tiles = tileCount(mS);
+        sum.seconds = secondsSince(mPassesStart);  // the later passes' photon maps included
+        sum.nonFiniteSamples = mState.film.nonFiniteSamples();
+        sum.interrupted = stop == "interrupted";
+        sum.tilesDone = sum.interrupted ? 0 : sum.tiles;
+        PassReport report;
+        report.passes = mState.passes;
+        for (int y = 0; y < mState.film.height(); ++y)
+            for (int x = 0; x < mState.film.width(); ++x)
+                report.samples += mState.film.pixel(x, y).samples;
+        report.estimatedError = mState.error.relError();
+        report.seconds = elapsed();
+        report.lastPassPixels = mLastPixels;
+        report.stop = stop;
+        if (coarseIsTheImage) reportCoarse(*mCoarse, *mRun.coarse.integrator, &report);
+        return {std::move(mState.film), sum, report};
+    }
+
+private:
+    // Seconds since the frame began, the runs before a resume included.
+    double elapsed() const { return mBefore + secondsSince(mRun.frameStart); }
+
+    // A pass ends at the time limit (no tile starts after it) where there is an image to fall
+    // back on: the passes before it, or the coarse image.
+    TileCheckpoint passControl() const {
+        TileCheckpoint from;
+        from.initial = &mState.film;
+        from.cancel = mRun.cancel;
+        if (mSettings.timeLimit > 0 && (mState.passes > 0 || mCoarse))
+            from.deadline =
+                mRun.frameStart + std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                      std::chrono::duration<double>(mSettings.timeLimit - mBefore));
+        return from;
+    }
+
+    // Why a pass was cut short: a stop, or the time limit's deadline.
+    std::string whyCut(const TileCheckpoint& from) const {
+        if (stopRequested(mRun.cancel) || from.deadline == Clock::time_point::max())
+            return "interrupted";
+        return mState.passes == 0 ? "time limit (coarse image: the first full pass did not fit)"
+                                  : "time limit";
+    }
+
+    // A finished pass into the film: its statistics, the error estimate and the next mask, its
+    // line, and the checkpoint's hooks.
+    void addPass(Film next, const RenderStats& pass, double seconds) {
+        addPassStats(pass, &mSum);
+        mState.film = std::move(next);
+        ++mState.passes;
+        ++mPassesNow;
+        mLastPass = seconds;
+        const PixelWindow win = renderWindow(mS);
+        mLastPixels =
+            mState.pixels.empty()
+                ? size_t(win.width()) * size_t(win.height())
+                : size_t(std::count(mState.pixels.begin(), mState.pixels.end(), uint8_t(1)));
+        assess(mSettings, &mState);
+        if (mS.progress != Progress::Mode::Quiet)
+            std::fprintf(stderr, "pass %d: %zu pixels, %.2fs, estimated error %.4g\n",
+                         mState.passes, mLastPixels, mLastPass, mState.error.relError());
+        PassCheckpoint* c = mRun.checkpoint;
+        if (c && c->passFinished) c->passFinished(mState.film, mState.passes, elapsed());
+        if (c && c->stopAfterPasses >= 0 && mPassesNow >= c->stopAfterPasses)
+            requestInterrupt(SIGINT);
+    }
+
+    const RenderScene& mScene;
+    Integrator& mIntegrator;
+    const RenderSettings& mS;
+    const PassSettings& mSettings;
+    const PassRun& mRun;
+    const bool mResumed;
+    const double mBefore;  // seconds of the runs before a resume
+    PassState mState;
+    RenderSettings mPassSettings;  // one pass: pass_spp samples, quiet
+    std::optional<CoarseImage> mCoarse;
+    RenderStats mSum;
+    Clock::time_point mPassesStart;
+    double mLastPass = 0;
+    size_t mLastPixels = 0;
+    int mPassesNow = 0;
+};
+
 }  // namespace
 
 int PassSettings::passCap() const {
@@ -100,111 +232,22 @@ int PassSettings::passCap() const {
     return maxPasses > 0 ? std::min(maxPasses, bySamples) : bySamples;
 }
 
-Film renderPasses(const RenderScene& scene, Integrator& integrator, const RenderSettings& s,
-                  const PassSettings& settings, std::chrono::steady_clock::time_point frameStart,
-                  RenderStats* stats, PassReport* report, PassCheckpoint* checkpoint,
-                  const CoarseStage& coarse) {
+PassResult renderPasses(const RenderScene& scene, Integrator& integrator, const RenderSettings& s,
+                        const PassSettings& settings, const PassRun& run) {
     MIRAGE_CHECK(settings.sppPerPass >= 1);
-    const bool resumed = checkpoint && checkpoint->initial;
     // A region's passes (--region with --passes) fill the region's film; an adaptive mask is
     // indexed by whole-frame pixel, so a noise threshold needs the whole frame (the command
     // refuses the pair).
     const PixelWindow win = renderWindow(s);
     MIRAGE_CHECK(settings.noiseThreshold <= 0 ||
                  (win.width() == s.width && win.height() == s.height));
-    MIRAGE_CHECK(settings.coarseSpp <= 0 || (coarse.integrator && coarseImagePossible(s)));
-    PassState state(resumed ? *checkpoint->initial
-                            : Film(win.width(), win.height(), aovLayout(scene, s)));
-    const double before = resumed ? checkpoint->secondsDone : 0.0;
-    if (resumed) {
-        state.passes = checkpoint->passesDone;
-        assess(settings, &state);
-    }
-    std::optional<CoarseImage> coarseImage;
-    std::string stop;
-    if (coarse.integrator && !resumed && coarseImagePossible(s) &&
-        (settings.coarseSpp > 0 || settings.timeLimit > 0))
-        stop =
-            startCoarse(scene, *coarse.integrator, s, settings, before, frameStart, &coarseImage);
-    if (stop.empty() && coarse.prepareFullPasses) coarse.prepareFullPasses();
-    RenderSettings passSettings = s;
-    passSettings.spp = settings.sppPerPass;
-    passSettings.progress = Progress::Mode::Quiet;  // one line per pass instead
-    RenderStats sum;
-    sum.tiles = tileCount(s);
-    const auto passesStart = std::chrono::steady_clock::now();
-    double lastPass = 0;
-    size_t lastPixels = 0;
-    int passesNow = 0;
-    while (stop.empty()) {
-        stop = stopBefore(settings, state, before + secondsFrom(frameStart), lastPass);
-        if (!stop.empty()) break;
-        if (interruptRequested()) {
-            stop = "interrupted";
-            break;
-        }
-        const auto t0 = std::chrono::steady_clock::now();
-        integrator.beginPass(scene, state.passes);
-        TileCheckpoint from;
-        from.initial = &state.film;
-        // A pass ends at the time limit (no tile starts after it) where there is an image to
-        // fall back on: the passes before it, or the coarse image.
-        const bool cutAtLimit = settings.timeLimit > 0 && (state.passes > 0 || coarseImage);
-        if (cutAtLimit)
-            from.deadline =
-                frameStart + std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                 std::chrono::duration<double>(settings.timeLimit - before));
-        const PassSamples samples{state.passes * settings.sppPerPass,
-                                  state.pixels.empty() ? nullptr : &state.pixels};
-        RenderStats pass;
-        Film next = render(scene, integrator, passSettings, &pass, &from, samples);
-        if (pass.interrupted) {  // a pass cut short is dropped: the film keeps whole passes
-            if (interruptRequested() || !cutAtLimit)
-                stop = "interrupted";
-            else
-                stop = state.passes == 0
-                           ? "time limit (coarse image: the first full pass did not fit)"
-                           : "time limit";
-            break;
-        }
-        addPassStats(pass, &sum);
-        state.film = std::move(next);
-        ++state.passes;
-        ++passesNow;
-        lastPass = secondsFrom(t0);
-        lastPixels = state.pixels.empty()
-                         ? size_t(win.width()) * size_t(win.height())
-                         : size_t(std::count(state.pixels.begin(), state.pixels.end(), uint8_t(1)));
-        assess(settings, &state);
-        if (s.progress != Progress::Mode::Quiet)
-            std::fprintf(stderr, "pass %d: %zu pixels, %.2fs, estimated error %.4g\n", state.passes,
-                         lastPixels, lastPass, state.error.relError());
-        if (checkpoint && checkpoint->passFinished)
-            checkpoint->passFinished(state.film, state.passes, before + secondsFrom(frameStart));
-        if (checkpoint && checkpoint->stopAfterPasses >= 0 &&
-            passesNow >= checkpoint->stopAfterPasses)
-            requestInterrupt(SIGINT);
-    }
-    const bool coarseIsTheImage = coarseImage && state.passes == 0 && stop != "interrupted";
-    if (coarseIsTheImage) state.film = magnifyCoarse(*coarseImage, s);
-    sum.seconds = secondsFrom(passesStart);  // the later passes' photon maps included
-    sum.nonFiniteSamples = state.film.nonFiniteSamples();
-    sum.interrupted = stop == "interrupted";
-    sum.tilesDone = sum.interrupted ? 0 : sum.tiles;
-    if (stats) *stats = sum;
-    if (report) {
-        report->passes = state.passes;
-        report->samples = 0;
-        for (int y = 0; y < state.film.height(); ++y)
-            for (int x = 0; x < state.film.width(); ++x)
-                report->samples += state.film.pixel(x, y).samples;
-        report->estimatedError = state.error.relError();
-        report->seconds = before + secondsFrom(frameStart);
-        report->lastPassPixels = lastPixels;
-        report->stop = stop;
-        if (coarseIsTheImage) reportCoarse(*coarseImage, *coarse.integrator, report);
-    }
-    return std::move(state.film);
+    MIRAGE_CHECK(settings.coarseSpp <= 0 || (run.coarse.integrator && coarseImagePossible(s)));
+    PassRender r(scene, integrator, s, settings, run);
+    std::string stop = r.startCoarse();
+    if (stop.empty() && run.coarse.prepareFullPasses) run.coarse.prepareFullPasses();
+    r.startPasses();
+    while (stop.empty()) stop = r.nextPass();
+    return r.finish(stop);
 }
 
 }  // namespace mirage

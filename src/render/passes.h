@@ -29,15 +29,17 @@
 // bits as one render of N·K samples per pixel.
 #pragma once
 
-#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <string>
 
+#include "core/clock.h"
 #include "film/film.h"
 #include "render/renderer.h"
 
 namespace mirage {
+
+class CancelToken;
 
 // A pixel's samples are counted in 32 bits and capped with the --spp range.
 constexpr int kMaxSamplesPerPixel = 1 << 20;
@@ -92,15 +94,31 @@ struct CoarseStage {
     std::function<void()> prepareFullPasses;
 };
 
-// Renders passes of `passes.sppPerPass` samples until a stop (above); `frameStart` is when the
-// frame began (its time limit counts from there). `stats` sums the passes' render statistics,
-// its seconds the wall time of all passes, photon maps of passes after the first included
-// (stats->interrupted: an interrupt stopped it; the film holds the passes finished before).
-// `coarse.integrator` renders the coarse image (null: none; then a time limit never cuts a
-// pass); it is used only when coarseImagePossible(settings) and the render does not resume.
-Film renderPasses(const RenderScene& scene, Integrator& integrator, const RenderSettings& settings,
-                  const PassSettings& passes, std::chrono::steady_clock::time_point frameStart,
-                  RenderStats* stats, PassReport* report, PassCheckpoint* checkpoint = nullptr,
-                  const CoarseStage& coarse = {});
+// How a render in passes runs beyond its settings. Every field is optional.
+struct PassRun {
+    Clock::time_point frameStart = Clock::now();  // when the frame began: its time limit counts
+    PassCheckpoint* checkpoint = nullptr;         // resume from, and checkpoint, whole passes
+    CoarseStage coarse;                           // its coarse image; none by default
+    // The caller's stop (core/cancel.h), checked before each pass and between its tiles: a
+    // pass cut short is dropped, the film keeps the whole passes before it. Null: SIGINT/SIGTERM.
+    const CancelToken* cancel = nullptr;
+};
+
+// A render in passes: the film of its whole passes (or its coarse image, magnified), the sums of
+// the passes' render statistics, its seconds the wall time of all passes, photon maps of passes
+// after the first included (stats.interrupted: a stop came; the film holds the passes finished
+// before), and how far it went and why it stopped.
+struct PassResult {
+    Film film;
+    RenderStats stats;
+    PassReport report;
+};
+
+// Renders passes of `passes.sppPerPass` samples until a stop (above). `run.coarse.integrator`
+// renders the coarse image (null: none; then a time limit never cuts a pass); it is used only
+// when coarseImagePossible(settings) and the render does not resume.
+PassResult renderPasses(const RenderScene& scene, Integrator& integrator,
+                        const RenderSettings& settings, const PassSettings& passes,
+                        const PassRun& run = {});
 
 }  // namespace mirage

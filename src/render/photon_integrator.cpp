@@ -80,11 +80,11 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <optional>
 
+#include "core/clock.h"
 #include "core/error.h"
 #include "photon/beam_estimate.h"
 #include "photon/photon_pass.h"
@@ -96,12 +96,6 @@
 namespace mirage {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 // Progressive photon mapping's α (see the top of the file).
 constexpr double kProgressiveAlpha = 2.0 / 3.0;

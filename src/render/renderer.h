@@ -18,6 +18,8 @@
 
 namespace mirage {
 
+class CancelToken;
+
 // A rectangle of pixels [x0, x1) × [y0, y1) in the full frame; empty: the whole frame.
 struct PixelWindow {
     int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
@@ -62,7 +64,7 @@ struct RenderStats {
     int tiles = 0;                  // tiles in the image
     int tilesDone = 0;              // finished, including those restored from a partial file
     int tilesResumed = 0;           // restored from a partial file, not rendered now
-    bool interrupted = false;       // stopped by interruptRequested() before every tile was done
+    bool interrupted = false;       // stopped (a cancel, a signal, the deadline) before the end
 };
 
 // The pixels a render covers: the region, or the whole frame.
@@ -79,7 +81,8 @@ inline int tileCount(const RenderSettings& s) {
     return tileCountX(s) * ((renderWindow(s).height() + s.tileSize - 1) / s.tileSize);
 }
 
-// Checkpointing a render (killed renders, --resume). All fields are optional.
+// How a render runs beyond its settings: resuming and checkpointing (killed renders,
+// --resume), its deadline and its stop. All fields are optional.
 struct TileCheckpoint {
     // Resume: the film restored from a partial file and which tiles it holds (1 = finished);
     // those tiles are not rendered again. Sizes must match the settings.
@@ -94,6 +97,8 @@ struct TileCheckpoint {
     // No tile starts after this time (a time limit's end, render/passes.h); the tiles left are
     // undone, as after an interrupt. Default: none.
     std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
+    // The caller's stop (core/cancel.h): no tile starts once it is raised. Null: SIGINT/SIGTERM.
+    const CancelToken* cancel = nullptr;
 };
 
 // One pass of a render in passes (render/passes.h): the samples of each pixel it adds, and which
@@ -103,8 +108,9 @@ struct PassSamples {
     const std::vector<uint8_t>* pixels = nullptr;  // row-major, 1 = sample; null = every pixel
 };
 
-// Renders every tile not already done, stopping early when interruptRequested() (tiles in
-// flight finish; the rest are left undone, and stats->interrupted is set). On return,
+// Renders every tile not already done, stopping early when a stop is requested
+// (checkpoint->cancel, else a signal: tiles in flight finish; the rest are left undone, and
+// stats->interrupted is set). On return,
 // checkpoint->done (if given) says which tiles the film holds.
 // With `deep` (settings.deep.path set), every rendered pixel's deep samples go there.
 Film render(const RenderScene& scene, Integrator& integrator, const RenderSettings& settings,

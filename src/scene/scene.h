@@ -73,7 +73,7 @@ struct Scene {
     // settings (its seed and progress mode come from the render settings).
     PhotonIntegratorSettings photon;
     // film.spp and render.photons as the scene file states them (0: not stated): what the
-    // scene needs at the preview preset, which the quality presets scale (render_frame.h; a
+    // scene needs at the preview preset, which the quality presets scale (frame_settings.h; a
     // stated render.k, nonzero, is kept).
     int statedSpp = 0;
     uint64_t statedPhotons = 0;
@@ -113,6 +113,9 @@ struct LoadOptions {
         beforeGridLoad = nullptr;
     // --shutter / --motion-blur: replaces the scene's [camera] shutter (and gives a bare VDB one).
     std::optional<ShutterFrames> shutter = std::nullopt;
+    // --integrator: replaces the scene's [render] integrator before the loader resolves "auto"
+    // (resolveAutoIntegrator, once); "" keeps the scene's.
+    std::string integrator = "";
 };
 
 // The default integrator: the method that renders all of this scene's light and converges

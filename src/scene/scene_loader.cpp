@@ -480,6 +480,13 @@ void readSceneRefraction(const TableReader& top, Scene* scene) {
     if (scene->refraction->field->gradientBound(-big, big) == 0) scene->refraction.reset();
 }
 
+// The integrator the load was asked for (--integrator), else the scene's, with "auto" resolved:
+// the one place a loaded scene's integrator is chosen.
+void useIntegrator(const LoadOptions& options, Scene* scene) {
+    if (!options.integrator.empty()) scene->integrator = options.integrator;
+    resolveAutoIntegrator(scene);
+}
+
 }  // namespace
 
 Scene loadScene(const std::string& path, const LoadOptions& options, const ColorPipeline& color) {
@@ -514,7 +521,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
     setShutterSeconds(&scene);
     readSceneRefraction(top, &scene);
     top.finish();
-    resolveAutoIntegrator(&scene);
+    useIntegrator(options, &scene);
     return scene;
 }
 
@@ -568,7 +575,7 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
     bool pathSet = std::any_of(options.overrides.begin(), options.overrides.end(),
                                [](const std::string& o) { return o.rfind("output.path=", 0) == 0; });
     if (!pathSet) scene.output.path = (fs::path(rec.file).stem().string() + ".exr");
-    resolveAutoIntegrator(&scene);
+    useIntegrator(options, &scene);
     return scene;
 }
 

@@ -131,6 +131,120 @@ void decadeRange(const std::vector<double>& v, int* lo, int* hi) {
     if (*hi <= *lo) *hi = *lo + 1;
 }
 
+// The plot area in pixels (room for tick labels and axis titles on the left and below when
+// there are labels) and the decades it spans: where a value lands.
+struct PlotArea {
+    int left, right, top, bottom;
+    int xLo, xHi, yLo, yHi;  // decade exponents
+    double px(double x) const {
+        return left + (std::log10(x) - xLo) / (xHi - xLo) * (right - left);
+    }
+    double py(double y) const {
+        return bottom - (std::log10(y) - yLo) / (yHi - yLo) * (bottom - top);
+    }
+};
+
+PlotArea plotArea(const LogLogPlot& plot, int width, int height, bool labels) {
+    PlotArea a{labels ? 92 : 30, width - 24, labels ? 44 : 20, height - (labels ? 64 : 20),
+               0, 0, 0, 0};
+    std::vector<double> xs, ys;
+    for (const auto& s : plot.series) {
+        xs.insert(xs.end(), s.x.begin(), s.x.end());
+        ys.insert(ys.end(), s.y.begin(), s.y.end());
+    }
+    decadeRange(xs, &a.xLo, &a.xHi);
+    decadeRange(ys, &a.yLo, &a.yHi);
+    return a;
+}
+
+// Decade grid, then the frame, then ticks: major at 10ⁿ, minor at 2–9 × 10ⁿ.
+void drawAxes(const PlotArea& a, Canvas& canvas) {
+    for (int e = a.xLo; e <= a.xHi; ++e)
+        canvas.line(a.px(std::pow(10, e)), a.top, a.px(std::pow(10, e)), a.bottom, kGrid);
+    for (int e = a.yLo; e <= a.yHi; ++e)
+        canvas.line(a.left, a.py(std::pow(10, e)), a.right, a.py(std::pow(10, e)), kGrid);
+    canvas.line(a.left, a.top, a.right, a.top, kBlack);
+    canvas.line(a.left, a.bottom, a.right, a.bottom, kBlack);
+    canvas.line(a.left, a.top, a.left, a.bottom, kBlack);
+    canvas.line(a.right, a.top, a.right, a.bottom, kBlack);
+    for (int e = a.xLo; e <= a.xHi; ++e)
+        for (int m = 1; m <= 9 && (e < a.xHi || m == 1); ++m) {
+            double x = a.px(m * std::pow(10, e)), len = m == 1 ? 9 : 5;
+            canvas.line(x, a.bottom, x, a.bottom - len, kBlack);
+            canvas.line(x, a.top, x, a.top + len, kBlack);
+        }
+    for (int e = a.yLo; e <= a.yHi; ++e)
+        for (int m = 1; m <= 9 && (e < a.yHi || m == 1); ++m) {
+            double y = a.py(m * std::pow(10, e)), len = m == 1 ? 9 : 5;
+            canvas.line(a.left, y, a.left + len, y, kBlack);
+            canvas.line(a.right, y, a.right - len, y, kBlack);
+        }
+}
+
+const Rgb& seriesColour(size_t i) { return kPalette[i % (sizeof kPalette / sizeof kPalette[0])]; }
+
+bool plottable(const PlotSeries& s, size_t j) {
+    return s.x[j] > 0 && s.y[j] > 0 && std::isfinite(s.x[j]) && std::isfinite(s.y[j]);
+}
+
+// The series: polylines first, markers on top.
+void drawSeries(const LogLogPlot& plot, const PlotArea& a, Canvas& canvas) {
+    for (size_t i = 0; i < plot.series.size(); ++i) {
+        const auto& s = plot.series[i];
+        bool have = false;
+        double lx = 0, ly = 0;
+        for (size_t j = 0; j < s.x.size() && j < s.y.size(); ++j) {
+            if (!plottable(s, j)) continue;
+            double x = a.px(s.x[j]), y = a.py(s.y[j]);
+            if (have) canvas.line(lx, ly, x, y, seriesColour(i), 2.0);
+            have = true;
+            lx = x;
+            ly = y;
+        }
+    }
+    for (size_t i = 0; i < plot.series.size(); ++i) {
+        const auto& s = plot.series[i];
+        for (size_t j = 0; j < s.x.size() && j < s.y.size(); ++j)
+            if (plottable(s, j)) canvas.marker(a.px(s.x[j]), a.py(s.y[j]), seriesColour(i));
+    }
+}
+
+// Tick numbers at the decades, the axis titles and the plot's title.
+void drawLabels(const LogLogPlot& plot, const PlotArea& a, int height, TextPen& pen) {
+    using AX = OIIO::ImageBufAlgo::TextAlignX;
+    for (int e = a.xLo; e <= a.xHi; ++e)
+        pen.decade(int(a.px(std::pow(10, e))), a.bottom + 26, e, AX::Center);
+    for (int e = a.yLo; e <= a.yHi; ++e)
+        pen.decade(a.left - 10, int(a.py(std::pow(10, e))) + 6, e, AX::Right);
+    pen.text((a.left + a.right) / 2, height - 16, plot.xLabel, 17, AX::Center);
+    pen.text(a.left, a.top - 14, plot.yLabel, 17, AX::Left);
+    pen.text(a.right, a.top - 14, plot.title, 15, AX::Right);
+}
+
+// The legend in the top-right corner of the plot area, on white: the series that have a label.
+void drawLegend(const LogLogPlot& plot, const PlotArea& a, Canvas& canvas, TextPen& pen) {
+    int rows = 0, w = 0;
+    for (const auto& s : plot.series)
+        if (!s.label.empty()) {
+            ++rows;
+            w = std::max(w, pen.width(s.label, 15));
+        }
+    if (rows == 0) return;
+    const int x0 = a.right - w - 52, y0 = a.top + 12, rowH = 22;
+    canvas.fillRect(x0, y0, a.right - 12, y0 + rows * rowH + 8, kGrid);
+    canvas.fillRect(x0 + 1, y0 + 1, a.right - 13, y0 + rows * rowH + 7, kWhite);
+    int row = 0;
+    for (size_t i = 0; i < plot.series.size(); ++i) {
+        if (plot.series[i].label.empty()) continue;
+        const int y = y0 + 4 + row * rowH + rowH / 2;
+        canvas.line(x0 + 8, y, x0 + 32, y, seriesColour(i), 2.0);
+        canvas.marker(x0 + 20, y, seriesColour(i), 3);
+        pen.text(x0 + 40, y, plot.series[i].label, 15, OIIO::ImageBufAlgo::TextAlignX::Left,
+                 OIIO::ImageBufAlgo::TextAlignY::Center);
+        ++row;
+    }
+}
+
 }  // namespace
 
 Image drawLogLogPlot(const LogLogPlot& plot, int width, int height) {
@@ -140,101 +254,12 @@ Image drawLogLogPlot(const LogLogPlot& plot, int width, int height) {
     image.rgba.assign(size_t(width) * height * 4, 1.f);
     Canvas canvas(image);
     TextPen pen(image);
-
-    // Plot area in pixels; room for tick labels and axis titles on the left and below.
-    const bool labels = pen.available();
-    const int left = labels ? 92 : 30, right = width - 24, top = labels ? 44 : 20,
-              bottom = height - (labels ? 64 : 20);
-
-    std::vector<double> xs, ys;
-    for (const auto& s : plot.series) {
-        xs.insert(xs.end(), s.x.begin(), s.x.end());
-        ys.insert(ys.end(), s.y.begin(), s.y.end());
-    }
-    int xLo, xHi, yLo, yHi;
-    decadeRange(xs, &xLo, &xHi);
-    decadeRange(ys, &yLo, &yHi);
-    auto px = [&](double x) { return left + (std::log10(x) - xLo) / (xHi - xLo) * (right - left); };
-    auto py = [&](double y) { return bottom - (std::log10(y) - yLo) / (yHi - yLo) * (bottom - top); };
-
-    // Decade grid, then the frame, then ticks: major at 10ⁿ, minor at 2–9 × 10ⁿ.
-    for (int e = xLo; e <= xHi; ++e) canvas.line(px(std::pow(10, e)), top, px(std::pow(10, e)), bottom, kGrid);
-    for (int e = yLo; e <= yHi; ++e) canvas.line(left, py(std::pow(10, e)), right, py(std::pow(10, e)), kGrid);
-    canvas.line(left, top, right, top, kBlack);
-    canvas.line(left, bottom, right, bottom, kBlack);
-    canvas.line(left, top, left, bottom, kBlack);
-    canvas.line(right, top, right, bottom, kBlack);
-    for (int e = xLo; e <= xHi; ++e)
-        for (int m = 1; m <= 9 && (e < xHi || m == 1); ++m) {
-            double x = px(m * std::pow(10, e)), len = m == 1 ? 9 : 5;
-            canvas.line(x, bottom, x, bottom - len, kBlack);
-            canvas.line(x, top, x, top + len, kBlack);
-        }
-    for (int e = yLo; e <= yHi; ++e)
-        for (int m = 1; m <= 9 && (e < yHi || m == 1); ++m) {
-            double y = py(m * std::pow(10, e)), len = m == 1 ? 9 : 5;
-            canvas.line(left, y, left + len, y, kBlack);
-            canvas.line(right, y, right - len, y, kBlack);
-        }
-
-    // The series: polylines first, markers on top.
-    for (size_t i = 0; i < plot.series.size(); ++i) {
-        const auto& s = plot.series[i];
-        const Rgb& c = kPalette[i % (sizeof kPalette / sizeof kPalette[0])];
-        bool have = false;
-        double lx = 0, ly = 0;
-        for (size_t j = 0; j < s.x.size() && j < s.y.size(); ++j) {
-            if (!(s.x[j] > 0 && s.y[j] > 0 && std::isfinite(s.x[j]) && std::isfinite(s.y[j])))
-                continue;
-            double x = px(s.x[j]), y = py(s.y[j]);
-            if (have) canvas.line(lx, ly, x, y, c, 2.0);
-            have = true;
-            lx = x;
-            ly = y;
-        }
-    }
-    for (size_t i = 0; i < plot.series.size(); ++i) {
-        const auto& s = plot.series[i];
-        const Rgb& c = kPalette[i % (sizeof kPalette / sizeof kPalette[0])];
-        for (size_t j = 0; j < s.x.size() && j < s.y.size(); ++j)
-            if (s.x[j] > 0 && s.y[j] > 0 && std::isfinite(s.x[j]) && std::isfinite(s.y[j]))
-                canvas.marker(px(s.x[j]), py(s.y[j]), c);
-    }
-
-    if (labels) {
-        using AX = OIIO::ImageBufAlgo::TextAlignX;
-        using AY = OIIO::ImageBufAlgo::TextAlignY;
-        for (int e = xLo; e <= xHi; ++e)
-            pen.decade(int(px(std::pow(10, e))), bottom + 26, e, AX::Center);
-        for (int e = yLo; e <= yHi; ++e)
-            pen.decade(left - 10, int(py(std::pow(10, e))) + 6, e, AX::Right);
-        pen.text((left + right) / 2, height - 16, plot.xLabel, 17, AX::Center);
-        pen.text(left, top - 14, plot.yLabel, 17, AX::Left);
-        pen.text(right, top - 14, plot.title, 15, AX::Right);
-
-        // Legend in the top-right corner of the plot area, on white.
-        int rows = 0, w = 0;
-        for (const auto& s : plot.series)
-            if (!s.label.empty()) {
-                ++rows;
-                w = std::max(w, pen.width(s.label, 15));
-            }
-        if (rows > 0) {
-            int x0 = right - w - 52, y0 = top + 12, rowH = 22;
-            canvas.fillRect(x0, y0, right - 12, y0 + rows * rowH + 8, kGrid);
-            canvas.fillRect(x0 + 1, y0 + 1, right - 13, y0 + rows * rowH + 7, kWhite);
-            int row = 0;
-            for (size_t i = 0; i < plot.series.size(); ++i) {
-                if (plot.series[i].label.empty()) continue;
-                const Rgb& c = kPalette[i % (sizeof kPalette / sizeof kPalette[0])];
-                int y = y0 + 4 + row * rowH + rowH / 2;
-                canvas.line(x0 + 8, y, x0 + 32, y, c, 2.0);
-                canvas.marker(x0 + 20, y, c, 3);
-                pen.text(x0 + 40, y, plot.series[i].label, 15, AX::Left, AY::Center);
-                ++row;
-            }
-        }
-    }
+    const PlotArea area = plotArea(plot, width, height, pen.available());
+    drawAxes(area, canvas);
+    drawSeries(plot, area, canvas);
+    if (!pen.available()) return image;
+    drawLabels(plot, area, height, pen);
+    drawLegend(plot, area, canvas, pen);
     return image;
 }
 

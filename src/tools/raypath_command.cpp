@@ -13,12 +13,12 @@
 // answer (medium/linear_profile_path.h) and the distance to it are printed as well.
 #include <CLI/CLI.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <sstream>
 
+#include "core/clock.h"
 #include "core/error.h"
 #include "medium/air_index.h"
 #include "medium/index_field.h"
@@ -134,11 +134,10 @@ int runRaypath(const RaypathOptions& o) {
     if (o.maxStep > 0) set.maxStep = o.maxStep;
     set.maxSteps = o.maxSteps;
 
-    const auto t0 = std::chrono::steady_clock::now();
+    const auto t0 = Clock::now();
     const CurvedPathResult r =
         traceCurvedPath(*field, origin, direction, o.wavelength, o.length, set);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double seconds = secondsSince(t0);
     if (o.json)
         printRaypathJson(o, origin, direction, r, seconds);
     else

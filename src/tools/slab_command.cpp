@@ -52,7 +52,6 @@
 // Parallel over blocks of photons, each photon's random numbers keyed by (seed, index), the
 // tallies summed in block order: the output depends on the seed only, not on the threads.
 #include <CLI/CLI.hpp>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -60,6 +59,7 @@
 #include <string>
 #include <vector>
 
+#include "core/clock.h"
 #include "core/error.h"
 #include "core/progress.h"
 #include "core/rng.h"
@@ -492,10 +492,9 @@ int runSlab(const SlabOptions& o) {
     const Slab slab{o.n,         o.nOutside,      o.incidence == "diffuse",
                     o.maxEvents, setup.thickness, o.spectral};
 
-    const auto start = std::chrono::steady_clock::now();
+    const auto start = Clock::now();
     const Tally total = traceSlab(slab, medium, o);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double seconds = secondsSince(start);
     if (o.json)
         printSlabJson(o, setup, total, seconds);
     else

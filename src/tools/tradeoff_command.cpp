@@ -8,7 +8,7 @@
 // Each --vary names a scene key and its values; several --vary form the Cartesian product.
 // Short names: photons, estimate, k, max_radius ([render]), spp (film.spp), integrator
 // (render.integrator); any dotted key is taken as a --set override. Every setting is rendered
-// in-process by the same code as `mirage render` (scene/render_frame.h) and compared with the
+// in-process by the same code as `mirage render` (frame/render_frame.h) and compared with the
 // reference in scene-linear RGB (alpha ignored), over all N pixels × 3 channels:
 //
 //   RMSE      = sqrt( Σ (x − r)² / 3N )
@@ -28,7 +28,6 @@
 // varied key), a table on stdout, and <prefix>tradeoff.png, relMSE against seconds on log-log
 // axes with one polyline per value of the last varied key (in sweep order).
 #include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -43,7 +42,8 @@
 #include "core/thread_limit.h"
 #include "film/color.h"
 #include "film/image_io.h"
-#include "scene/render_frame.h"
+#include "frame/frame_settings.h"
+#include "frame/render_frame.h"
 #include "scene/scene.h"
 #include "tools/plot.h"
 #include "tools/tools.h"
@@ -250,7 +250,12 @@ struct Sweep {
 
     Scene load(const std::vector<std::string>& overrides) const {
         Scene scene = loadScene(o.input, LoadOptions{1, overrides}, color);
-        applyFrameSettings(scene, o.input, FrameSettings{o.resolution, 0, o.seed, true, {}});
+        FrameRequest settings;
+        settings.input = o.input;
+        settings.resolution = o.resolution;
+        settings.seed = o.seed;
+        settings.quiet = true;
+        applyFrameSettings(scene, settings);
         return scene;
     }
 
@@ -284,7 +289,7 @@ void renderSweep(const Sweep& sweep, const Image* reference, std::vector<Setting
             Scene scene = sweep.load(sweep.overridesOf(s));
             if (reference) checkReferenceSize(sweep.o, *reference, scene);
             s.spp = scene.settings.spp;
-            RenderedFrame frame = renderFrame(scene, "", sweep.color);
+            RenderedFrame frame = renderFrame(scene, sweep.color);
             seconds.push_back(frame.seconds);
             if (r == 0) s.image = std::move(frame.image);
         }
@@ -312,7 +317,7 @@ Image renderReference(const Sweep& sweep, const std::vector<Setting>& settings,
     if (!o.quiet)
         std::fprintf(stderr, "tradeoff: reference: volpath, %d spp, %dx%d …\n", spp,
                      scene.settings.width, scene.settings.height);
-    RenderedFrame frame = renderFrame(scene, "", sweep.color);
+    RenderedFrame frame = renderFrame(scene, sweep.color);
     *path = o.prefix + "reference.exr";
     ExrOptions exr;
     exr.halfFloat = false;

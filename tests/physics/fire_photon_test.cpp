@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include "core/clock.h"
 #include "film/color.h"
 #include "photon/medium_emitter.h"
 #include "photon/photon_pass.h"
@@ -103,10 +104,6 @@ void compare(const Image& image, const Image& ref, double* bias, double* blockRm
     const test::ImageError e = test::compareImages(image, ref);
     *bias = e.bias;
     *blockRmse = e.blockRmse;
-}
-
-double secondsSince(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace

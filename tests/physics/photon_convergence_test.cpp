@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "core/clock.h"
 #include "film/color.h"
 #include "fog_box_scene.h"
 #include "render/renderer.h"
@@ -30,10 +31,6 @@ RenderSettings settings(int spp, uint64_t seed) { return test::smallRenderSettin
 
 using test::ImageError;
 ImageError compare(const Image& image, const Image& ref) { return test::compareImages(image, ref); }
-
-double secondsSince(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 }  // namespace
 

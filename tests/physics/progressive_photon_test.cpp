@@ -49,8 +49,7 @@ Image progressive(const RenderScene& scene, int passes, const ColorPipeline& col
     PassSettings p;
     p.maxPasses = passes;
     p.sppPerPass = 4;
-    Film film = renderPasses(scene, *pm, test::smallRenderSettings(1, 3), p,
-                             std::chrono::steady_clock::now(), nullptr, nullptr);
+    Film film = renderPasses(scene, *pm, test::smallRenderSettings(1, 3), p).film;
     std::printf("  %s\n", pm->stats().summary.c_str());
     return film.develop(color);
 }

@@ -12,7 +12,7 @@
 #include "film/color.h"
 #include "film/image_io.h"
 #include "film/partial_film.h"
-#include "scene/render_frame.h"
+#include "frame/render_frame.h"
 #include "scene/scene.h"
 #include "test_support.h"
 #include "tools/asset_writer.h"
@@ -95,7 +95,7 @@ Image renderAovScene(const std::string& integrator, const std::string& aovs,
     Scene scene = loadScene(writeAovScene(test::tempDir(), integrator, aovs, extra), {}, color);
     scene.settings.progress = Progress::Mode::Quiet;
     scene.photon.progress = Progress::Mode::Quiet;
-    return renderFrame(scene, "", color).image;
+    return renderFrame(scene, color).image;
 }
 
 }  // namespace
@@ -174,7 +174,7 @@ TEST(Aov, DataPassesKeepTheBeautysExactColourAndBits) {
         ColorPipeline color;
         Scene scene = loadScene(path, {}, color);
         scene.settings.progress = Progress::Mode::Quiet;
-        return renderFrame(scene, "", color).image;
+        return renderFrame(scene, color).image;
     };
     const Image plain = render("");
     const Image data =
@@ -251,7 +251,7 @@ TEST(Aov, PartialFileCarriesThePassSums) {
     ColorPipeline color;
     Scene scene = loadScene(writeAovScene(test::tempDir(), "single", kGroupAovs), {}, color);
     scene.settings.progress = Progress::Mode::Quiet;
-    RenderedFrame frame = renderFrame(scene, "", color);
+    RenderedFrame frame = renderFrame(scene, color);
     const Film& film = *frame.film;
     const std::string path = test::tempDir() + "/aov.exr.partial";
     const int tiles = tileCount(scene.settings);
@@ -274,7 +274,7 @@ TEST(Aov, BadInputNamesTheLine) {
         try {
             Scene s = loadScene(writeAovScene(dir, integrator, aovs, extra), {}, color);
             s.settings.progress = Progress::Mode::Quiet;
-            renderFrame(s, "", color);
+            renderFrame(s, color);
         } catch (const MirageError& e) {
             return std::string(e.what());
         }
@@ -316,7 +316,7 @@ TEST(Aov, GreyFogAndADomeKeepThePassesSummingToTheBeauty) {
             ColorPipeline color;
             Scene scene = loadScene(path, {}, color);
             scene.settings.progress = Progress::Mode::Quiet;
-            const Image image = renderFrame(scene, "", color).image;
+            const Image image = renderFrame(scene, color).image;
             const std::string what = std::string(integrator) + (lights == sun ? " sun" : " dome");
             expectSumToBeauty(image, names, what);
             expectSumToBeauty(image, {"lightgroup_emission", "lightgroup_default"}, what);
@@ -371,7 +371,7 @@ TEST(Aov, VariancePassFallsAsOneOverSamples) {
         ColorPipeline color;
         Scene scene = loadScene(path, {}, color);
         scene.settings.progress = Progress::Mode::Quiet;
-        const Image image = renderFrame(scene, "", color).image;
+        const Image image = renderFrame(scene, color).image;
         double sum = 0;
         for (float v : findLayer(image, "variance")->pixels) sum += v;
         return sum;

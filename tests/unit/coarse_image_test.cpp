@@ -27,11 +27,12 @@ Film renderWithCoarse(const RenderScene& scene, const RenderSettings& s, const P
                       PassReport* report, int* prepared) {
     auto frameIntegrator = makeVolPathIntegrator();
     auto coarse = makeVolPathIntegrator();
-    CoarseStage stage;
-    stage.integrator = coarse.get();
-    stage.prepareFullPasses = [&] { ++*prepared; };
-    return renderPasses(scene, *frameIntegrator, s, p, std::chrono::steady_clock::now(), nullptr,
-                        report, nullptr, stage);
+    PassRun run;
+    run.coarse.integrator = coarse.get();
+    run.coarse.prepareFullPasses = [&] { ++*prepared; };
+    PassResult r = renderPasses(scene, *frameIntegrator, s, p, run);
+    *report = r.report;
+    return std::move(r.film);
 }
 
 Film coarseOf(const RenderScene& scene, const RenderSettings& s, int spp) {
@@ -140,8 +141,7 @@ TEST(CoarseImage, FullPassesThatFitDropTheCoarseImage) {
     EXPECT_EQ(prepared, 1);
     auto volpath = makeVolPathIntegrator();
     p.timeLimit = 0;
-    const Film plain =
-        renderPasses(scene, *volpath, s, p, std::chrono::steady_clock::now(), nullptr, nullptr);
+    const Film plain = renderPasses(scene, *volpath, s, p).film;
     EXPECT_TRUE(test::sameFilm(film, plain));
 }
 

@@ -17,7 +17,7 @@
 
 #include "film/color.h"
 #include "film/image_io.h"
-#include "scene/render_frame.h"
+#include "frame/render_frame.h"
 #include "scene/scene.h"
 #include "test_support.h"
 #include "tools/asset_writer.h"
@@ -98,7 +98,7 @@ TEST(Cryptomatte, LayersDecodeToCoveragesThatSumToAlpha) {
     ColorPipeline color;
     Scene scene = loadScene(path, {}, color);
     scene.settings.progress = Progress::Mode::Quiet;
-    const Image rendered = renderFrame(scene, "", color).image;
+    const Image rendered = renderFrame(scene, color).image;
 
     // Through the file: half float beauty, the IDs must survive as float32.
     const std::string exr = dir + "/crypto.exr";

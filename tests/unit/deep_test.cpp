@@ -10,8 +10,8 @@
 #include <fstream>
 
 #include "film/color.h"
+#include "frame/render_frame.h"
 #include "render/camera.h"
-#include "scene/render_frame.h"
 #include "scene/scene.h"
 #include "test_support.h"
 #include "tools/asset_writer.h"
@@ -73,7 +73,7 @@ TEST(Deep, FlatteningGivesTheBeauty) {
     ColorPipeline color;
     for (const char* integrator : {"single", "volpath", "photon"}) {
         Scene scene = loadDeepScene(integrator, "mixed", 8);
-        RenderedFrame frame = renderFrame(scene, "", color);
+        RenderedFrame frame = renderFrame(scene, color);
         ASSERT_TRUE(frame.deep) << integrator;
         // Through the file (float), as a compositor reads it.
         const std::string path = test::tempDir() + "/deep_" + integrator + ".exr";
@@ -105,8 +105,8 @@ TEST(Deep, AnOpaqueCardInsertedAtItsDepthMatchesARenderWithTheCard) {
     Scene fog = loadDeepScene("single", "fog", 64);
     Scene card = loadDeepScene("single", "card", 64);
     card.settings.deep.path.clear();
-    const RenderedFrame open = renderFrame(fog, "", color);
-    const RenderedFrame closed = renderFrame(card, "", color);
+    const RenderedFrame open = renderFrame(fog, color);
+    const RenderedFrame closed = renderFrame(card, color);
     const PerspectiveCamera camera(fog.render.camera, fog.settings.width, fog.settings.height);
     double deepSum[3] = {0, 0, 0}, cardSum[3] = {0, 0, 0};
     int pixels = 0;

@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "film/color.h"
-#include "scene/render_frame.h"
+#include "frame/render_frame.h"
 #include "scene/scene.h"
 #include "test_support.h"
 #include "tools/asset_writer.h"
@@ -52,7 +52,7 @@ Image render(const std::string& integrator, const std::string& card, bool fogHol
     ColorPipeline color;
     Scene scene = loadScene(path, {}, color);
     scene.settings.progress = Progress::Mode::Quiet;
-    return renderFrame(scene, "", color).image;
+    return renderFrame(scene, color).image;
 }
 
 // Every channel of the beauty and of every pass at pixel p.

@@ -44,8 +44,11 @@ Film renderInPasses(const RenderScene& scene, Integrator& integrator, const Rend
                     const PassSettings& p, PassReport* report = nullptr,
                     PassCheckpoint* checkpoint = nullptr) {
     integrator.preprocess(scene);
-    return renderPasses(scene, integrator, s, p, std::chrono::steady_clock::now(), nullptr, report,
-                        checkpoint);
+    PassRun run;
+    run.checkpoint = checkpoint;
+    PassResult r = renderPasses(scene, integrator, s, p, run);
+    if (report) *report = r.report;
+    return std::move(r.film);
 }
 
 }  // namespace

@@ -10,7 +10,7 @@
 
 #include "film/color.h"
 #include "film/image_io.h"
-#include "scene/render_frame.h"
+#include "frame/frame_settings.h"
 #include "scene/toml_reader.h"
 #include "test_support.h"
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "film/image_io.h"
-#include "scene/render_frame.h"
+#include "frame/render_frame.h"
 #include "scene/scene.h"
 #include "test_support.h"
 

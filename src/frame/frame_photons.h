@@ -12,7 +12,7 @@ struct Scene;
 struct PhotonPassResult;
 
 // What ties a photon file to one frame of one scene: the command's input and --set overrides
-// (the fingerprint of app/render_checkpoint.h), and the frame.
+// (the fingerprint of frame_fingerprint.h), and the frame.
 struct PhotonFrameKey {
     const Scene& scene;
     const std::string& input;

@@ -1,4 +1,4 @@
-#include "app/frame_regions.h"
+#include "frame/frame_regions.h"
 
 #include <cstdint>
 #include <cstdio>

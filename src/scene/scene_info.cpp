@@ -1,0 +1,124 @@
+// The record of a loaded scene for `mirage info` (scene_info.h).
+#include "scene/scene_info.h"
+
+#include <algorithm>
+
+#include "film/color.h"
+#include "film/cryptomatte.h"
+#include "photon/medium_emitter.h"
+
+namespace mirage {
+
+namespace {
+
+bool isNanoVdb(const std::string& file) {
+    return file.size() > 5 && file.substr(file.size() - 5) == ".nvdb";
+}
+
+// The grids bound to the shader's slots.
+std::vector<SlotInfo> slotsOf(const VolumeRecord& v, const Medium& m) {
+    std::vector<SlotInfo> slots;
+    for (size_t b = 0; b < v.bindings.size(); ++b) {
+        const FloatGrid& g = m.grids()[b];
+        slots.push_back({v.bindings[b].first, v.bindings[b].second, g.activeVoxels(), g.treeBytes(),
+                         g.denseBytes(), g.maxValue()});
+    }
+    return slots;
+}
+
+// Motion: the velocity grid (described even with the shutter closed, when the render does not
+// load it) and how far it moves the lookups; a keyed transform.
+void describeMotion(const VolumeRecord& v, const Medium& m, VolumeInfo* info) {
+    info->transformMoves = m.transformMoves();
+    if (v.file.empty()) return;
+    VelocityRecord velocity = v.velocity;
+    if (!velocity.grid.empty() && !velocity.velocity.valid())
+        velocity.velocity = loadVelocityGrid(v.file, velocity.grid);
+    info->velocity = describeVelocity(velocity);
+    info->moving = m.moving();
+    info->blurRadius = m.blurRadius();
+}
+
+VolumeInfo describeVolume(const VolumeRecord& v, const Medium& m) {
+    VolumeInfo info;
+    info.file = v.file;
+    if (!v.file.empty() && !isNanoVdb(v.file)) info.vdb = inspectVdbFile(v.file);
+    info.shader = v.shader;
+    info.shaderSource = m.shader().source;
+    info.densityScale = v.densityScale;
+    info.notes = v.notes;
+    info.slots = slotsOf(v, m);
+    info.expressions = v.expressions;
+    info.unusedGrids = v.unusedGrids;
+    describeMotion(v, m, &info);
+    info.greyPath = m.greyPath();
+    if (m.emissive() && !m.homogeneous()) {
+        MediumEmitter emitter(m);
+        info.emission =
+            EmissionInfo{m.shader().emission->intensity, m.shader().emission->minTemperature,
+                         emitter.emittingVoxels(), emitter.tablePower()};
+    }
+    info.worldBounds = m.worldBounds();
+    info.majorantCells = {m.majorant().res(0), m.majorant().res(1), m.majorant().res(2)};
+    info.maxSigmaT = m.majorant().maxValue();
+    return info;
+}
+
+// Light `i`'s group, as the lightgroup_* passes name it ("" when no light has a group).
+std::string lightGroupOf(const RenderScene& scene, size_t i) {
+    if (scene.lightGroups.empty()) return "";
+    return scene.lightGroupNames()[size_t(scene.lightGroupSlot(i) - 1)];
+}
+
+OutputInfo describeOutput(const Scene& scene) {
+    const RenderSettings& s = scene.settings;
+    OutputInfo out{scene.output.path,
+                   scene.output.halfFloat,
+                   scene.output.multipart,
+                   s.aovs,
+                   {},
+                   {},
+                   {},
+                   s.deep};
+    if (!scene.render.lightGroups.empty()) out.lightGroups = scene.render.lightGroupNames();
+    for (const char* kind : {"volume", "shape"}) {
+        const std::string pass = cryptomattePass(kind);
+        if (std::find(s.aovs.begin(), s.aovs.end(), pass) == s.aovs.end()) continue;
+        const CryptoObjects& o = scene.render.cryptoObjects;
+        out.cryptomattes.push_back(
+            {kind, pass, std::string(kind) == "volume" ? o.volumes : o.shapes});
+    }
+    for (size_t i = 0; i < scene.render.media.size(); ++i)
+        if (scene.render.media[i]->holdout()) out.holdouts.push_back("volume " + std::to_string(i));
+    const GeometryScene* g = scene.render.geometry.get();
+    for (size_t i = 0; g && i < g->shapeCount(); ++i)
+        if (g->shape(int(i)).holdout) out.holdouts.push_back("shape " + std::to_string(i));
+    return out;
+}
+
+}  // namespace
+
+SceneInfo describeScene(const Scene& scene, const ColorPipeline& color) {
+    SceneInfo info;
+    for (size_t i = 0; i < scene.volumes.size(); ++i)
+        info.volumes.push_back(describeVolume(scene.volumes[i], *scene.render.media[i]));
+    for (size_t i = 0; i < scene.render.lights.size(); ++i)
+        info.lights.push_back({scene.render.lights[i]->describe(), lightGroupOf(scene.render, i)});
+    info.camera = scene.render.camera;
+    info.shutter = scene.shutter;
+    info.fps = scene.output.fps;
+    info.film = scene.settings;
+    info.passes = scene.passes;
+    const IntegratorInfo& integrator = integratorInfo(scene.integrator);
+    info.photonMapPerPass = integrator.photonPass;
+    info.integrator = scene.integrator;
+    info.integratorDescription = integrator.description;
+    info.integratorWhy = scene.integratorWhy;
+    info.workingSpace = color.workingSpace();
+    info.ocioConfig = color.configDescription();
+    info.output = describeOutput(scene);
+    info.physics = scene.physics();
+    return info;
+}
+
+}  // namespace mirage

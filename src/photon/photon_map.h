@@ -7,7 +7,7 @@
 // its own photon on the axis of the widest extent of its subtree. The queries read a compact
 // copy of the tree, each node's position and split axis in 16 bytes (a Photon is 44): a
 // k-nearest search touches scattered nodes, and on dense smoke the radii's search was most of
-// a one-pass render's photon work (docs/performance.md, "Passes of one sample").
+// a one-pass render's photon work (docs/performance-history.md, "Passes of one sample").
 //
 // Queries never allocate: k nearest neighbours go into a caller-provided bounded max-heap, and
 // the radius query calls a visitor. Ties in distance are broken by the photon's slot, so the

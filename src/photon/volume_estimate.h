@@ -117,8 +117,8 @@ Vec3 pointEstimate(const VolumePhotons& photons, const Vec3& x, const Vec3& wo, 
 // photons) may reach a camera ray in smoke a hundred times denser, and the ratio then makes one
 // photon a blotch of pixels tens of times too bright. In one pass of a race on
 // mantaflow_smoke.0010, one such photon put 90 % of the image's error into 4 pixels, and 8
-// passes had 3.4x the error of 2 (docs/performance.md, "A cap on the density ratio"). Capped
-// at 16 the heavy tail is gone: relMSE at 8 passes 0.279 → 0.025 there, 0.040 → 0.033 on
+// passes had 3.4x the error of 2 (docs/performance-history.md, "A cap on the density ratio").
+// Capped at 16 the heavy tail is gone: relMSE at 8 passes 0.279 → 0.025 there, 0.040 → 0.033 on
 // smoke1, whose mean moves by −1 % (0.999 → 0.989 of the path tracer's). The cap bites only
 // where a kernel spans a 16-fold change of σs; as the progressive radii shrink, a kernel on a
 // continuous (trilinear) field spans less and less of a change, so the estimate stays

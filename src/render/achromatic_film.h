@@ -6,12 +6,12 @@
 // one spectral shape S(λ) (any powers), a camera path's radiance is L(λ) = G S(λ): G is a
 // function of the path's other numbers alone, since nothing the path meets depends on λ. The
 // film's G·X̂[S] then carries the wavelengths' noise as colour noise on a grey image (9 % of
-// volpath's relMSE on the race scene, docs/performance.md). Replacing X̂[S] by its
-// expectation over the wavelengths, XYZ[S] (spectrumToXyz, once per render), is a conditional
-// expectation (Rao–Blackwell): the same mean, less variance, every pixel exactly the lights'
-// chromaticity. G is read back from the sample as the least-squares ratio Σ L_i S_i / Σ S_i²,
-// exact when L = G S; S > 0 over the visible range is required, so that the ratio exists for
-// every draw of the wavelengths.
+// volpath's relMSE on the race scene, docs/performance-history.md, "Where single scattering's time
+// goes"). Replacing X̂[S] by its expectation over the wavelengths, XYZ[S] (spectrumToXyz, once per
+// render), is a conditional expectation (Rao–Blackwell): the same mean, less variance, every pixel
+// exactly the lights' chromaticity. G is read back from the sample as the least-squares ratio
+// Σ L_i S_i / Σ S_i², exact when L = G S; S > 0 over the visible range is required, so that the
+// ratio exists for every draw of the wavelengths.
 //
 // The photon mapper's photons each carry one wavelength λ drawn ∝ S (light/light.h), so a
 // photon's flux XYZ, Φ cmf(λ)/∫ȳ, is colour noise on such a scene too. Nothing a photon meets

@@ -4,10 +4,11 @@
 // `mirage render --coarse SPP` renders on its own to reproduce it.
 //
 // Why: one full pass of the default photon mapper on dense smoke costs its photon map plus one
-// sample of every pixel (0.3–0.4 s on the race scene, docs/performance.md); a time limit below
-// that used to be overrun by the whole first pass. A quarter of the pixels by the path tracer
-// costs ~1/13 of that pass per sample and its error is mostly noise and the magnification's blur
-// (race scene: 1 sample 0.026 s, relMSE 2.5; 4 samples 0.09 s, 0.85; the blur alone 0.08).
+// sample of every pixel (0.3–0.4 s on the race scene, docs/performance-history.md, "A time limit
+// shorter than one pass"); a time limit below that used to be overrun by the whole first pass. A
+// quarter of the pixels by the path tracer costs ~1/13 of that pass per sample and its error is
+// mostly noise and the magnification's blur (race scene: 1 sample 0.026 s, relMSE 2.5; 4 samples
+// 0.09 s, 0.85; the blur alone 0.08).
 //
 // Its samples continue from pass to pass (samples [n, n + k) of each coarse pixel), so a coarse
 // image that took 1, 1 and 2 samples is the same bits as one of 4 samples.

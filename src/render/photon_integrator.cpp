@@ -34,17 +34,17 @@
 // does not search its own k nearest photons for its radii: each photon takes the radius of the
 // nearest photon of the first full pass (PhotonMap::radiiFrom), times radiusScale(p). The
 // k-nearest search cost as much as tracing the pass's photons on dense smoke
-// (docs/performance.md), and that pass's radii are as good a bandwidth for a pass of as many
-// photons; being independent of pass p's photons, they make each pass a kernel estimate of
-// fixed bandwidth, whose blur the alpha rule shrinks as before.
+// (docs/performance-history.md, "Renders that converge"), and that pass's radii are as good a
+// bandwidth for a pass of as many photons; being independent of pass p's photons, they make each
+// pass a kernel estimate of fixed bandwidth, whose blur the alpha rule shrinks as before.
 //
 // The first pass may trace fewer photons than the others ([render] first_pass_photons: `auto`
 // makes it a fifth on dense smoke, so that a render of one pass costs about half as much for a
-// little more error, docs/performance.md). It then searches its own k nearest photons, and so
-// does pass 1, the first full pass, whose radii the passes after it read: a long render keeps
-// the bandwidth it had. (Radii read off the sparser first map, scaled by the cube root of the
-// photon counts, measured the same error at 16 passes within the seeds' spread, but they are
-// smoothed over 5k of a full pass's photons.)
+// little more error, docs/performance-history.md, "A smaller first pass"). It then searches its own
+// k nearest photons, and so does pass 1, the first full pass, whose radii the passes after it read:
+// a long render keeps the bandwidth it had. (Radii read off the sparser first map, scaled by the
+// cube root of the photon counts, measured the same error at 16 passes within the seeds' spread,
+// but they are smoothed over 5k of a full pass's photons.)
 //
 // The point estimate and the surface maps are averaged over passes too but keep their
 // k-nearest radii (and the point estimate its pass-0 march step): their noise falls with

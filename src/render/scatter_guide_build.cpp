@@ -14,8 +14,8 @@ namespace {
 
 // A cell guessed dark still holds points, at most 1/kGuideFloor times fewer than the light's
 // brightest, so that where the coarse guess is wrong (a lit edge inside a dark cell) no rare
-// point carries a huge weight. Measured on the race scene (docs/performance.md): floors of
-// 0.02 and 0.05 alike, 0.01 and 0.1 worse.
+// point carries a huge weight. Measured on the race scene (docs/performance-history.md, "The
+// light guide without shadow rays"): floors of 0.02 and 0.05 alike, 0.01 and 0.1 worse.
 constexpr float kGuideFloor = 0.05f;
 // Frame samples per guide cell: the guide's ~8 lookups and one coarse march per light a cell
 // stay a small share of the frame's hundreds of lookups a sample (~20 ms of a 256² frame of 4

@@ -17,10 +17,10 @@
 //     colours (the film's exact colour, render/achromatic_film.h). Most of the light there has
 //     scattered many times, smoothly, and the progressive photon mapper reuses each photon
 //     across pixels: on the race's three caches it reaches Cycles' 4-, 16- and 64-sample
-//     errors in 0.1–0.3 of volpath's time (docs/performance.md, "The default on dense smoke").
-//     `photon` then renders the scene's samples as progressive passes of pass_spp samples, a
-//     photon map each (render/passes.h), so that longer renders keep converging; unless the
-//     scene states them, one sample a pass and k = 32 (resolveAutoIntegrator).
+//     errors in 0.1–0.3 of volpath's time (docs/performance-history.md, "The default on dense
+//     smoke"). `photon` then renders the scene's samples as progressive passes of pass_spp
+//     samples, a photon map each (render/passes.h), so that longer renders keep converging;
+//     unless the scene states them, one sample a pass and k = 32 (resolveAutoIntegrator).
 //  5. Otherwise `volpath`: unbiased, every bounce.
 #include <algorithm>
 #include <cmath>
@@ -86,7 +86,7 @@ constexpr float kDenseAlbedo = 0.9f;
 constexpr float kDenseOpticalDepth = 10.f;
 constexpr int kProgressivePassSpp = 1;
 constexpr int kProgressiveK = 32;
-// The first pass traces photons / this (docs/performance.md, "A smaller first pass").
+// The first pass traces photons / this (docs/performance-history.md, "A smaller first pass").
 constexpr uint64_t kProgressiveFirstPassShare = 5;
 
 // Rule 4's scene: its reason, or "" when the scene is not one.
@@ -148,9 +148,9 @@ void resolveAutoIntegrator(Scene* scene) {
     scene->integratorWhy = "auto: " + choice.why;
     if (!choice.progressive) return;
     // Rule 4's settings where the scene leaves them open (measured on the race scene,
-    // docs/performance.md "Passes of one sample"): a pass's error is mostly its photon map's,
-    // its time mostly its camera samples', so one sample a pass; and k = 32 nearest photons,
-    // whose wider discs halve a map's noise for 13 % more time.
+    // docs/performance-history.md "Passes of one sample"): a pass's error is mostly its photon
+    // map's, its time mostly its camera samples', so one sample a pass; and k = 32 nearest
+    // photons, whose wider discs halve a map's noise for 13 % more time.
     if (scene->statedPassSpp == 0) {
         scene->passes.sppPerPass = kProgressivePassSpp;
         set.passSpp = true;

@@ -3,7 +3,8 @@
 // chooseScatterPoints (transport/scatter_point.h) resamples a camera walk's collisions into a
 // few scattering points. Drawn ∝ T σs, the points fall where the medium is dense, whatever the
 // light there: in a plume lit from one side, most land in its shadowed depth, and the error is
-// mostly which points were drawn (docs/performance.md, "Where single scattering's error goes").
+// mostly which points were drawn (docs/performance-history.md, "Where single scattering's error
+// goes").
 // Drawn ∝ T σs g instead, with g a positive guess of the direct light, they follow the light,
 // and each is weighted by W/(K w̄ g) as before. Any g > 0 keeps the estimate unbiased
 // (resampled importance sampling, Talbot et al. 2005: the selection probability cancels in the
@@ -45,7 +46,7 @@ public:
     // g at a world point, interpolated trilinearly between the cells' centres (points outside
     // clamp to the border): a smooth g moves the points' density smoothly with the light,
     // where the nearest cell's value steps at every cell face (11 % more relMSE on the race
-    // scene, docs/performance.md).
+    // scene, docs/performance-history.md, "The light guide without shadow rays").
     float at(const Vec3& p) const {
         const Vec3 q = (p - mBounds.lo) * mScale;
         int i, j, k;

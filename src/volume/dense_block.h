@@ -5,10 +5,11 @@
 // leaf's edge (169 of 512 positions) it reads each of the 8 voxels through the accessor, which
 // compares the cached keys of three tree levels each time. Tracking through smoke is little
 // else: on the race scene the lookups were a third of a single-scattering frame's instructions
-// (callgrind; docs/performance.md). In a dense array the stencil is 8 loads at fixed strides,
-// wherever it falls. The copy holds what the tree returns for every voxel of the active box
-// dilated by one voxel and a stencil's reach (inactive leaf voxels and tiles included), so a
-// lookup has the same bits either way; outside that box the tree answers.
+// (callgrind; docs/performance-history.md, "Lookups: a dense copy of small grids"). In a dense
+// array the stencil is 8 loads at fixed strides, wherever it falls. The copy holds what the tree
+// returns for every voxel of the active box dilated by one voxel and a stencil's reach (inactive
+// leaf voxels and tiles included), so a lookup has the same bits either way; outside that box the
+// tree answers.
 //
 // Memory: a cache's dense box is often not much larger than its sparse tree (smoke1: 11.3 MiB
 // dense with its margin, 6.7 MiB sparse). The copy is made when it needs at most

@@ -275,6 +275,18 @@ PhotonPath tracePhoton(uint64_t index, const PhotonSources& sources, const Light
 
 }  // namespace
 
+void PhotonPassStats::add(const PhotonPassStats& pass) {
+    emitted += pass.emitted;
+    stored += pass.stored;
+    cappedPaths += pass.cappedPaths;
+    nonFinite += pass.nonFinite;
+    fromMedia += pass.fromMedia;
+    mediumPower = pass.mediumPower;
+    emittedPower += pass.emittedPower;
+    seconds += pass.seconds;
+    interrupted = interrupted || pass.interrupted;
+}
+
 PhotonList tracePhotons(const std::vector<const Light*>& lights,
                         const std::vector<const Medium*>& media, const PhotonPassSettings& settings,
                         PhotonPassStats* stats) {
@@ -301,7 +313,7 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
     PhotonPassSettings curved = settings;
     if (settings.field && geometry && settings.curvedPath.capNearSurfaces) {
         curved.curvedPath.stepCap =
-            surfaceStepCap(settings.field, settings.curvedPath.tolerance,
+            surfaceStepCap(settings.field.get(), settings.curvedPath.tolerance,
                            [geometry](const Vec3d& o, const Vec3d& d) {
                                return geometry->surfaceDistance(o, d);
                            });

@@ -77,6 +77,8 @@
 // the hero wavelength whose direction the chain follows. A curved camera ray's earlier chords
 // reach the estimate the same way (ThreadState::photonView). Emissive surfaces are seen
 // (single-scatter part) but emit no photons.
+#include "render/photon_integrator.h"
+
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
@@ -90,7 +92,6 @@
 #include "photon/photon_pass.h"
 #include "photon/surface_estimate.h"
 #include "render/achromatic_film.h"
-#include "render/integrator.h"
 #include "transport/path_vertex.h"
 
 namespace mirage {
@@ -113,18 +114,6 @@ float radiusScale(int pass) {
     return float(std::sqrt(r2));
 }
 
-void addPassStats(const PhotonPassStats& pass, PhotonPassStats* sum) {
-    sum->emitted += pass.emitted;
-    sum->stored += pass.stored;
-    sum->cappedPaths += pass.cappedPaths;
-    sum->nonFinite += pass.nonFinite;
-    sum->fromMedia += pass.fromMedia;
-    sum->mediumPower = pass.mediumPower;
-    sum->emittedPower += pass.emittedPower;
-    sum->seconds += pass.seconds;
-    sum->interrupted = sum->interrupted || pass.interrupted;
-}
-
 // The photon pass p of a render in passes (p = 0: the one of a render not in passes). Its seed
 // is derived from the render seed so that photon i and pixel i (both keyed (seed, index, 0) in
 // the counter-based sampler) do not share numbers; pass p > 0 derives its own from that. Where
@@ -132,20 +121,19 @@ void addPassStats(const PhotonPassStats& pass, PhotonPassStats* sum) {
 // first included (see preprocess()).
 PhotonPassSettings passSettings(const PhotonIntegratorSettings& s, const RenderScene& scene,
                                 int p) {
-    PhotonPassSettings pass;
+    PhotonPassSettings pass = s;  // the tracing settings as the user set them
     pass.photons = s.photonsOfPass(p);
     pass.seed = hashCombine(s.seed, 0x70686f746f6eull);  // "photon"
     if (p > 0) pass.seed = hashCombine(pass.seed, uint64_t(p));
-    pass.maxBounces = s.maxBounces;
     pass.storeFirstInteraction = false;
     if (photonsCurve(s.field.get(), scene.bounds())) {
-        pass.field = s.field.get();
-        pass.curvedPath = s.curvedPath;
         // A photon's flight needs no more path than a few crossings of the scene: an
         // escaping photon otherwise walks the whole max_distance in chords.
         const Vec3 diag = scene.bounds().diagonal();
         pass.curvedMaxArc = std::min(s.curvedMaxArc, 2.f * length(diag));
         pass.storeFirstInteraction = true;
+    } else {
+        pass.field = nullptr;
     }
     // One progress bar, the first pass's: a render in passes reports each pass instead.
     pass.progress = p == 0 ? s.progress : Progress::Mode::Quiet;
@@ -242,8 +230,8 @@ public:
     IntegratorStats stats() const override {
         IntegratorStats s;
         s.cappedPaths = mSingle->stats().cappedPaths;
-        s.cappedPhotonPaths = mPassStats.cappedPaths;
-        s.nonFinitePhotons = mPassStats.nonFinite;
+        s.cappedPhotonPaths = mStats.traced.cappedPaths;
+        s.nonFinitePhotons = mStats.traced.nonFinite;
         uint64_t estimates = 0;
         PhotonStats p = mStats;
         if (mThreads)
@@ -266,8 +254,7 @@ private:
                                       ? *mSettings.savedPass
                                       : tracePhotonIntegratorPass(scene, mSettings, p);
         PhotonMapLists& lists = traced.maps;
-        const PhotonPassStats& passStats = traced.stats;
-        addPassStats(passStats, &mPassStats);
+        mStats.traced.add(traced.stats);
         mPass = p;
         mRadiusScale = radiusScale(p);
 
@@ -318,11 +305,6 @@ private:
                 }
             }
         }
-        mStats.photonsTraced = mPassStats.emitted;
-        mStats.photonsStored = mPassStats.stored;
-        mStats.photonPassSeconds = mPassStats.seconds;
-        mStats.photonsPerSecond =
-            mPassStats.seconds > 0 ? double(mPassStats.emitted) / mPassStats.seconds : 0.0;
     }
 
     std::string summaryLine(const PhotonStats& p, uint64_t estimates) const {
@@ -333,12 +315,12 @@ private:
             "| photon map build %.3fs, disc radii %.3fs, disc BVH build %.3fs | %s "
             "estimate %.2fs thread time (%.1f µs/ray, k %d, max radius %.3g m) | "
             "photon paths cut at max_depth %llu | from emissive media %llu (%.3g W)",
-            (unsigned long long)p.photonsTraced, (unsigned long long)p.photonsStored,
-            p.photonPassSeconds, p.photonsPerSecond / 1e6, p.photonMapBuildSeconds,
+            (unsigned long long)p.traced.emitted, (unsigned long long)p.traced.stored,
+            p.traced.seconds, p.photonsPerSecond() / 1e6, p.photonMapBuildSeconds,
             p.photonRadiiSeconds, p.discBvhBuildSeconds, mBeam ? "beam" : "point",
             p.estimateSeconds, estimates ? p.estimateSeconds / double(estimates) * 1e6 : 0.0,
-            mSettings.kOrDefault(), double(mMaxRadius), (unsigned long long)mPassStats.cappedPaths,
-            (unsigned long long)mPassStats.fromMedia, mPassStats.mediumPower);
+            mSettings.kOrDefault(), double(mMaxRadius), (unsigned long long)p.traced.cappedPaths,
+            (unsigned long long)p.traced.fromMedia, p.traced.mediumPower);
         std::string line = buf;
         if (mCurved) line += " | photons on curved paths (direct light from the photon maps)";
         if (!mXyzPerWatt.empty()) line += " | photons carry the light's XYZ (grey scene)";
@@ -464,7 +446,6 @@ private:
     float mRadiusScale = 1.f;  // its disc radii over pass 0's
     std::vector<const Medium*> mMedia;
     std::vector<int> mSlotOfLight;  // each light's group slot (Photon::light → film/aov.h)
-    PhotonPassStats mPassStats;     // summed over passes
     std::unique_ptr<VolumePhotons> mPhotons;
     // The first full pass's volume map and beam radii (unscaled), the later passes' source of
     // radii; mPhotons is that map until the next pass (mPhotonsAreSource).
@@ -474,11 +455,34 @@ private:
     std::unique_ptr<BeamEstimator> mBeam;
     std::unique_ptr<SurfacePhotons> mGlobal, mCaustic;  // surface photon maps
     float mMaxRadius = 0.f, mStep = 0.f;
-    PhotonStats mStats;  // of the pass and the maps; the estimate time is summed by stats()
+    // Of the passes (summed) and the maps; the estimate time is summed by stats().
+    PhotonStats mStats;
     std::unique_ptr<tbb::enumerable_thread_specific<PhotonThreadState>> mThreads;
 };
 
 }  // namespace
+
+std::vector<std::pair<std::string, std::string>> PhotonStats::metadata() const {
+    auto num = [](double v) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.6g", v);
+        return std::string(buf);
+    };
+    return {{"photons_traced", std::to_string(traced.emitted)},
+            {"photons_stored", std::to_string(traced.stored)},
+            {"photon_pass_seconds", num(traced.seconds)},
+            {"photons_per_second", num(photonsPerSecond())},
+            {"photon_map_build_seconds", num(photonMapBuildSeconds)},
+            {"photon_radii_seconds", num(photonRadiiSeconds)},
+            {"disc_bvh_build_seconds", num(discBvhBuildSeconds)},
+            {"estimate_seconds", num(estimateSeconds)}};
+}
+
+bool photonsCurve(const IndexField* field, const Bounds3& b) {
+    if (!field || b.empty()) return false;
+    const Vec3 pad = b.diagonal() * 0.1f;
+    return field->gradientBound(Vec3d(b.lo - pad), Vec3d(b.hi + pad)) > 0.0;
+}
 
 PhotonPassResult tracePhotonIntegratorPass(const RenderScene& scene,
                                            const PhotonIntegratorSettings& settings, int pass) {

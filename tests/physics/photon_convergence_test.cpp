@@ -19,6 +19,7 @@
 
 #include "film/color.h"
 #include "fog_box_scene.h"
+#include "render/photon_integrator.h"
 #include "render/renderer.h"
 #include "test_support.h"
 

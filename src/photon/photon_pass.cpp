@@ -95,10 +95,9 @@ bool finitePhoton(const Photon& ph) {
     return std::isfinite(ph.power) && isFinite(ph.p) && isFinite(ph.wi) && std::isfinite(ph.lambda);
 }
 
-// Where a photon walk is, between two vertices.
-struct PhotonState {
-    Ray ray;
-    PathThroughput throughput;  // β[0]: the photon's power (W); monochromatic
+// Where a photon walk is, between two vertices: its ray, and its throughput, whose β[0] is the
+// photon's power (W; monochromatic).
+struct PhotonState : PathSegment {
     bool direct;                // no interaction yet: light straight from the light
     bool specularOnly;          // every interaction so far was a mirror or glass
     int bounces = 0;
@@ -202,14 +201,12 @@ bool photonAtSurface(const SurfaceHit& hit, const PhotonPassSettings& settings,
         }
         state->specularOnly = false;
     }
-    Ray next;
-    if (!continueAtSurface(mat, hit, state->ray.d, walk.tracking().wavelengths(),
-                           TransportMode::Importance, sampler, &state->throughput, &next))
+    if (!continueAtSurface(mat, hit, walk.tracking().wavelengths(), TransportMode::Importance,
+                           sampler, state))
         return false;
     path->nonFinite = !std::isfinite(state->throughput.beta[0]);
     if (path->nonFinite || !state->throughput.keepPower(power, sampler)) return false;
     state->direct = false;
-    state->ray = next;
     return true;
 }
 

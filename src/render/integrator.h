@@ -9,13 +9,13 @@
 #include <utility>
 #include <vector>
 
-#include "core/light_path.h"
+#include "core/math.h"
 #include "core/rng.h"
+#include "core/spectral.h"
 #include "film/aov.h"
+#include "film/deep.h"
 #include "photon/view_weight.h"
-#include "render/radiance_sample.h"
 #include "render/render_scene.h"
-#include "transport/path_vertex.h"
 #include "transport/scatter_point.h"
 #include "transport/tracking.h"
 
@@ -23,6 +23,17 @@ namespace mirage {
 
 class CameraRayData;
 struct PhotonIntegratorSettings;
+
+// What an integrator returns for one camera sample. Its passes and deep record go to the
+// thread's (ThreadState::aov, deep), each contribution added once through the path's recorder
+// (render/path_recorder.h).
+struct RadianceSample {
+    SampledSpectrum L;  // W·m⁻²·sr⁻¹·nm⁻¹
+    float alpha = 0.f;  // 1 − transmittance of the ray (coverage)
+    // Radiance already reduced to CIE XYZ in the film's normalisation (spectrumToXyz), added to
+    // the pixel beside L: what a photon-map estimate gives, each photon at its own wavelength.
+    Vec3 xyz;
+};
 
 // Per-thread state an integrator may use (allocated once per tile, reused per sample).
 struct ThreadState {
@@ -44,6 +55,8 @@ struct ThreadState {
     // Next-event estimation's parts per light-group slot (render/direct_light.h), when the
     // passes split light groups: the last estimate's, overwritten by the next.
     std::vector<SampledSpectrum> lightSplit;
+    // A photon estimate's parts per light-group slot (XYZ, photon/photon_groups.h), likewise.
+    std::vector<Vec3> lightSplitXyz;
     // Zeroes the parts for the estimate about to be made; null when the render does not split.
     SampledSpectrum* startLightSplit() {
         if (!aov || aov->group.empty()) return nullptr;

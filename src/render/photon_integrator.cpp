@@ -92,6 +92,7 @@
 #include "photon/photon_pass.h"
 #include "photon/surface_estimate.h"
 #include "render/achromatic_film.h"
+#include "render/camera_path.h"
 #include "transport/path_vertex.h"
 
 namespace mirage {
@@ -150,7 +151,6 @@ struct PhotonThreadState {
     ScatteringProbe probe;
     std::vector<BeamHit> hits;
     std::vector<PhotonNeighbour> neighbours;
-    std::vector<Vec3> groupXyz;  // one estimate's light groups (photon_groups.h)
     double estimateSeconds = 0;
     uint64_t estimates = 0;
 };
@@ -207,8 +207,9 @@ public:
                       Sampler& sampler, ThreadState& ts) const override {
         RadianceSample out = mSingle->Li(scene, ray, w, sampler, ts);
         if (mThreads) mThreads->local().depth.setTimeOffset(ts.tracking.timeOffset());
+        PathRecorder rec(&out, ts);
         if (scene.hasSurfaces()) {
-            photonsAlongSpecularChain(scene, ray, w, sampler, ts.photonView, &out);
+            photonsAlongSpecularChain(scene, CameraPath(ray, w), sampler, ts, rec);
             return out;
         }
         if (!mPhotons || mPhotons->size() == 0) return out;
@@ -217,9 +218,8 @@ public:
         PhotonThreadState& pt = mThreads->local();
         auto t0 = Clock::now();
         pt.depth.march(ray, ray.tMax);
-        const PhotonGroups groups = groupsOf(out, pt);
-        out.addXyz(volumeEstimate(ray, ray.tMax, u, pt, ts.photonView, groups),
-                   LightPath::VolumeIndirect, kUnplaced, groupParts(groups, pt));
+        const PhotonGroups groups = rec.photonGroups(mSlotOfLight);
+        rec.photonsInMedium(volumeEstimate(ray, ray.tMax, u, pt, ts.photonView, groups));
         pt.estimateSeconds += secondsSince(t0);
         ++pt.estimates;
         return out;
@@ -337,18 +337,6 @@ private:
         return line;
     }
 
-    // An estimate's split by light group, into pt.groupXyz (zeroed): active when the render
-    // asks for light-group passes (the sample then carries a slot per group).
-    PhotonGroups groupsOf(const RadianceSample& out, PhotonThreadState& pt) const {
-        if (!out.aov || out.aov->groupXyz.empty()) return PhotonGroups();
-        pt.groupXyz.assign(out.aov->groupXyz.size(), Vec3(0.f));
-        return PhotonGroups(&mSlotOfLight, &pt.groupXyz);
-    }
-    static const std::vector<Vec3>* groupParts(const PhotonGroups& groups,
-                                               const PhotonThreadState& pt) {
-        return groups.active() ? &pt.groupXyz : nullptr;
-    }
-
     // The volume photons' in-scattered radiance along `ray` over (0, tEnd), XYZ: beam or point
     // estimate; pt.depth has been marched along the ray.
     Vec3 volumeEstimate(const Ray& ray, float tEnd, float u, PhotonThreadState& pt,
@@ -359,60 +347,59 @@ private:
                                      mStep, u, pt.neighbours.data(), pt.probe, view, groups);
     }
 
-    // The photon part with surfaces (see the top of the file), XYZ, into *out: the volume
-    // estimates are volume_indirect, the caustic map caustic, the global map surface_indirect.
-    void photonsAlongSpecularChain(const RenderScene& scene, const Ray& cameraRay,
-                                   const SampledWavelengths& w, Sampler& sampler,
-                                   const ViewWeight& prefix, RadianceSample* out) const {
+    // The photon part with surfaces (see the top of the file), XYZ, into the sample: the
+    // volume estimates along each segment of the specular chain the camera ray starts, then at
+    // the first diffuse surface the surface maps'. Each photon is seen through the chain before
+    // it (its view weight), the curved camera's chords included (ts.photonView).
+    void photonsAlongSpecularChain(const RenderScene& scene, CameraPath chain, Sampler& sampler,
+                                   ThreadState& ts, PathRecorder& rec) const {
         const float u = sampler.get1D();  // the point estimate's march jitter
         PhotonThreadState& pt = mThreads->local();
         auto t0 = Clock::now();
         const bool volume = mPhotons && mPhotons->size() > 0;
-        const int kSurface = mSettings.k > 0 ? mSettings.k : 32;
-        ViewWeight view = prefix;
-        PathThroughput path;  // the chain's throughput at the path's wavelengths
-        Ray ray = cameraRay;
-        float viewT = 0.f;  // distance along the chain to this ray's origin (deep output)
-        for (int bounce = 0; bounce <= kMaxSpecularBounces; ++bounce) {
-            std::optional<SurfaceHit> hit = scene.geometry->intersect(ray);
-            const float tEnd = hit ? hit->t : ray.tMax;
-            pt.depth.march(ray, tEnd);
+        ViewWeight view = ts.photonView;
+        for (; chain.depth <= kMaxSpecularBounces; ++chain.depth) {
+            const SurfaceAhead ahead = surfaceAhead(scene, chain.ray);
+            pt.depth.march(chain.ray, ahead.tEnd);
             if (volume) {
-                const PhotonGroups groups = groupsOf(*out, pt);
-                out->addXyz(volumeEstimate(ray, tEnd, u, pt, view, groups),
-                            LightPath::VolumeIndirect, kUnplaced, groupParts(groups, pt));
+                const PhotonGroups groups = rec.photonGroups(mSlotOfLight);
+                rec.photonsInMedium(volumeEstimate(chain.ray, ahead.tEnd, u, pt, view, groups));
             }
-            if (!hit || scene.geometry->holdout(*hit)) break;  // a holdout: nothing behind
-            const Material& mat = scene.geometry->materialAt(*hit);
+            // A holdout: nothing behind it.
+            if (!ahead.hit || rec.holdout(*scene.geometry, *ahead.hit)) break;
+            const SurfaceHit& hit = *ahead.hit;
+            const Material& mat = scene.geometry->materialAt(hit);
             if (!mat.specular()) {
-                pt.neighbours.resize(size_t(kSurface));
-                auto T = [&](float lambda) {
-                    return pt.depth.transmittance(hit->t, lambda) * view(lambda);
-                };
-                const Vec3 wo = -ray.d;
-                const PhotonGroups groups = groupsOf(*out, pt);
-                const Vec3 caustic =
-                    mCaustic->estimate(hit->p, hit->ng, wo, mat, kSurface, mMaxRadius,
-                                       pt.neighbours.data(), T, groups);
-                const Vec3 global = mGlobal->estimate(hit->p, hit->ng, wo, mat, kSurface,
-                                                      mMaxRadius, pt.neighbours.data(), T, groups);
-                out->addXyz(caustic, LightPath::Caustic, global, LightPath::SurfaceIndirect,
-                            DeepAt{viewT + hit->t, true}, groupParts(groups, pt));
+                photonsAtSurface(hit, -chain.ray.d, mat, view, pt, rec);
                 break;
             }
-            attenuateView(pt.depth, tEnd, &view);
-            Ray next;
+            attenuateView(pt.depth, ahead.tEnd, &view);
             BsdfSample bs;
-            if (!continueAtSurface(mat, *hit, ray.d, w, TransportMode::Radiance, sampler, &path,
-                                   &next, &bs))
+            if (!continueAtSurface(mat, hit, chain.wavelengths, TransportMode::Radiance, sampler,
+                                   &chain, &bs))
                 break;
-            weighSpecularVertex(mat, bs, w, &view);
+            weighSpecularVertex(mat, bs, chain.wavelengths, &view);
             if (view.zero()) break;
-            viewT += hit->t;
-            ray = next;
+            rec.passedSpecular(hit.t);
         }
         pt.estimateSeconds += secondsSince(t0);
         ++pt.estimates;
+    }
+
+    // The surface maps' estimates at a diffuse surface the chain reached, seen along wo:
+    // caustics from the caustic map, indirect light from the global map, each photon through
+    // the chain (view) and the media of the chain's last segment (pt.depth).
+    void photonsAtSurface(const SurfaceHit& hit, const Vec3& wo, const Material& mat,
+                          const ViewWeight& view, PhotonThreadState& pt, PathRecorder& rec) const {
+        const int k = mSettings.k > 0 ? mSettings.k : 32;
+        pt.neighbours.resize(size_t(k));
+        auto T = [&](float lambda) { return pt.depth.transmittance(hit.t, lambda) * view(lambda); };
+        const PhotonGroups groups = rec.photonGroups(mSlotOfLight);
+        const Vec3 caustic = mCaustic->estimate(hit.p, hit.ng, wo, mat, k, mMaxRadius,
+                                                pt.neighbours.data(), T, groups);
+        const Vec3 global = mGlobal->estimate(hit.p, hit.ng, wo, mat, k, mMaxRadius,
+                                              pt.neighbours.data(), T, groups);
+        rec.photonsAtSurface(caustic, global, hit.t);
     }
 
     // The media of a segment the chain leaves: their transmittance at every wavelength.

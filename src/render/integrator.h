@@ -47,6 +47,7 @@ struct ThreadState {
     // nothing below is touched.
     AovSample* aov = nullptr;
     DeepSample* deep = nullptr;       // the sample's deep record; null without deep output
+    AovSample nestedAov;  // scratch: the passes of a nested estimate (PathRecorder::nested)
     // The data passes' record of the camera ray (render/camera_ray_data.h), null when no data
     // pass or deep output asks for it: an integrator hands it the collisions of its walk of the
     // camera ray and says how that walk ended.

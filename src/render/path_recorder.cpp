@@ -46,6 +46,16 @@ void PathRecorder::coverage(bool reachedPlate, float transmittance, float heldOu
     mOut->alpha = clamp((reachedPlate ? 1.f - transmittance : 1.f) - heldOutShare, 0.f, 1.f);
 }
 
+void PathRecorder::addNested(const RadianceSample& s, const SampledSpectrum& T, float k) {
+    mOut->L += s.L * T * k;
+    mOut->xyz += s.xyz * k;
+    if (mAov) mAov->addWeighted(mTs->nestedAov, T, k);
+}
+
+void PathRecorder::coverageThrough(const SampledSpectrum& T, float beyond) {
+    mOut->alpha = T.maxValue() <= 0.f ? 1.f : 1.f - T.average() * (1.f - beyond);
+}
+
 void PathRecorder::finish(const PathThroughput& path) {
     mOut->L = path.estimate(mOut->L);
     if (mAov) mAov->forEachRadiance([&](SampledSpectrum& s) { s = path.estimate(s); });

@@ -114,6 +114,19 @@ public:
         if (mOnCameraRay) mOut->alpha = 0.f;
     }
 
+    // A nested estimate: the integrator the curved camera wraps, along one chord of a curved
+    // camera ray (render/curved_camera.cpp). li() records its passes apart (ThreadState::
+    // nestedAov) and hands nothing to the data passes (the chords are not the camera ray);
+    // addNested() then adds it seen through T, the chords' transmittance before it (spectral
+    // parts), and k (every radiance part).
+    template <typename Li>
+    RadianceSample nested(Li&& li);
+    void addNested(const RadianceSample& s, const SampledSpectrum& T, float k);
+    // The coverage of a camera ray seen through the transmittance T, in front of what covers
+    // `beyond` of the pixel (the curved camera: its chords, then its last ray); all of it when T
+    // let nothing through.
+    void coverageThrough(const SampledSpectrum& T, float beyond);
+
     // The path's estimate from what it gathered (PathThroughput::estimate), for every part.
     void finish(const PathThroughput& path);
 
@@ -162,6 +175,22 @@ private:
     bool mOnCameraRay = true;   // no vertex yet
     float mViewT = 0.f;         // distance along the camera's view to the current ray's origin
     DeepAt mFirst{0.f, false};  // the first scattering vertex
+    bool mNestedReady = false;  // nestedAov holds this sample's layout
 };
+
+template <typename Li>
+RadianceSample PathRecorder::nested(Li&& li) {
+    if (mAov) {
+        if (!mNestedReady) mTs->nestedAov = *mAov;
+        mNestedReady = true;
+        mTs->nestedAov.reset();
+        mTs->aov = &mTs->nestedAov;
+    }
+    mTs->cameraData = nullptr;
+    RadianceSample s = li();
+    mTs->aov = mAov;
+    mTs->cameraData = mCameraData;
+    return s;
+}
 
 }  // namespace mirage

@@ -342,9 +342,11 @@ private:
     Vec3 volumeEstimate(const Ray& ray, float tEnd, float u, PhotonThreadState& pt,
                         const ViewWeight& view, const PhotonGroups& groups) const {
         if (mBeam) return mBeam->estimate(ray, tEnd, pt.depth, &pt.hits, view, groups);
-        pt.neighbours.resize(size_t(mSettings.kOrDefault()));
-        return pointEstimateAlongRay(*mPhotons, ray, pt.depth, mSettings.kOrDefault(), mMaxRadius,
-                                     mStep, u, pt.neighbours.data(), pt.probe, view, groups);
+        const int k = mSettings.kOrDefault();
+        pt.neighbours.resize(size_t(k));
+        return pointEstimateAlongRay(*mPhotons, ray, pt.depth,
+                                     PhotonSearch{k, mMaxRadius, pt.neighbours.data()},
+                                     PointMarch{mStep, u, &pt.probe}, view, groups);
     }
 
     // The photon part with surfaces (see the top of the file), XYZ, into the sample: the

@@ -142,14 +142,14 @@ FlightEvent flyPhoton(const PhotonPassSettings& settings, const GeometryScene* g
     Ray& ray = state->ray;
     if (settings.field) {
         // The curved flight; the surface hit of the chord it ended on, if any, is kept.
-        ChordSurfaceTest surfaces = [&](const Ray& chord, float tMax) {
-            if (!geometry) return kInfinity;
-            *hit = geometry->intersect(Ray{chord.o, chord.d, tMax});
-            return *hit ? (*hit)->t : kInfinity;
-        };
+        const CurvedWalk curved{*settings.field, settings.curvedPath, settings.curvedMaxArc,
+                                [&](const Ray& chord, float tMax) {
+                                    if (!geometry) return kInfinity;
+                                    *hit = geometry->intersect(Ray{chord.o, chord.d, tMax});
+                                    return *hit ? (*hit)->t : kInfinity;
+                                }};
         CurvedWalkEnd end;
-        FlightEvent ev = walk.flyCurved(*settings.field, settings.curvedPath, surfaces, ray.o,
-                                        ray.d, settings.curvedMaxArc, sampler, &end);
+        FlightEvent ev = walk.flyCurved(curved, ray, sampler, &end);
         if (end.kind == CurvedWalkEnd::Kind::Surface) {
             ray = Ray{end.chord.o, end.chord.d, kInfinity};
             return ev;

@@ -15,10 +15,10 @@
 #include "photon/photon_pass.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <optional>
 
+#include "core/clock.h"
 #include "core/interrupt.h"
 #include "core/sampling.h"
 #include "photon/medium_emitter.h"
@@ -95,80 +95,13 @@ bool finitePhoton(const Photon& ph) {
     return std::isfinite(ph.power) && isFinite(ph.p) && isFinite(ph.wi) && std::isfinite(ph.lambda);
 }
 
-// Where a photon walk is, between two vertices.
-struct PhotonState {
-    Ray ray;
-    PathThroughput throughput;  // β[0]: the photon's power (W); monochromatic
+// Where a photon walk is, between two vertices: its ray, and its throughput, whose β[0] is the
+// photon's power (W; monochromatic).
+struct PhotonState : PathSegment {
     bool direct;                // no interaction yet: light straight from the light
     bool specularOnly;          // every interaction so far was a mirror or glass
     int bounces = 0;
 };
-
-// Emission: a source ∝ power and a photon from it. False when it emits nothing.
-bool emitPhoton(const PhotonSources& sources, const LightChooser& chooser, float photonPower,
-                Sampler& sampler, PhotonWalk& walk, PhotonPath* path, PhotonState* state) {
-    const size_t source = chooser.choose(sampler.get1D());
-    PhotonEmission em;
-    // Light from a medium is never direct light of the render pass (no NEE to media): its
-    // first scattering and its first diffuse surface are stored, in the global map.
-    const bool fromMedium = source >= sources.lights.size();
-    if (fromMedium) {
-        const size_t e = source - sources.lights.size();
-        path->fromMedium = true;
-        if (!sources.emitters[e].sample(sampler,
-                                        walk.tracking().context(sources.emitterMedium[e]), &em))
-            return false;
-    } else if (!sources.lights[source]->emitPhoton(sources.bounds, sampler, &em)) {
-        return false;
-    } else {
-        path->light = uint32_t(source);
-    }
-    const float power = photonPower * em.weight;
-    if (!std::isfinite(power)) path->nonFinite = true;
-    if (!(power > 0.f) || path->nonFinite) return false;
-    path->power = power;
-    walk.setWavelength(em.lambda);
-    state->ray = Ray{em.origin, em.direction, kInfinity};
-    state->throughput.beta = SampledSpectrum(power);
-    state->direct = state->specularOnly = !fromMedium;
-    return true;
-}
-
-// One free flight from state.ray: straight, or along its Fermat path where light curves. *hit
-// is the surface the flight ended at, if any; state.ray becomes the ray that met it (a curved
-// flight's last chord) or, for a curved flight that ran out of path, the straight ray on.
-FlightEvent flyPhoton(const PhotonPassSettings& settings, const GeometryScene* geometry,
-                      Sampler& sampler, PhotonWalk& walk, PhotonState* state, PhotonPath* path,
-                      std::optional<SurfaceHit>* hit) {
-    Ray& ray = state->ray;
-    if (settings.field) {
-        // The curved flight; the surface hit of the chord it ended on, if any, is kept.
-        ChordSurfaceTest surfaces = [&](const Ray& chord, float tMax) {
-            if (!geometry) return kInfinity;
-            *hit = geometry->intersect(Ray{chord.o, chord.d, tMax});
-            return *hit ? (*hit)->t : kInfinity;
-        };
-        CurvedWalkEnd end;
-        FlightEvent ev = walk.flyCurved(*settings.field, settings.curvedPath, surfaces, ray.o,
-                                        ray.d, settings.curvedMaxArc, sampler, &end);
-        if (end.kind == CurvedWalkEnd::Kind::Surface) {
-            ray = Ray{end.chord.o, end.chord.d, kInfinity};
-            return ev;
-        }
-        if (ev.end != FlightEnd::Escaped) {
-            hit->reset();
-            return ev;
-        }
-        // Beyond curvedMaxArc of path, or at the stepper's hard cap on ODE steps
-        // (CurvedPathSettings::maxSteps, counted as a capped path: the rest of the flight is
-        // straight, a bias): straight on from where the path got to.
-        if (end.kind == CurvedWalkEnd::Kind::Capped) path->capped = true;
-        ray = Ray{end.p, end.direction, kInfinity};
-    }
-    hit->reset();
-    if (geometry) *hit = geometry->intersect(ray);
-    return walk.fly(ray, *hit ? (*hit)->t : kInfinity, sampler);
-}
 
 // Appends a photon to `list` when it is finite; false (and the path ends) when it is not.
 // Stores ph at the walk's time (motion blur; 0 for a still pass), tagged with its light.
@@ -183,97 +116,191 @@ bool storePhoton(Photon ph, const PhotonWalk& walk, PhotonList* list, PhotonPath
     return true;
 }
 
-// A photon at a surface: stored where it is diffuse (not straight from a light, whose direct
-// light the render pass computes, unless paths curve), then reflected or refracted
-// (continueAtSurface) with the roulette that keeps its power. False when the walk ends.
-bool photonAtSurface(const SurfaceHit& hit, const PhotonPassSettings& settings,
-                     const GeometryScene& geometry, Sampler& sampler, PhotonWalk& walk,
-                     PhotonState* state, PhotonPath* path, PhotonMapLists* out) {
-    const Material& mat = geometry.materialAt(hit);
-    const float power = state->throughput.beta[0];
-    if (!mat.specular()) {
-        // Where paths curve there are no shadow rays: the first diffuse hit is stored too.
-        if (!state->direct || (settings.field && settings.storeFirstInteraction)) {
-            PhotonList* list = !state->direct && state->specularOnly ? &out->surfaceCaustic
-                                                                     : &out->surfaceGlobal;
-            if (!storePhoton(Photon{hit.p, state->ray.d, walk.wavelength(), power}, walk, list,
-                             path))
+// One photon pass's walk of its photons: the sources and their choice ∝ power, the power each
+// photon leaves with, the pass's settings and its surfaces (null: none).
+class PhotonTracer {
+public:
+    PhotonTracer(const PhotonSources& sources, const LightChooser& chooser, float photonPower,
+                 const PhotonPassSettings& settings, const GeometryScene* geometry)
+        : mSources(sources),
+          mChooser(chooser),
+          mPhotonPower(photonPower),
+          mSettings(settings),
+          mGeometry(geometry) {}
+
+    // Photon `index`: emission, then flights until it leaves every medium and surface, is
+    // absorbed, or has interacted maxBounces times. Appends its stored photons to *out.
+    PhotonPath trace(uint64_t index, PhotonWalk& walk, PhotonMapLists* out) const {
+        PhotonPath path;
+        Sampler sampler(mSettings.seed, index, 0);
+        if (mSettings.shutterClose != mSettings.shutterOpen)
+            walk.tracking().setTimeOffset(shutterTime(index));
+        PhotonState state;
+        if (!emit(sampler, walk, &path, &state)) return path;
+        for (;;) {
+            std::optional<SurfaceHit> hit;
+            const FlightEvent ev = fly(sampler, walk, &state, &path, &hit);
+            bool goesOn;
+            if (ev.end == FlightEnd::Escaped && hit)
+                goesOn = atSurface(*hit, sampler, walk, &state, &path, out);
+            else if (ev.end == FlightEnd::Scattered || ev.end == FlightEnd::Reemitted)
+                goesOn = inMedium(ev, walk, &state, &path, out);
+            else
+                goesOn = false;
+            if (!goesOn) return path;
+            if (++state.bounces >= mSettings.maxBounces) {
+                path.capped = true;
+                return path;
+            }
+        }
+    }
+
+private:
+    // Photon index's time in the shutter, from a stream of its own, like the camera's
+    // (render/camera.h, shutterTime): every other number of the photon's walk is the one a
+    // still pass draws.
+    float shutterTime(uint64_t index) const {
+        Sampler stream(hashCombine(mSettings.seed, 0x5b7e1f3a9c2d4e61ull), index, 0);
+        return mSettings.shutterOpen +
+               (mSettings.shutterClose - mSettings.shutterOpen) * stream.get1D();
+    }
+
+    // Emission: a source ∝ power and a photon from it. False when it emits nothing.
+    bool emit(Sampler& sampler, PhotonWalk& walk, PhotonPath* path, PhotonState* state) const {
+        const size_t source = mChooser.choose(sampler.get1D());
+        PhotonEmission em;
+        // Light from a medium is never direct light of the render pass (no NEE to media): its
+        // first scattering and its first diffuse surface are stored, in the global map.
+        const bool fromMedium = source >= mSources.lights.size();
+        if (fromMedium) {
+            const size_t e = source - mSources.lights.size();
+            path->fromMedium = true;
+            if (!mSources.emitters[e].sample(
+                    sampler, walk.tracking().context(mSources.emitterMedium[e]), &em))
                 return false;
+        } else if (!mSources.lights[source]->emitPhoton(mSources.bounds, sampler, &em)) {
+            return false;
+        } else {
+            path->light = uint32_t(source);
         }
+        const float power = mPhotonPower * em.weight;
+        if (!std::isfinite(power)) path->nonFinite = true;
+        if (!(power > 0.f) || path->nonFinite) return false;
+        path->power = power;
+        walk.setWavelength(em.lambda);
+        state->ray = Ray{em.origin, em.direction, kInfinity};
+        state->throughput.beta = SampledSpectrum(power);
+        state->direct = state->specularOnly = !fromMedium;
+        return true;
+    }
+
+    // One free flight from state.ray: straight, or along its Fermat path where light curves. *hit
+    // is the surface the flight ended at, if any; state.ray becomes the ray that met it (a curved
+    // flight's last chord) or, for a curved flight that ran out of path, the straight ray on.
+    FlightEvent fly(Sampler& sampler, PhotonWalk& walk, PhotonState* state, PhotonPath* path,
+                    std::optional<SurfaceHit>* hit) const {
+        Ray& ray = state->ray;
+        if (mSettings.field) {
+            // The curved flight; the surface hit of the chord it ended on, if any, is kept.
+            const CurvedWalk curved{*mSettings.field, mSettings.curvedPath, mSettings.curvedMaxArc,
+                                    [&](const Ray& chord, float tMax) {
+                                        if (!mGeometry) return kInfinity;
+                                        *hit = mGeometry->intersect(Ray{chord.o, chord.d, tMax});
+                                        return *hit ? (*hit)->t : kInfinity;
+                                    }};
+            CurvedWalkEnd end;
+            FlightEvent ev = walk.flyCurved(curved, ray, sampler, &end);
+            if (end.kind == CurvedWalkEnd::Kind::Surface) {
+                ray = Ray{end.chord.o, end.chord.d, kInfinity};
+                return ev;
+            }
+            if (ev.end != FlightEnd::Escaped) {
+                hit->reset();
+                return ev;
+            }
+            // Beyond curvedMaxArc of path, or at the stepper's hard cap on ODE steps
+            // (CurvedPathSettings::maxSteps, counted as a capped path: the rest of the flight is
+            // straight, a bias): straight on from where the path got to.
+            if (end.kind == CurvedWalkEnd::Kind::Capped) path->capped = true;
+            ray = Ray{end.p, end.direction, kInfinity};
+        }
+        hit->reset();
+        if (mGeometry) *hit = mGeometry->intersect(ray);
+        return walk.fly(ray, *hit ? (*hit)->t : kInfinity, sampler);
+    }
+
+    // A photon at a surface: stored where it is diffuse (not straight from a light, whose direct
+    // light the render pass computes, unless paths curve), then reflected or refracted
+    // (continueAtSurface) with the roulette that keeps its power. False when the walk ends.
+    bool atSurface(const SurfaceHit& hit, Sampler& sampler, PhotonWalk& walk, PhotonState* state,
+                   PhotonPath* path, PhotonMapLists* out) const {
+        const Material& mat = mGeometry->materialAt(hit);
+        const float power = state->throughput.beta[0];
+        if (!mat.specular()) {
+            // Where paths curve there are no shadow rays: the first diffuse hit is stored too.
+            if (!state->direct || (mSettings.field && mSettings.storeFirstInteraction)) {
+                PhotonList* list = !state->direct && state->specularOnly ? &out->surfaceCaustic
+                                                                         : &out->surfaceGlobal;
+                if (!storePhoton(Photon{hit.p, state->ray.d, walk.wavelength(), power}, walk, list,
+                                 path))
+                    return false;
+            }
+            state->specularOnly = false;
+        }
+        if (!continueAtSurface(mat, hit, walk.tracking().wavelengths(), TransportMode::Importance,
+                               sampler, state))
+            return false;
+        path->nonFinite = !std::isfinite(state->throughput.beta[0]);
+        if (path->nonFinite || !state->throughput.keepPower(power, sampler)) return false;
+        state->direct = false;
+        return true;
+    }
+
+    // A photon scattered (or re-emitted) in a medium: stored unless it is the first interaction
+    // of light straight from a light, which the render pass computes itself. A fluorescent
+    // re-emission is stored always (no render pass computes light that changes wavelength by
+    // shadow rays), at the new wavelength with the power after re-emission, Φ λi/λo
+    // (photon_walk.h), flagged by its absorbed λi so that the estimates give it the isotropic lobe
+    // of re-emission. False when the walk ends.
+    bool inMedium(const FlightEvent& ev, PhotonWalk& walk, PhotonState* state, PhotonPath* path,
+                  PhotonMapLists* out) const {
+        const float power = state->throughput.beta[0];
+        const bool reemitted = ev.end == FlightEnd::Reemitted;
+        if (reemitted || !state->direct || mSettings.storeFirstInteraction) {
+            const Photon ph =
+                reemitted ? Photon{ev.p, ev.wi, ev.lambdaOut, power * ev.weight, ev.lambdaIn}
+                          : Photon{ev.p, ev.wi, walk.wavelength(), power};
+            if (!storePhoton(ph, walk, &out->volume, path)) return false;
+        }
+        state->direct = false;
         state->specularOnly = false;
+        state->throughput.beta *= ev.weight;
+        path->nonFinite = !std::isfinite(state->throughput.beta[0]);
+        if (!(state->throughput.beta[0] > 0.f) || path->nonFinite) return false;
+        state->ray = Ray{ev.p, ev.wo, kInfinity};
+        return true;
     }
-    Ray next;
-    if (!continueAtSurface(mat, hit, state->ray.d, walk.tracking().wavelengths(),
-                           TransportMode::Importance, sampler, &state->throughput, &next))
-        return false;
-    path->nonFinite = !std::isfinite(state->throughput.beta[0]);
-    if (path->nonFinite || !state->throughput.keepPower(power, sampler)) return false;
-    state->direct = false;
-    state->ray = next;
-    return true;
-}
 
-// A photon scattered (or re-emitted) in a medium: stored unless it is the first interaction
-// of light straight from a light, which the render pass computes itself. A fluorescent
-// re-emission is stored always (no render pass computes light that changes wavelength by
-// shadow rays), at the new wavelength with the power after re-emission, Φ λi/λo
-// (photon_walk.h), flagged by its absorbed λi so that the estimates give it the isotropic lobe
-// of re-emission. False when the walk ends.
-bool photonInMedium(const FlightEvent& ev, const PhotonPassSettings& settings, PhotonWalk& walk,
-                    PhotonState* state, PhotonPath* path, PhotonMapLists* out) {
-    const float power = state->throughput.beta[0];
-    const bool reemitted = ev.end == FlightEnd::Reemitted;
-    if (reemitted || !state->direct || settings.storeFirstInteraction) {
-        const Photon ph = reemitted
-                              ? Photon{ev.p, ev.wi, ev.lambdaOut, power * ev.weight, ev.lambdaIn}
-                              : Photon{ev.p, ev.wi, walk.wavelength(), power};
-        if (!storePhoton(ph, walk, &out->volume, path)) return false;
-    }
-    state->direct = false;
-    state->specularOnly = false;
-    state->throughput.beta *= ev.weight;
-    path->nonFinite = !std::isfinite(state->throughput.beta[0]);
-    if (!(state->throughput.beta[0] > 0.f) || path->nonFinite) return false;
-    state->ray = Ray{ev.p, ev.wo, kInfinity};
-    return true;
-}
-
-// Photon `index`: emission, then flights until it leaves every medium and surface, is
-// absorbed, or has interacted maxBounces times. Appends its stored photons to *out.
-PhotonPath tracePhoton(uint64_t index, const PhotonSources& sources, const LightChooser& chooser,
-                       float photonPower, const PhotonPassSettings& settings,
-                       const GeometryScene* geometry, PhotonWalk& walk, PhotonMapLists* out) {
-    PhotonPath path;
-    Sampler sampler(settings.seed, index, 0);
-    if (settings.shutterClose != settings.shutterOpen) {
-        // From a stream of its own, like the camera's (render/camera.h, shutterTime): every
-        // other number of the photon's walk is the one a still pass draws.
-        Sampler time(hashCombine(settings.seed, 0x5b7e1f3a9c2d4e61ull), index, 0);
-        walk.tracking().setTimeOffset(settings.shutterOpen +
-                                      (settings.shutterClose - settings.shutterOpen) *
-                                          time.get1D());
-    }
-    PhotonState state;
-    if (!emitPhoton(sources, chooser, photonPower, sampler, walk, &path, &state)) return path;
-    for (;;) {
-        std::optional<SurfaceHit> hit;
-        const FlightEvent ev = flyPhoton(settings, geometry, sampler, walk, &state, &path, &hit);
-        bool goesOn;
-        if (ev.end == FlightEnd::Escaped && hit)
-            goesOn = photonAtSurface(*hit, settings, *geometry, sampler, walk, &state, &path, out);
-        else if (ev.end == FlightEnd::Scattered || ev.end == FlightEnd::Reemitted)
-            goesOn = photonInMedium(ev, settings, walk, &state, &path, out);
-        else
-            goesOn = false;
-        if (!goesOn) return path;
-        if (++state.bounces >= settings.maxBounces) {
-            path.capped = true;
-            return path;
-        }
-    }
-}
+    const PhotonSources& mSources;
+    const LightChooser& mChooser;
+    float mPhotonPower;  // W: Φ/N, every photon's power before its source's weight
+    const PhotonPassSettings& mSettings;
+    const GeometryScene* mGeometry;
+};
 
 }  // namespace
+
+void PhotonPassStats::add(const PhotonPassStats& pass) {
+    emitted += pass.emitted;
+    stored += pass.stored;
+    cappedPaths += pass.cappedPaths;
+    nonFinite += pass.nonFinite;
+    fromMedia += pass.fromMedia;
+    mediumPower = pass.mediumPower;
+    emittedPower += pass.emittedPower;
+    seconds += pass.seconds;
+    interrupted = interrupted || pass.interrupted;
+}
 
 PhotonList tracePhotons(const std::vector<const Light*>& lights,
                         const std::vector<const Medium*>& media, const PhotonPassSettings& settings,
@@ -285,7 +312,7 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
                                const std::vector<const Medium*>& media,
                                const GeometryScene* geometry, const PhotonPassSettings& settings,
                                PhotonPassStats* stats) {
-    auto start = std::chrono::steady_clock::now();
+    const Clock::time_point start = Clock::now();
     PhotonPassStats local;
     PhotonMapLists maps;
     if (geometry && geometry->empty()) geometry = nullptr;
@@ -301,7 +328,7 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
     PhotonPassSettings curved = settings;
     if (settings.field && geometry && settings.curvedPath.capNearSurfaces) {
         curved.curvedPath.stepCap =
-            surfaceStepCap(settings.field, settings.curvedPath.tolerance,
+            surfaceStepCap(settings.field.get(), settings.curvedPath.tolerance,
                            [geometry](const Vec3d& o, const Vec3d& d) {
                                return geometry->surfaceDistance(o, d);
                            });
@@ -317,14 +344,14 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
             blockNonFinite(blocks, 0);
         std::vector<double> blockPower(blocks, 0.0);
         Progress progress("photons", n, "photons", settings.progress);
+        const PhotonTracer tracer(sources, chooser, photonPower, curved, geometry);
 
         forEachPhotonBlock(
             n, media, progress, /*stopOnInterrupt=*/true,
             [&](PhotonWalk& walk, uint64_t b, uint64_t first, uint64_t last) {
                 for (uint64_t i = first; i < last; ++i) {
                     const uint64_t flightsCut = walk.tracking().cappedFlights;
-                    const PhotonPath path = tracePhoton(i, sources, chooser, photonPower, curved,
-                                                        geometry, walk, &blockPhotons[b]);
+                    const PhotonPath path = tracer.trace(i, walk, &blockPhotons[b]);
                     // A flight cut at the collision cap (tracking.h) caps the path too.
                     blockCapped[b] += path.capped || walk.tracking().cappedFlights != flightsCut;
                     blockNonFinite[b] += path.nonFinite;
@@ -358,7 +385,7 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
         local.interrupted = interruptRequested();
     }
     local.stored = maps.volume.size() + maps.surfaceGlobal.size() + maps.surfaceCaustic.size();
-    local.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    local.seconds = secondsSince(start);
     if (stats) *stats = local;
     return maps;
 }

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/progress.h"
@@ -47,7 +48,7 @@ struct PhotonPassSettings {
     // (PhotonWalk::flyCurved) over at most curvedMaxArc metres of path, then goes on straight.
     // Shadow rays do not follow such paths, so the caller then sets storeFirstInteraction, and
     // it also stores light arriving straight from a light at a diffuse surface (global map).
-    const IndexField* field = nullptr;
+    std::shared_ptr<const IndexField> field;
     CurvedPathSettings curvedPath;
     float curvedMaxArc = 1000.f;
     Progress::Mode progress = Progress::Mode::Auto;
@@ -69,6 +70,10 @@ struct PhotonPassStats {
     // An interrupt (core/interrupt.h) stopped the pass between blocks of photons: the maps hold
     // only the blocks that finished, and the render that follows stops before its first tile.
     bool interrupted = false;
+
+    // Adds the figures of another pass of the same scene (a render in passes traces one per
+    // pass): counts, power and time sum; the media's tabulated power is the scene's, once.
+    void add(const PhotonPassStats& pass);
 };
 
 struct PhotonMapLists {

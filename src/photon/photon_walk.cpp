@@ -68,24 +68,23 @@ FlightEvent PhotonWalk::fly(const Ray& ray, float tMax, Sampler& sampler) {
     return ev;
 }
 
-FlightEvent PhotonWalk::flyCurved(const IndexField& field, const CurvedPathSettings& path,
-                                  const ChordSurfaceTest& surfaces, const Vec3& origin,
-                                  const Vec3& dir, float maxArc, Sampler& sampler,
+FlightEvent PhotonWalk::flyCurved(const CurvedWalk& walk, const Ray& start, Sampler& sampler,
                                   CurvedWalkEnd* end) {
     FlightEvent ev;
     ev.end = FlightEnd::Escaped;
-    ev.p = origin;
-    ev.wi = dir;
+    ev.p = start.o;
+    ev.wi = start.d;
     // Every chord is handed to the surface test before it is tracked: that is where the
     // direction of the chord the collisions lie on is known.
-    Vec3 chordDir = dir;
-    ChordSurfaceTest test = [&](const Ray& chord, float tMax) {
-        chordDir = chord.d;
-        return surfaces ? surfaces(chord, tMax) : kInfinity;
-    };
+    Vec3 chordDir = start.d;
+    const CurvedWalk chords{walk.field, walk.settings, walk.maxArc,
+                            [&](const Ray& chord, float tMax) {
+                                chordDir = chord.d;
+                                return walk.surfaces ? walk.surfaces(chord, tMax) : kInfinity;
+                            }};
     const uint64_t capped = mTracking.cappedFlights;
     *end = trackCurvedCollisions(
-        mTracking, field, path, test, origin, dir, mLambda, maxArc, sampler,
+        mTracking, chords, start, mLambda, sampler,
         [&](const Collision& c, float) { return collide(c, chordDir, sampler, &ev); });
     if (mTracking.cappedFlights != capped) ev.end = FlightEnd::Absorbed;  // as in fly()
     if (ev.end == FlightEnd::Escaped) ev.wi = end->direction;

@@ -51,15 +51,15 @@ public:
     // One free flight along ray (unit direction) over (0, tMax).
     FlightEvent fly(const Ray& ray, float tMax, Sampler& sampler);
 
-    // One free flight along the curved (Fermat) path from origin along the unit dir, over arc
-    // length maxArc (transport/curved_tracking.h): optical depth over arc length, each chord
-    // tested by `surfaces`. The events are those of fly(); wi is the direction of the chord
-    // the event lies on (the path's tangent to within the chord's turn). *end says how the
-    // walk ended: Surface (ev.end Escaped, at a surface on end->chord), Reached or Capped
-    // (ev.end Escaped: the caller goes on straight from end->p along end->direction).
-    FlightEvent flyCurved(const IndexField& field, const CurvedPathSettings& path,
-                          const ChordSurfaceTest& surfaces, const Vec3& origin, const Vec3& dir,
-                          float maxArc, Sampler& sampler, CurvedWalkEnd* end);
+    // One free flight along the curved (Fermat) path of `walk` from start's origin along its
+    // unit direction, on the photon's wavelength's path (transport/curved_tracking.h): optical
+    // depth over arc length, each chord tested by the walk's surfaces. The events are those of
+    // fly(); wi is the direction of the chord the event lies on (the path's tangent to within
+    // the chord's turn). *end says how the walk ended: Surface (ev.end Escaped, at a surface on
+    // end->chord), Reached or Capped (ev.end Escaped: the caller goes on straight from end->p
+    // along end->direction).
+    FlightEvent flyCurved(const CurvedWalk& walk, const Ray& start, Sampler& sampler,
+                          CurvedWalkEnd* end);
 
     TrackingContext& tracking() { return mTracking; }
     float timeOffset() const { return mTracking.timeOffset(); }

@@ -138,9 +138,12 @@ namespace {
 // Σ_k weight(k) p_k fluxXyz_k / ((4/3) π r³) over the k nearest photons to x.
 // Each photon's term goes to its light group too (photon_groups.h).
 template <typename Weight>
-Vec3 gather(const VolumePhotons& photons, const Vec3& x, const Vec3& wo, int k, float maxRadius,
-            PhotonNeighbour* buffer, const PhotonGroups& groups, Weight&& weight) {
-    int found = photons.map().nearest(x, k, maxRadius, buffer);
+Vec3 gather(const VolumePhotons& photons, const Vec3& x, const Vec3& wo, const PhotonSearch& search,
+            const PhotonGroups& groups, Weight&& weight) {
+    const int k = search.k;
+    const float maxRadius = search.maxRadius;
+    const PhotonNeighbour* buffer = search.buffer;
+    int found = photons.map().nearest(x, k, maxRadius, search.buffer);
     if (found == 0) return Vec3(0.f);
     // Fewer than k photons: the search sphere was the whole maxRadius ball. k coincident
     // photons would give r = 0; the density there is not resolvable, so the ball is kept at a
@@ -161,18 +164,19 @@ Vec3 gather(const VolumePhotons& photons, const Vec3& x, const Vec3& wo, int k, 
 
 }  // namespace
 
-Vec3 pointEstimate(const VolumePhotons& photons, const Vec3& x, const Vec3& wo, int k,
-                   float maxRadius, PhotonNeighbour* buffer) {
-    MIRAGE_CHECK(k >= 2);
-    return gather(photons, x, wo, k, maxRadius, buffer, PhotonGroups(),
-                  [](uint32_t) { return 1.f; });
+Vec3 pointEstimate(const VolumePhotons& photons, const Vec3& x, const Vec3& wo,
+                   const PhotonSearch& search) {
+    MIRAGE_CHECK(search.k >= 2);
+    return gather(photons, x, wo, search, PhotonGroups(), [](uint32_t) { return 1.f; });
 }
 
 Vec3 pointEstimateAlongRay(const VolumePhotons& photons, const Ray& ray,
-                           const RayOpticalDepth& depth, int k, float maxRadius, float step,
-                           float u, PhotonNeighbour* buffer, ScatteringProbe& probe,
-                           const ViewWeight& view, const PhotonGroups& groups) {
-    MIRAGE_CHECK(k >= 2);
+                           const RayOpticalDepth& depth, const PhotonSearch& search,
+                           const PointMarch& march, const ViewWeight& view,
+                           const PhotonGroups& groups) {
+    MIRAGE_CHECK(search.k >= 2);
+    const float step = march.step, u = march.u;
+    ScatteringProbe& probe = *march.probe;
     if (depth.empty() || photons.size() == 0 || !(step > 0.f)) return Vec3(0.f);
     probe.setTimeOffset(depth.timeOffset());  // σs along the ray at the ray's time
     const Vec3 wo = -ray.d;
@@ -186,7 +190,7 @@ Vec3 pointEstimateAlongRay(const VolumePhotons& photons, const Ray& ray,
         Vec3 x = ray.at(t);
         float greySigmaS = probe.grey() ? probe.sigmaS(x, 550.f) : 0.f;
         if (probe.grey() && greySigmaS == 0.f) continue;  // nothing in-scatters here
-        sum += gather(photons, x, wo, k, maxRadius, buffer, stepGroups, [&](uint32_t slot) {
+        sum += gather(photons, x, wo, search, stepGroups, [&](uint32_t slot) {
             const Photon& p = photons.map()[slot];
             float atPhoton = photons.sigmaS(slot);
             if (!(atPhoton > 0.f)) return 0.f;

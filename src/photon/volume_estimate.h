@@ -97,6 +97,13 @@ private:
     std::vector<float> mLobeWeights;  // size() × mLobes.size(), empty for a single lobe
 };
 
+// A search for the k nearest photons (k ≥ 2) within maxRadius (m), into `buffer` (k entries).
+struct PhotonSearch {
+    int k;
+    float maxRadius;
+    PhotonNeighbour* buffer;
+};
+
 // The volume radiance estimate at x (Jensen & Christensen 1998, eq. 5):
 //     σs(x) L_s(x, wo) ≈ (k − 1)/k · Σ_{k nearest} p(x, wi_k, wo) ΔΦ_k / ((4/3) π r³),
 // r the distance to the k-th nearest photon, or maxRadius (and no (k − 1)/k) when fewer than
@@ -107,9 +114,8 @@ private:
 // ρ/(k − 1) for the volume V_k of that ball. That bias does not fall with the photon count at
 // fixed k; on the convergence scene (tests/physics) it measured +5.4 % at k = 16 and +2.9 % at
 // k = 32 with 10⁶ photons. With a fixed ball (fewer than k found) the plain sum is unbiased.
-// k ≥ 2; `buffer` holds k entries.
-Vec3 pointEstimate(const VolumePhotons& photons, const Vec3& x, const Vec3& wo, int k,
-                   float maxRadius, PhotonNeighbour* buffer);
+Vec3 pointEstimate(const VolumePhotons& photons, const Vec3& x, const Vec3& wo,
+                   const PhotonSearch& search);
 
 // The σs ratio σs(x)/σs(x_i) by which an estimate moves a photon's light from where it was
 // stored to x (below, and beam_estimate.h), capped. A photon stored where the smoke is thin
@@ -128,9 +134,17 @@ inline float cappedDensityRatio(float here, float atPhoton) {
     return std::min(here / atPhoton, kMaxDensityRatio);
 }
 
+// The march of the point estimate along a camera ray: steps of `step` metres shifted by u·step,
+// u ∈ [0, 1) per camera sample, σs read at each point by `probe`.
+struct PointMarch {
+    float step;
+    float u;
+    ScatteringProbe* probe;
+};
+
 // The ray-marched estimate of ∫ T(t) σs L_s(t) dt over the span of `depth` (already marched
-// along `ray`): the midpoint rule with steps of `step` metres shifted by u·step, u ∈ [0, 1) per
-// camera sample, which makes it unbiased for the integral of the point estimate. Each photon is
+// along `ray`): the midpoint rule of `march`, which its shift makes unbiased for the integral
+// of the point estimate. Each photon is
 // attenuated by T(t, λ_p) at its own wavelength, and weighted by σs(x, λ_p)/σs(x_p, λ_p): a
 // photon samples the fluence where it was stored as ΔΦ/σs(x_p) per unit volume, and the march
 // point in-scatters it with its own σs(x). In a uniform medium the ratio is 1 (the paper's
@@ -141,9 +155,8 @@ inline float cappedDensityRatio(float here, float atPhoton) {
 // `view` weights each photon by what the camera path puts in front of this ray (view_weight.h);
 // `groups`, when active, receives the estimate split by light group (photon_groups.h).
 Vec3 pointEstimateAlongRay(const VolumePhotons& photons, const Ray& ray,
-                           const RayOpticalDepth& depth, int k, float maxRadius, float step,
-                           float u, PhotonNeighbour* buffer, ScatteringProbe& probe,
-                           const ViewWeight& view = ViewWeight(),
+                           const RayOpticalDepth& depth, const PhotonSearch& search,
+                           const PointMarch& march, const ViewWeight& view = ViewWeight(),
                            const PhotonGroups& groups = PhotonGroups());
 
 }  // namespace mirage

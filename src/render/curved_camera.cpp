@@ -8,6 +8,8 @@
 #include <optional>
 #include <utility>
 
+#include "render/path_recorder.h"
+#include "transport/curved_tracking.h"
 #include "transport/ray_optical_depth.h"
 #include "transport/surface_step_cap.h"
 #include "transport/tracking.h"
@@ -52,105 +54,119 @@ public:
         return s;
     }
 
+    // Radiance arriving at the camera: Σ over chords of (transmittance of the chords before)
+    // × (what the wrapped integrator sees along this chord alone), then the final ray. The
+    // transmittances are separate estimates (transmittance()), independent of the chords'
+    // radiance estimates, so each product is unbiased. L/n² is conserved along the path (the n²
+    // law): radiance found at index n counts (nCam/n)² at the camera.
     RadianceSample Li(const RenderScene& scene, const Ray& ray, const SampledWavelengths& w,
                       Sampler& sampler, ThreadState& ts) const override {
-        const Refraction& rf = *mRefraction;
-        // The path's geometry is the hero wavelength's (curved_tracking.h).
-        const double lambda = w.lambda[0];
-        const double nCam = rf.field->index(Vec3d(ray.o), lambda);
-        // Radiance arriving at the camera: Σ over chords of (transmittance of the chords before)
-        // × (what the wrapped integrator sees along this chord alone), then the final ray. The
-        // transmittances are separate estimates (transmittance()), independent of the chords'
-        // radiance estimates, so each product is unbiased. L/n² is conserved along the path
-        // (the n² law): radiance found at index n counts (nCam/n)² at the camera.
         RadianceSample out;
-        out.L = SampledSpectrum(0.f);
-        SampledSpectrum T(1.f);
+        PathRecorder rec(&out, ts);
+        const CameraSample sample{scene, w, sampler, ts, rec};
+        CurvedRay r(*mRefraction->field, ray, w);
         // The photon part (XYZ, each photon at its own wavelength) is attenuated by the chords
         // before inside the estimate, through ts.photonView: T at the photon's wavelength.
-        ViewWeight& prefix = ts.photonView;
-        prefix = ViewWeight();
-        // The sample's passes: each chord's go to a scratch first, weighted as its radiance.
-        AovSample* const aov = ts.aov;
-        std::optional<AovSample> chordAov;
-        if (aov) chordAov.emplace(*aov);  // the same parts, reset per chord
-        // The chords are not the straight camera ray the data passes describe: they walk it
-        // themselves (render/camera_ray_data.h).
-        CameraRayData* const data = ts.cameraData;
-        auto inner = [&](const Ray& r) {
-            if (aov) {
-                chordAov->reset();
-                ts.aov = &*chordAov;
-            }
-            ts.cameraData = nullptr;
-            RadianceSample s = mInner->Li(scene, r, w, sampler, ts);
-            ts.aov = aov;
-            ts.cameraData = data;
-            return s;
-        };
-        auto add = [&](const RadianceSample& s, double n) {
-            const float k = float((nCam / n) * (nCam / n));
-            out.L += s.L * T * k;
-            out.xyz += s.xyz * k;
-            if (aov) aov->addWeighted(*chordAov, T, k);
-        };
-        bool atSurface = false;
-        Ray next;
-        double nNext = nCam;  // the index where the wrapped integrator's last ray finds light
-        auto visit = [&](const PathState& a, const PathState& b, bool) {
-            const Vec3 pa(a.r), pb(b.r);
-            const float h = float(b.arc - a.arc), len = length(pb - pa);
-            if (!(h > 0.f) || !(len > 0.f)) return true;
-            const Vec3 unit = (pb - pa) / len;
-            if (scene.hasSurfaces()) {
-                Ray chord{pa, unit, len};
-                if (const auto hit = scene.geometry->intersect(chord)) {
-                    // The wrapped integrator takes this chord and everything beyond it. What
-                    // it finds there (the surface's radiance) is radiance at the index of the
-                    // hit, not of the chord's start, which may be a long chord away.
-                    next = Ray{pa, unit};
-                    nNext = rf.field->index(Vec3d(hit->p), lambda);
-                    atSurface = true;
-                    return false;
-                }
-            }
-            bool inMedium = false;
-            for (const auto& m : scene.media) {
-                float t0, t1;
-                inMedium |= m->worldBounds().intersect(pa, unit, 0.f, len, &t0, &t1);
-            }
-            if (!inMedium) return true;  // nothing to see or to attenuate on this chord
-            // What the media along this chord emit and scatter towards it (the wrapped
-            // integrator, stopped at the chord's end), then their transmittance over arc
-            // length (the chord parametrised by arc: |d| = len/h).
-            add(inner(Ray{pa, unit, len}), rf.field->index(a.r, lambda));
-            const SampledSpectrum chordT =
-                transmittance(ts.tracking, Ray{pa, unit * (len / h)}, h, sampler);
-            T *= chordT;
-            if (mPhotonPart)
-                attenuate(Ray{pa, unit}, len, h, chordT, w, ts.tracking.timeOffset(), &prefix);
-            return T.maxValue() > 0.f;
-        };
-        const CurvedPathResult r = traceCurvedPath(*rf.field, Vec3d(ray.o), Vec3d(ray.d), lambda,
-                                                   rf.maxArc, mPath, visit);
-        if (r.capped) mCapped.fetch_add(1, std::memory_order_relaxed);
-        if (T.maxValue() <= 0.f) {
-            out.alpha = 1.f;
+        ts.photonView = ViewWeight();
+        const CurvedPathResult path = traceCurvedPath(
+            *mRefraction->field, Vec3d(ray.o), Vec3d(ray.d), r.lambda, mRefraction->maxArc, mPath,
+            [&](const PathState& a, const PathState& b, bool) {
+                return visitChord(sample, a, b, &r);
+            });
+        if (path.capped) mCapped.fetch_add(1, std::memory_order_relaxed);
+        if (r.T.maxValue() <= 0.f) {
+            rec.coverageThrough(r.T, 1.f);
             return out;
         }
-        if (!atSurface) {
+        if (!r.atSurface) {
             // Beyond the curved part the path is taken as straight, through constant n.
-            next = Ray{Vec3(r.end.r), Vec3(r.end.direction())};
-            nNext = rf.field->index(r.end.r, lambda);
+            r.next = Ray{Vec3(path.end.r), Vec3(path.end.direction())};
+            r.nNext = mRefraction->field->index(path.end.r, r.lambda);
         }
-        const RadianceSample last = inner(next);
-        add(last, nNext);
-        prefix = ViewWeight();
-        out.alpha = 1.f - T.average() * (1.f - last.alpha);
+        const RadianceSample last = estimateAlong(sample, r, r.next, r.nNext);
+        ts.photonView = ViewWeight();
+        rec.coverageThrough(r.T, last.alpha);
         return out;
     }
 
 private:
+    // One camera sample, as every chord's estimate needs it.
+    struct CameraSample {
+        const RenderScene& scene;
+        const SampledWavelengths& w;
+        Sampler& sampler;
+        ThreadState& ts;
+        PathRecorder& rec;
+    };
+
+    // A curved camera ray as its chords are visited.
+    struct CurvedRay {
+        CurvedRay(const IndexField& field, const Ray& ray, const SampledWavelengths& w)
+            : lambda(w.lambda[0]), nCam(field.index(Vec3d(ray.o), lambda)), nNext(nCam) {}
+        double lambda;  // nm: the path's geometry is the hero wavelength's (curved_tracking.h)
+        double nCam;    // the index at the camera
+        SampledSpectrum T{1.f};  // the transmittance of the chords so far
+        // The ray the wrapped integrator takes last: from the chord that met a surface
+        // (atSurface), else straight on from the path's end; nNext is the index where it finds
+        // its light.
+        Ray next;
+        double nNext;
+        bool atSurface = false;
+    };
+
+    // The chord a → b of the camera ray's path: where it meets a surface, the wrapped
+    // integrator takes it and everything beyond (the path stops); where it crosses a medium's
+    // bounds, what the media along it emit and scatter towards it (the wrapped integrator,
+    // stopped at the chord's end), then their transmittance over arc length (the chord
+    // parametrised by arc: |d| = len/h). False ends the path.
+    bool visitChord(const CameraSample& s, const PathState& a, const PathState& b,
+                    CurvedRay* r) const {
+        const Vec3 pa(a.r), pb(b.r);
+        const float h = float(b.arc - a.arc), len = length(pb - pa);
+        if (!(h > 0.f) || !(len > 0.f)) return true;
+        const Vec3 unit = (pb - pa) / len;
+        if (s.scene.hasSurfaces()) {
+            Ray chord{pa, unit, len};
+            if (const auto hit = s.scene.geometry->intersect(chord)) {
+                // What the wrapped integrator finds there (the surface's radiance) is radiance
+                // at the index of the hit, not of the chord's start, which may be a long chord
+                // away.
+                r->next = Ray{pa, unit};
+                r->nNext = mRefraction->field->index(Vec3d(hit->p), r->lambda);
+                r->atSurface = true;
+                return false;
+            }
+        }
+        if (!crossesMedia(s.scene, pa, unit, len)) return true;  // nothing to see or attenuate
+        estimateAlong(s, *r, Ray{pa, unit, len}, mRefraction->field->index(a.r, r->lambda));
+        const SampledSpectrum chordT =
+            transmittance(s.ts.tracking, Ray{pa, unit * (len / h)}, h, s.sampler);
+        r->T *= chordT;
+        if (mPhotonPart)
+            attenuate(Ray{pa, unit}, len, h, chordT, s.w, s.ts.tracking.timeOffset(),
+                      &s.ts.photonView);
+        return r->T.maxValue() > 0.f;
+    }
+
+    static bool crossesMedia(const RenderScene& scene, const Vec3& o, const Vec3& unit, float len) {
+        bool inMedium = false;
+        for (const auto& m : scene.media) {
+            float t0, t1;
+            inMedium |= m->worldBounds().intersect(o, unit, 0.f, len, &t0, &t1);
+        }
+        return inMedium;
+    }
+
+    // The wrapped integrator's estimate along `ray`, found at index n, added to the sample seen
+    // through the chords before it (T) and by the n² law.
+    RadianceSample estimateAlong(const CameraSample& s, const CurvedRay& r, const Ray& ray,
+                                 double n) const {
+        const RadianceSample est =
+            s.rec.nested([&] { return mInner->Li(s.scene, ray, s.w, s.sampler, s.ts); });
+        s.rec.addNested(est, r.T, radianceIndexScale(n, r.nCam));
+        return est;
+    }
+
     // The chord's transmittance at every wavelength, into the photon estimates' prefix. The
     // path stops where the ratio-tracked T̂ of its four wavelengths reaches 0 (its roulette), so
     // the photon part must carry T̂ too, or the light of the chords a killed path never visits

@@ -9,23 +9,31 @@
 #include <utility>
 #include <vector>
 
-#include "core/light_path.h"
-#include "core/progress.h"
+#include "core/math.h"
 #include "core/rng.h"
+#include "core/spectral.h"
 #include "film/aov.h"
-#include "medium/index_field.h"
+#include "film/deep.h"
 #include "photon/view_weight.h"
-#include "render/radiance_sample.h"
 #include "render/render_scene.h"
-#include "transport/curved_path.h"
-#include "transport/path_vertex.h"
 #include "transport/scatter_point.h"
 #include "transport/tracking.h"
 
 namespace mirage {
 
 class CameraRayData;
-struct PhotonPassResult;
+struct PhotonIntegratorSettings;
+
+// What an integrator returns for one camera sample. Its passes and deep record go to the
+// thread's (ThreadState::aov, deep), each contribution added once through the path's recorder
+// (render/path_recorder.h).
+struct RadianceSample {
+    SampledSpectrum L;  // W·m⁻²·sr⁻¹·nm⁻¹
+    float alpha = 0.f;  // 1 − transmittance of the ray (coverage)
+    // Radiance already reduced to CIE XYZ in the film's normalisation (spectrumToXyz), added to
+    // the pixel beside L: what a photon-map estimate gives, each photon at its own wavelength.
+    Vec3 xyz;
+};
 
 // Per-thread state an integrator may use (allocated once per tile, reused per sample).
 struct ThreadState {
@@ -39,6 +47,7 @@ struct ThreadState {
     // nothing below is touched.
     AovSample* aov = nullptr;
     DeepSample* deep = nullptr;       // the sample's deep record; null without deep output
+    AovSample nestedAov;  // scratch: the passes of a nested estimate (PathRecorder::nested)
     // The data passes' record of the camera ray (render/camera_ray_data.h), null when no data
     // pass or deep output asks for it: an integrator hands it the collisions of its walk of the
     // camera ray and says how that walk ended.
@@ -47,27 +56,14 @@ struct ThreadState {
     // Next-event estimation's parts per light-group slot (render/direct_light.h), when the
     // passes split light groups: the last estimate's, overwritten by the next.
     std::vector<SampledSpectrum> lightSplit;
+    // A photon estimate's parts per light-group slot (XYZ, photon/photon_groups.h), likewise.
+    std::vector<Vec3> lightSplitXyz;
     // Zeroes the parts for the estimate about to be made; null when the render does not split.
     SampledSpectrum* startLightSplit() {
         if (!aov || aov->group.empty()) return nullptr;
         std::fill(lightSplit.begin(), lightSplit.end(), SampledSpectrum(0.f));
         return lightSplit.data();
     }
-};
-
-// Figures of the photon integrator's two passes, for the render summary and the EXR header
-// (metadata() gives them as snake_case keys, written as mirage:<key>). Seconds are wall time,
-// except estimateSeconds: thread time summed over the render threads.
-struct PhotonStats {
-    uint64_t photonsTraced = 0;        // emitted from the lights
-    uint64_t photonsStored = 0;        // volume + surface photons
-    double photonPassSeconds = 0;
-    double photonsPerSecond = 0;       // traced / pass seconds
-    double photonMapBuildSeconds = 0;  // kd-trees of the volume and surface maps
-    double photonRadiiSeconds = 0;     // beam: k-nearest disc radius of every volume photon
-    double discBvhBuildSeconds = 0;    // beam: Embree BVH over the photon discs
-    double estimateSeconds = 0;        // beam/point and surface estimates, all threads
-    std::vector<std::pair<std::string, std::string>> metadata() const;
 };
 
 // What an integrator is. The scene loader (its check of [render] integrator, `mirage info`),
@@ -129,55 +125,11 @@ std::unique_ptr<Integrator> makeSingleScatterIntegrator(bool directLight = true)
 // scattering events are cut and counted.
 std::unique_ptr<Integrator> makeVolPathIntegrator(int maxDepth = 10000);
 
-// Settings of the photon-map integrator (scene file: [render] photons, estimate, k,
-// max_radius). Zeros select the defaults noted.
-enum class PhotonEstimate { Beam, Point };
-struct PhotonIntegratorSettings {
-    uint64_t photons = 100000;     // emitted, over all lights
-    // Emitted in the first photon map, the only one of a render not in passes; 0: photons. A
-    // render in passes whose first pass is smaller starts sooner (photon_integrator.cpp).
-    uint64_t firstPassPhotons = 0;
-    PhotonEstimate estimate = PhotonEstimate::Beam;
-    int k = 0;                     // photons per estimate, ≥ 2; 0: 16 (beam radii), 32 (point)
-    float maxRadius = 0.f;         // m; 0: a tenth of the diagonal of the media's bounds
-    float marchStep = 0.f;         // m, point estimate; 0: half the median k-nearest radius
-    uint64_t seed = 0;             // the render seed; the photon pass derives its own from it
-    int maxBounces = 10000;        // scattering events per photon
-    Progress::Mode progress = Progress::Mode::Auto;
-    // Curved light ([refraction]): photons follow Fermat paths in this field where it curves
-    // within the scene's bounds (photonsCurve); null: straight.
-    std::shared_ptr<const IndexField> field;
-    CurvedPathSettings curvedPath;
-    float curvedMaxArc = 1000.f;
-    // --photons-file: the maps of this frame's pass, saved by `mirage photons`; preprocess()
-    // builds its maps from them instead of tracing (the same photons, so the same bits).
-    std::shared_ptr<const PhotonPassResult> savedPass;
-
-    int kOrDefault() const { return k > 0 ? k : (estimate == PhotonEstimate::Beam ? 16 : 32); }
-    uint64_t photonsOfPass(int pass) const {
-        return pass == 0 && firstPassPhotons > 0 ? firstPassPhotons : photons;
-    }
-};
-
-// Volumetric photon mapping (Jensen & Christensen 1998) with the beam radiance estimate
-// (Jarosz et al. 2008) or the ray-marched point estimate for multiple scattering; single
-// scattering and emission as the single-scatter integrator computes them.
-std::unique_ptr<Integrator> makePhotonIntegrator(const PhotonIntegratorSettings& settings);
-
-// The photon integrator's photon pass alone, exactly as its preprocess() traces it for `scene`
-// (`mirage photons`: pass 0; a render in passes traces pass p > 0 with a seed of its own);
-// settings.savedPass is ignored.
-PhotonPassResult tracePhotonIntegratorPass(const RenderScene& scene,
-                                           const PhotonIntegratorSettings& settings, int pass = 0);
-
-// Whether photons follow curved paths: a field whose |∇n| bound over the scene's bounds (grown
-// by a tenth of their diagonal) is not 0. Then shadow rays do not exist (they would be straight)
-// and the photon integrator takes direct light from the photon maps (Gutierrez et al. 2005).
-bool photonsCurve(const IndexField* field, const Bounds3& sceneBounds);
-
 // By name (integratorInfos()); throws MirageError listing the names for anything else.
-// `photon` configures the photon integrator and is ignored by the others.
-std::unique_ptr<Integrator> makeIntegrator(const std::string& name, int maxDepth = 10000,
-                                           const PhotonIntegratorSettings& photon = {});
+// `photon` (render/photon_integrator.h) configures the photon integrator and is ignored by the
+// others; without it, the photon integrator takes the default settings.
+std::unique_ptr<Integrator> makeIntegrator(const std::string& name, int maxDepth = 10000);
+std::unique_ptr<Integrator> makeIntegrator(const std::string& name, int maxDepth,
+                                           const PhotonIntegratorSettings& photon);
 
 }  // namespace mirage

@@ -28,6 +28,7 @@ bool guidesPaths(const RenderScene& scene);
 // mixture of the lobes, and draws from it.
 class LightLobes {
 public:
+    LightLobes() = default;  // none: for a vertex that starts no lobe walk
     LightLobes(const RenderScene& scene, const Vec3& p, const SampledWavelengths& w);
     bool empty() const { return mCount == 0; }
     // u picks the lobe, (u1, u2) the direction in it.

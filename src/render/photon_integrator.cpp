@@ -77,6 +77,8 @@
 // the hero wavelength whose direction the chain follows. A curved camera ray's earlier chords
 // reach the estimate the same way (ThreadState::photonView). Emissive surfaces are seen
 // (single-scatter part) but emit no photons.
+#include "render/photon_integrator.h"
+
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
@@ -86,11 +88,12 @@
 
 #include "core/clock.h"
 #include "core/error.h"
+#include "film/exr_header.h"
 #include "photon/beam_estimate.h"
 #include "photon/photon_pass.h"
 #include "photon/surface_estimate.h"
 #include "render/achromatic_film.h"
-#include "render/integrator.h"
+#include "render/camera_path.h"
 #include "transport/path_vertex.h"
 
 namespace mirage {
@@ -107,18 +110,6 @@ float radiusScale(int pass) {
     return float(std::sqrt(r2));
 }
 
-void addPassStats(const PhotonPassStats& pass, PhotonPassStats* sum) {
-    sum->emitted += pass.emitted;
-    sum->stored += pass.stored;
-    sum->cappedPaths += pass.cappedPaths;
-    sum->nonFinite += pass.nonFinite;
-    sum->fromMedia += pass.fromMedia;
-    sum->mediumPower = pass.mediumPower;
-    sum->emittedPower += pass.emittedPower;
-    sum->seconds += pass.seconds;
-    sum->interrupted = sum->interrupted || pass.interrupted;
-}
-
 // The photon pass p of a render in passes (p = 0: the one of a render not in passes). Its seed
 // is derived from the render seed so that photon i and pixel i (both keyed (seed, index, 0) in
 // the counter-based sampler) do not share numbers; pass p > 0 derives its own from that. Where
@@ -126,20 +117,19 @@ void addPassStats(const PhotonPassStats& pass, PhotonPassStats* sum) {
 // first included (see preprocess()).
 PhotonPassSettings passSettings(const PhotonIntegratorSettings& s, const RenderScene& scene,
                                 int p) {
-    PhotonPassSettings pass;
+    PhotonPassSettings pass = s;  // the tracing settings as the user set them
     pass.photons = s.photonsOfPass(p);
     pass.seed = hashCombine(s.seed, 0x70686f746f6eull);  // "photon"
     if (p > 0) pass.seed = hashCombine(pass.seed, uint64_t(p));
-    pass.maxBounces = s.maxBounces;
     pass.storeFirstInteraction = false;
     if (photonsCurve(s.field.get(), scene.bounds())) {
-        pass.field = s.field.get();
-        pass.curvedPath = s.curvedPath;
         // A photon's flight needs no more path than a few crossings of the scene: an
         // escaping photon otherwise walks the whole max_distance in chords.
         const Vec3 diag = scene.bounds().diagonal();
         pass.curvedMaxArc = std::min(s.curvedMaxArc, 2.f * length(diag));
         pass.storeFirstInteraction = true;
+    } else {
+        pass.field = nullptr;
     }
     // One progress bar, the first pass's: a render in passes reports each pass instead.
     pass.progress = p == 0 ? s.progress : Progress::Mode::Quiet;
@@ -156,7 +146,6 @@ struct PhotonThreadState {
     ScatteringProbe probe;
     std::vector<BeamHit> hits;
     std::vector<PhotonNeighbour> neighbours;
-    std::vector<Vec3> groupXyz;  // one estimate's light groups (photon_groups.h)
     double estimateSeconds = 0;
     uint64_t estimates = 0;
 };
@@ -213,8 +202,9 @@ public:
                       Sampler& sampler, ThreadState& ts) const override {
         RadianceSample out = mSingle->Li(scene, ray, w, sampler, ts);
         if (mThreads) mThreads->local().depth.setTimeOffset(ts.tracking.timeOffset());
+        PathRecorder rec(&out, ts);
         if (scene.hasSurfaces()) {
-            photonsAlongSpecularChain(scene, ray, w, sampler, ts.photonView, &out);
+            photonsAlongSpecularChain(scene, CameraPath(ray, w), sampler, ts, rec);
             return out;
         }
         if (!mPhotons || mPhotons->size() == 0) return out;
@@ -223,9 +213,8 @@ public:
         PhotonThreadState& pt = mThreads->local();
         auto t0 = Clock::now();
         pt.depth.march(ray, ray.tMax);
-        const PhotonGroups groups = groupsOf(out, pt);
-        out.addXyz(volumeEstimate(ray, ray.tMax, u, pt, ts.photonView, groups),
-                   LightPath::VolumeIndirect, kUnplaced, groupParts(groups, pt));
+        const PhotonGroups groups = rec.photonGroups(mSlotOfLight);
+        rec.photonsInMedium(volumeEstimate(ray, ray.tMax, u, pt, ts.photonView, groups));
         pt.estimateSeconds += secondsSince(t0);
         ++pt.estimates;
         return out;
@@ -236,8 +225,8 @@ public:
     IntegratorStats stats() const override {
         IntegratorStats s;
         s.cappedPaths = mSingle->stats().cappedPaths;
-        s.cappedPhotonPaths = mPassStats.cappedPaths;
-        s.nonFinitePhotons = mPassStats.nonFinite;
+        s.cappedPhotonPaths = mStats.traced.cappedPaths;
+        s.nonFinitePhotons = mStats.traced.nonFinite;
         uint64_t estimates = 0;
         PhotonStats p = mStats;
         if (mThreads)
@@ -260,8 +249,7 @@ private:
                                       ? *mSettings.savedPass
                                       : tracePhotonIntegratorPass(scene, mSettings, p);
         PhotonMapLists& lists = traced.maps;
-        const PhotonPassStats& passStats = traced.stats;
-        addPassStats(passStats, &mPassStats);
+        mStats.traced.add(traced.stats);
         mPass = p;
         mRadiusScale = radiusScale(p);
 
@@ -312,11 +300,6 @@ private:
                 }
             }
         }
-        mStats.photonsTraced = mPassStats.emitted;
-        mStats.photonsStored = mPassStats.stored;
-        mStats.photonPassSeconds = mPassStats.seconds;
-        mStats.photonsPerSecond =
-            mPassStats.seconds > 0 ? double(mPassStats.emitted) / mPassStats.seconds : 0.0;
     }
 
     std::string summaryLine(const PhotonStats& p, uint64_t estimates) const {
@@ -327,12 +310,12 @@ private:
             "| photon map build %.3fs, disc radii %.3fs, disc BVH build %.3fs | %s "
             "estimate %.2fs thread time (%.1f µs/ray, k %d, max radius %.3g m) | "
             "photon paths cut at max_depth %llu | from emissive media %llu (%.3g W)",
-            (unsigned long long)p.photonsTraced, (unsigned long long)p.photonsStored,
-            p.photonPassSeconds, p.photonsPerSecond / 1e6, p.photonMapBuildSeconds,
+            (unsigned long long)p.traced.emitted, (unsigned long long)p.traced.stored,
+            p.traced.seconds, p.photonsPerSecond() / 1e6, p.photonMapBuildSeconds,
             p.photonRadiiSeconds, p.discBvhBuildSeconds, mBeam ? "beam" : "point",
             p.estimateSeconds, estimates ? p.estimateSeconds / double(estimates) * 1e6 : 0.0,
-            mSettings.kOrDefault(), double(mMaxRadius), (unsigned long long)mPassStats.cappedPaths,
-            (unsigned long long)mPassStats.fromMedia, mPassStats.mediumPower);
+            mSettings.kOrDefault(), double(mMaxRadius), (unsigned long long)p.traced.cappedPaths,
+            (unsigned long long)p.traced.fromMedia, p.traced.mediumPower);
         std::string line = buf;
         if (mCurved) line += " | photons on curved paths (direct light from the photon maps)";
         if (!mXyzPerWatt.empty()) line += " | photons carry the light's XYZ (grey scene)";
@@ -349,82 +332,71 @@ private:
         return line;
     }
 
-    // An estimate's split by light group, into pt.groupXyz (zeroed): active when the render
-    // asks for light-group passes (the sample then carries a slot per group).
-    PhotonGroups groupsOf(const RadianceSample& out, PhotonThreadState& pt) const {
-        if (!out.aov || out.aov->groupXyz.empty()) return PhotonGroups();
-        pt.groupXyz.assign(out.aov->groupXyz.size(), Vec3(0.f));
-        return PhotonGroups(&mSlotOfLight, &pt.groupXyz);
-    }
-    static const std::vector<Vec3>* groupParts(const PhotonGroups& groups,
-                                               const PhotonThreadState& pt) {
-        return groups.active() ? &pt.groupXyz : nullptr;
-    }
-
     // The volume photons' in-scattered radiance along `ray` over (0, tEnd), XYZ: beam or point
     // estimate; pt.depth has been marched along the ray.
     Vec3 volumeEstimate(const Ray& ray, float tEnd, float u, PhotonThreadState& pt,
                         const ViewWeight& view, const PhotonGroups& groups) const {
         if (mBeam) return mBeam->estimate(ray, tEnd, pt.depth, &pt.hits, view, groups);
-        pt.neighbours.resize(size_t(mSettings.kOrDefault()));
-        return pointEstimateAlongRay(*mPhotons, ray, pt.depth, mSettings.kOrDefault(), mMaxRadius,
-                                     mStep, u, pt.neighbours.data(), pt.probe, view, groups);
+        const int k = mSettings.kOrDefault();
+        pt.neighbours.resize(size_t(k));
+        return pointEstimateAlongRay(*mPhotons, ray, pt.depth,
+                                     PhotonSearch{k, mMaxRadius, pt.neighbours.data()},
+                                     PointMarch{mStep, u, &pt.probe}, view, groups);
     }
 
-    // The photon part with surfaces (see the top of the file), XYZ, into *out: the volume
-    // estimates are volume_indirect, the caustic map caustic, the global map surface_indirect.
-    void photonsAlongSpecularChain(const RenderScene& scene, const Ray& cameraRay,
-                                   const SampledWavelengths& w, Sampler& sampler,
-                                   const ViewWeight& prefix, RadianceSample* out) const {
+    // The photon part with surfaces (see the top of the file), XYZ, into the sample: the
+    // volume estimates along each segment of the specular chain the camera ray starts, then at
+    // the first diffuse surface the surface maps'. Each photon is seen through the chain before
+    // it (its view weight), the curved camera's chords included (ts.photonView).
+    void photonsAlongSpecularChain(const RenderScene& scene, CameraPath chain, Sampler& sampler,
+                                   ThreadState& ts, PathRecorder& rec) const {
         const float u = sampler.get1D();  // the point estimate's march jitter
         PhotonThreadState& pt = mThreads->local();
         auto t0 = Clock::now();
         const bool volume = mPhotons && mPhotons->size() > 0;
-        const int kSurface = mSettings.k > 0 ? mSettings.k : 32;
-        ViewWeight view = prefix;
-        PathThroughput path;  // the chain's throughput at the path's wavelengths
-        Ray ray = cameraRay;
-        float viewT = 0.f;  // distance along the chain to this ray's origin (deep output)
-        for (int bounce = 0; bounce <= kMaxSpecularBounces; ++bounce) {
-            std::optional<SurfaceHit> hit = scene.geometry->intersect(ray);
-            const float tEnd = hit ? hit->t : ray.tMax;
-            pt.depth.march(ray, tEnd);
+        ViewWeight view = ts.photonView;
+        for (; chain.depth <= kMaxSpecularBounces; ++chain.depth) {
+            const SurfaceAhead ahead = surfaceAhead(scene, chain.ray);
+            pt.depth.march(chain.ray, ahead.tEnd);
             if (volume) {
-                const PhotonGroups groups = groupsOf(*out, pt);
-                out->addXyz(volumeEstimate(ray, tEnd, u, pt, view, groups),
-                            LightPath::VolumeIndirect, kUnplaced, groupParts(groups, pt));
+                const PhotonGroups groups = rec.photonGroups(mSlotOfLight);
+                rec.photonsInMedium(volumeEstimate(chain.ray, ahead.tEnd, u, pt, view, groups));
             }
-            if (!hit || scene.geometry->holdout(*hit)) break;  // a holdout: nothing behind
-            const Material& mat = scene.geometry->materialAt(*hit);
+            // A holdout: nothing behind it.
+            if (!ahead.hit || rec.holdout(*scene.geometry, *ahead.hit)) break;
+            const SurfaceHit& hit = *ahead.hit;
+            const Material& mat = scene.geometry->materialAt(hit);
             if (!mat.specular()) {
-                pt.neighbours.resize(size_t(kSurface));
-                auto T = [&](float lambda) {
-                    return pt.depth.transmittance(hit->t, lambda) * view(lambda);
-                };
-                const Vec3 wo = -ray.d;
-                const PhotonGroups groups = groupsOf(*out, pt);
-                const Vec3 caustic =
-                    mCaustic->estimate(hit->p, hit->ng, wo, mat, kSurface, mMaxRadius,
-                                       pt.neighbours.data(), T, groups);
-                const Vec3 global = mGlobal->estimate(hit->p, hit->ng, wo, mat, kSurface,
-                                                      mMaxRadius, pt.neighbours.data(), T, groups);
-                out->addXyz(caustic, LightPath::Caustic, global, LightPath::SurfaceIndirect,
-                            DeepAt{viewT + hit->t, true}, groupParts(groups, pt));
+                photonsAtSurface(hit, -chain.ray.d, mat, view, pt, rec);
                 break;
             }
-            attenuateView(pt.depth, tEnd, &view);
-            Ray next;
+            attenuateView(pt.depth, ahead.tEnd, &view);
             BsdfSample bs;
-            if (!continueAtSurface(mat, *hit, ray.d, w, TransportMode::Radiance, sampler, &path,
-                                   &next, &bs))
+            if (!continueAtSurface(mat, hit, chain.wavelengths, TransportMode::Radiance, sampler,
+                                   &chain, &bs))
                 break;
-            weighSpecularVertex(mat, bs, w, &view);
+            weighSpecularVertex(mat, bs, chain.wavelengths, &view);
             if (view.zero()) break;
-            viewT += hit->t;
-            ray = next;
+            rec.passedSpecular(hit.t);
         }
         pt.estimateSeconds += secondsSince(t0);
         ++pt.estimates;
+    }
+
+    // The surface maps' estimates at a diffuse surface the chain reached, seen along wo:
+    // caustics from the caustic map, indirect light from the global map, each photon through
+    // the chain (view) and the media of the chain's last segment (pt.depth).
+    void photonsAtSurface(const SurfaceHit& hit, const Vec3& wo, const Material& mat,
+                          const ViewWeight& view, PhotonThreadState& pt, PathRecorder& rec) const {
+        const int k = mSettings.k > 0 ? mSettings.k : 32;
+        pt.neighbours.resize(size_t(k));
+        auto T = [&](float lambda) { return pt.depth.transmittance(hit.t, lambda) * view(lambda); };
+        const PhotonGroups groups = rec.photonGroups(mSlotOfLight);
+        const Vec3 caustic = mCaustic->estimate(hit.p, hit.ng, wo, mat, k, mMaxRadius,
+                                                pt.neighbours.data(), T, groups);
+        const Vec3 global = mGlobal->estimate(hit.p, hit.ng, wo, mat, k, mMaxRadius,
+                                              pt.neighbours.data(), T, groups);
+        rec.photonsAtSurface(caustic, global, hit.t);
     }
 
     // The media of a segment the chain leaves: their transmittance at every wavelength.
@@ -458,7 +430,6 @@ private:
     float mRadiusScale = 1.f;  // its disc radii over pass 0's
     std::vector<const Medium*> mMedia;
     std::vector<int> mSlotOfLight;  // each light's group slot (Photon::light → film/aov.h)
-    PhotonPassStats mPassStats;     // summed over passes
     std::unique_ptr<VolumePhotons> mPhotons;
     // The first full pass's volume map and beam radii (unscaled), the later passes' source of
     // radii; mPhotons is that map until the next pass (mPhotonsAreSource).
@@ -468,11 +439,30 @@ private:
     std::unique_ptr<BeamEstimator> mBeam;
     std::unique_ptr<SurfacePhotons> mGlobal, mCaustic;  // surface photon maps
     float mMaxRadius = 0.f, mStep = 0.f;
-    PhotonStats mStats;  // of the pass and the maps; the estimate time is summed by stats()
+    // Of the passes (summed) and the maps; the estimate time is summed by stats().
+    PhotonStats mStats;
     std::unique_ptr<tbb::enumerable_thread_specific<PhotonThreadState>> mThreads;
 };
 
 }  // namespace
+
+std::vector<std::pair<std::string, std::string>> PhotonStats::metadata() const {
+    const auto num = headerNumber;
+    return {{"photons_traced", std::to_string(traced.emitted)},
+            {"photons_stored", std::to_string(traced.stored)},
+            {"photon_pass_seconds", num(traced.seconds)},
+            {"photons_per_second", num(photonsPerSecond())},
+            {"photon_map_build_seconds", num(photonMapBuildSeconds)},
+            {"photon_radii_seconds", num(photonRadiiSeconds)},
+            {"disc_bvh_build_seconds", num(discBvhBuildSeconds)},
+            {"estimate_seconds", num(estimateSeconds)}};
+}
+
+bool photonsCurve(const IndexField* field, const Bounds3& b) {
+    if (!field || b.empty()) return false;
+    const Vec3 pad = b.diagonal() * 0.1f;
+    return field->gradientBound(Vec3d(b.lo - pad), Vec3d(b.hi + pad)) > 0.0;
+}
 
 PhotonPassResult tracePhotonIntegratorPass(const RenderScene& scene,
                                            const PhotonIntegratorSettings& settings, int pass) {

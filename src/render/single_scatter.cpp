@@ -18,10 +18,9 @@
 // to kMaxSpecularBounces), so the first diffuse or medium event may be seen through glass. A
 // dispersive dielectric keeps the hero wavelength only, as in volpath.cpp. A ray that leaves the
 // scene sees the lights at infinity (the dome), which no next-event estimate has counted on it.
-#include <cmath>
 #include <memory>
-#include <optional>
 
+#include "render/camera_path.h"
 #include "render/camera_ray_data.h"
 #include "render/direct_light.h"
 #include "render/integrator.h"
@@ -46,76 +45,54 @@ public:
     RadianceSample Li(const RenderScene& scene, const Ray& cameraRay, const SampledWavelengths& w,
                       Sampler& sampler, ThreadState& ts) const override {
         RadianceSample out;
-        out.aov = ts.aov;
-        out.deep = ts.deep;
-        PathThroughput path;
-        DeepView view;
-        const GeometryScene* geometry = scene.hasSurfaces() ? scene.geometry.get() : nullptr;
-        Ray ray = cameraRay;
-        for (int bounce = 0;; ++bounce) {
-            std::optional<SurfaceHit> hit;
-            if (geometry) hit = geometry->intersect(ray);
-            const float tEnd = hit ? hit->t : ray.tMax;
-            // The scattering point along the whole flight (transport/scatter_point.h). The
-            // walk scores emission straight into the beauty, or, with passes or deep output,
-            // apart per collision, to be tagged and placed.
-            const bool split = out.aov || out.deep;
-            ts.emitted.clear();
-            // The camera ray's walk is the data passes' too (render/camera_ray_data.h).
-            CameraRayData* data = bounce == 0 ? ts.cameraData : nullptr;
-            const ScatterPointWalk walk = chooseScatterPoints(
-                ts.tracking, ray, tEnd, path.beta, sampler, split ? nullptr : &out.L,
-                split ? &ts.emitted : nullptr, data, mGuide.get());
-            if (data) data->walked(walk.reachedEnd);
-            for (const EmissionAt& e : ts.emitted)
-                out.add(e.L, path.history.emitted(), kEmissionGroup,
-                        view.at(path.history, e.t, false));
-            for (int k = 0; walk.chosen && mDirect && k < kScatterPoints; ++k)
-                out.addLit(path.beta * walk.weight[k],
-                           directLightMedium(scene, walk.collision[k], -ray.d, sampler, ts),
-                           path.history.gathered(false), ts.lightSplit,
-                           view.at(path.history, walk.collision[k].t, false));
-            const bool escaped = walk.reachedEnd;
-            path.beta *= walk.T;
-            // A holdout is seen as nothing: what lies in front of it covers the pixel, and
-            // nothing of its own does (docs/aovs.md, "Holdouts").
-            const bool holdout = hit && geometry->holdout(*hit);
-            if (bounce == 0)
-                out.alpha = clamp((escaped && (!hit || holdout) ? 1.f - walk.T.average() : 1.f) -
-                                      walk.holdoutCoverage,
-                                  0.f, 1.f);
-            // Leaving the scene: the dome, seen through the media (camera ray or after glass).
-            // Light seen straight from its source, as emission is: the emission pass and
-            // lightgroup_emission (docs/aovs.md).
-            if (escaped && !hit && std::isinf(ray.tMax))
-                out.add(path.beta * escapedRadiance(scene, ray.d, w, bounce == 0),
-                        path.history.emitted(), kEmissionGroup, kUnplaced);
-            if (!escaped || !hit || holdout || bounce >= kMaxSpecularBounces) break;
-
-            // The surface: emission and direct light where it is diffuse, else follow the mirror
-            // or glass.
-            const Material& mat = geometry->materialAt(*hit);
-            const DeepAt at = view.at(path.history, hit->t, true);
-            if (mat.emissive())
-                out.add(path.beta * mat.emission(w), path.history.emitted(), kEmissionGroup, at);
-            if (!mat.specular()) {
-                if (mDirect)
-                    out.addLit(path.beta, directLightSurface(scene, *hit, mat, -ray.d, sampler, ts),
-                               path.history.gathered(true), ts.lightSplit, at);
+        PathRecorder rec(&out, ts);
+        CameraPath path(cameraRay, w);
+        for (;; ++path.depth) {
+            const SurfaceAhead ahead = surfaceAhead(scene, path.ray);
+            if (!scatterAlongFlight(scene, ahead, sampler, ts, path, rec)) break;
+            if (!ahead.hit) {
+                escapeToDome(scene, path, rec);
                 break;
             }
-            view.specular(path.history, hit->t);
-            Ray next;
-            if (!continueAtSurface(mat, *hit, ray.d, w, TransportMode::Radiance, sampler, &path,
-                                   &next))
+            // A holdout is seen as nothing: nothing of its own, nothing behind it.
+            const SurfaceHit& hit = *ahead.hit;
+            if (rec.holdout(*scene.geometry, hit) || path.depth >= kMaxSpecularBounces) break;
+            // The surface: emission and direct light where it is diffuse, else follow the mirror
+            // or glass.
+            const Material& mat = gatherAtSurface(scene, hit, mDirect, sampler, ts, path, rec);
+            if (!mat.specular() || !continueAtSurface(mat, hit, path.wavelengths,
+                                                      TransportMode::Radiance, sampler, &path))
                 break;
-            ray = next;
         }
-        out.finish(path);
+        rec.finish(path.throughput);
         return out;
     }
 
 private:
+    // The flight along the path's ray to the surface ahead (or out of the scene), followed to
+    // its end (transport/scatter_point.h): emission at its every tentative collision, next-event
+    // estimation at the scattering points chosen along it, and on the camera ray the pixel's
+    // coverage (holdouts show the plate by T and take their share of it). β then carries the
+    // flight's transmittance. True when the flight reached its end.
+    bool scatterAlongFlight(const RenderScene& scene, const SurfaceAhead& ahead, Sampler& sampler,
+                            ThreadState& ts, CameraPath& path, PathRecorder& rec) const {
+        PathThroughput& throughput = path.throughput;
+        const ScatterPointWalk walk = chooseScatterPoints(
+            ts.tracking, path.ray, ahead.tEnd, sampler, rec.flightEmission(throughput.beta),
+            rec.cameraRayData(), mGuide.get());
+        rec.cameraFlightEnded(walk.reachedEnd);
+        rec.recordFlightEmission();
+        for (int k = 0; walk.chosen && mDirect && k < kScatterPoints; ++k)
+            rec.litInMedium(throughput.beta * walk.weight[k],
+                            directLightMedium(scene, walk.collision[k], -path.ray.d, sampler, ts),
+                            walk.collision[k].t);
+        throughput.beta *= walk.T;
+        const bool plate =
+            walk.reachedEnd && (!ahead.hit || rec.holdout(*scene.geometry, *ahead.hit));
+        rec.coverage(plate, walk.T.average(), walk.holdoutCoverage);
+        return walk.reachedEnd;
+    }
+
     bool mDirect;
     std::unique_ptr<ScatterGuide> mGuide;  // null: points ∝ T σs
 };

@@ -37,6 +37,7 @@
 #include <cmath>
 #include <optional>
 
+#include "render/camera_path.h"
 #include "render/camera_ray_data.h"
 #include "render/direct_light.h"
 #include "render/inelastic_light.h"
@@ -52,6 +53,16 @@ namespace {
 // The probability that a lobe walk goes on past each of its vertices (lobeWalk).
 constexpr float kLobeWalkGoesOn = 0.75f;
 
+// How a flight along a path's ray ended: at the ray's end (the surface ahead, or out of the
+// scene), by absorption (or at the collision cap), at a real event in a holdout medium the
+// camera sees, by scattering at `at`, or by a fluorescent re-emission there.
+struct Flight {
+    enum class End { Escaped, Absorbed, HeldOut, Scattered, Reemitted } end = End::Absorbed;
+    Collision at;          // Scattered, Reemitted
+    float lambdaIn = 0.f;  // Reemitted: the wavelength the light was absorbed at, nm
+    Vec3 wi;               // Reemitted: the direction the light was re-emitted in
+};
+
 class VolPathIntegrator : public Integrator {
 public:
     explicit VolPathIntegrator(int maxDepth) : mMaxDepth(maxDepth) {}
@@ -61,127 +72,40 @@ public:
     RadianceSample Li(const RenderScene& scene, const Ray& cameraRay, const SampledWavelengths& w,
                       Sampler& sampler, ThreadState& ts) const override {
         RadianceSample out;
-        out.aov = ts.aov;
-        out.deep = ts.deep;
-        PathThroughput path;
-        DeepView view;
-        Ray ray = cameraRay;
-        const GeometryScene* geometry = scene.hasSurfaces() ? scene.geometry.get() : nullptr;
-        bool fluoresced = false;
-        bool specularChain = true;  // every vertex so far a mirror or glass: escapes see the dome
-        const bool guided = guidesPaths(scene);  // render/light_lobes.h
-        // Σ_j r_j q^(k−1−j) over the medium vertices j before this one in an unbroken run: the
-        // weight of the lobe walks against the path's own samples (lobeWalk, below).
-        float lobeRatios = 0.f;
-        for (int depth = 0;; ++depth) {
-            Ray next;
-            const float ratios = lobeRatios;  // set by the medium vertex this segment leaves
-            lobeRatios = 0.f;
-            std::optional<SurfaceHit> hit;
-            if (geometry) hit = geometry->intersect(ray);
-            const float tEnd = hit ? hit->t : ray.tMax;
-            float lambdaIn = 0.f;  // > 0: the path fluoresced at this collision, goes on at λi
-            bool scattered = false;
-            bool heldOut = false;  // a real event in a holdout medium the camera looks into
-            float eventT = 0.f;    // where the path fluoresced
-            // The camera ray's walk, up to its first real collision, is the data passes' too
-            // (render/camera_ray_data.h).
-            CameraRayData* data = depth == 0 ? ts.cameraData : nullptr;
-            const bool escaped =
-                trackCollisions(ts.tracking, ray, tEnd, sampler, [&](const Collision& c) {
-                    if (data) data->seen(c);
-                    const Medium& m = ts.tracking.medium(c.medium);
-                    // A holdout medium seen by the camera only attenuates: no emission, and a
-                    // real event in it ends the path with nothing (and no coverage).
-                    if (m.holdout() && path.history.vertices == 0) {
-                        heldOut = chooseEvent(c, path, sampler).event != MediumEvent::Null;
-                        return heldOut ? Track::Stop : Track::Continue;
-                    }
-                    if (m.emissive()) {
-                        SampledSpectrum e;
-                        scoreEmission(c, m, path, &e);
-                        out.add(e, path.history.emitted(), kEmissionGroup,
-                                view.at(path.history, c.t, false));
-                    }
-                    if (m.fluorescent() && fluoresce(m, c, ts, sampler, &path, &next, &lambdaIn)) {
-                        scattered = path.alive();
-                        eventT = c.t;
-                        return Track::Stop;
-                    }
-                    const CollisionOutcome o = chooseEvent(c, path, sampler);
-                    if (o.event == MediumEvent::Null) return Track::Continue;
-                    if (o.event == MediumEvent::Scattered) {
-                        out.addLit(path.beta / (1.f + ratios),
-                                   directLightMedium(scene, c, -ray.d, sampler, ts),
-                                   path.history.gathered(false), ts.lightSplit,
-                                   view.at(path.history, c.t, false));
-                        view.scatter(path.history, c.t, false);
-                        path.history.scatter(false);
-                        if (guided && depth + 1 < mMaxDepth) {
-                            const LightLobes lobes(scene, c.p, ts.tracking.wavelengths());
-                            if (!lobes.empty())
-                                walkFromMedium(scene, lobes, c, ray.d, path, ratios, depth, view,
-                                               sampler, ts, &out);
-                            float pdf;
-                            next =
-                                Ray{c.p, samplePhase(m, c, ray.d, sampler, &path, &pdf), kInfinity};
-                            // Walks from earlier vertices pass this one even where no light
-                            // has a lobe (outside a spot's cone): their share decays all the same.
-                            lobeRatios = kLobeWalkGoesOn * ratios +
-                                         (lobes.empty() ? 0.f : lobes.pdf(next.d) / pdf);
-                        } else {
-                            next = Ray{c.p, samplePhase(m, c, ray.d, sampler, &path), kInfinity};
-                        }
-                        scattered = true;
-                    }
-                    return Track::Stop;  // scattered, or absorbed for good
-                });
-            if (data) data->walked(escaped);
-            // A holdout seen before the path scattered is nothing to the camera: black, and
-            // only what lies in front of it covers the pixel (docs/aovs.md, "Holdouts"). Light
-            // that scattered meets it as any surface.
-            const bool holdout = hit && path.history.vertices == 0 && geometry->holdout(*hit);
-            if (depth == 0)
-                out.alpha = escaped && (!hit || holdout)
-                                ? clamp(1.f - path.beta.average(), 0.f, 1.f)
-                            : heldOut ? 0.f
-                                      : 1.f;
-            if (heldOut) break;
-            if (holdout && escaped) break;
-            if (lambdaIn > 0.f) {
-                SampledWavelengths li = ts.tracking.wavelengths();
-                li.lambda.fill(lambdaIn);
-                ts.tracking.setWavelengths(li);
-                out.addLit(path.beta, directLightIsotropic(scene, next.o, sampler, ts),
-                           path.history.gathered(false), ts.lightSplit,
-                           view.at(path.history, eventT, false));
-                view.scatter(path.history, eventT, false);
-                path.history.scatter(false);
-                fluoresced = true;
+        PathRecorder rec(&out, ts);
+        CameraPath path(cameraRay, w);
+        path.guided = guidesPaths(scene);  // render/light_lobes.h
+        for (;; ++path.depth) {
+            const SurfaceAhead ahead = surfaceAhead(scene, path.ray);
+            const Flight f = fly(ahead.tEnd, sampler, ts, path, rec);
+            // What the camera sees through the flight: the plate, past nothing or a holdout.
+            const bool plate = f.end == Flight::End::Escaped &&
+                               (!ahead.hit || rec.holdout(*scene.geometry, *ahead.hit));
+            if (f.end == Flight::End::HeldOut)
+                rec.stoppedInHoldout();
+            else
+                rec.coverage(plate, path.throughput.beta.average());
+            bool goesOn = false;
+            if (f.end == Flight::End::Scattered) {
+                scatterInMedium(scene, f.at, sampler, ts, path, rec);
+                goesOn = true;
+            } else if (f.end == Flight::End::Reemitted) {
+                reemit(scene, f, sampler, ts, path, rec);
+                goesOn = true;
+            } else if (f.end == Flight::End::Escaped && !ahead.hit) {
+                escapeToDome(scene, path, rec);
+            } else if (f.end == Flight::End::Escaped && !plate) {
+                goesOn = scatterAtSurface(scene, *ahead.hit, sampler, ts, path, rec);
             }
-            // Leaving the scene: the dome (camera ray or after mirrors and glass), light seen
-            // straight from its source as emission is (docs/aovs.md).
-            if (!scattered && escaped && !hit && specularChain && std::isinf(ray.tMax))
-                out.add(path.beta *
-                            escapedRadiance(scene, ray.d, ts.tracking.wavelengths(), depth == 0),
-                        path.history.emitted(), kEmissionGroup, kUnplaced);
-            if (scattered) specularChain = false;  // a medium event: NEE counted the dome
-            if (!scattered && escaped && hit) {
-                specularChain = specularChain && scene.geometry->materialAt(*hit).specular();
-                scattered =
-                    scatterAtSurface(scene, guided, *hit, ray, ts.tracking.wavelengths(), depth,
-                                     sampler, ts, &path, &view, &out, &next, &lobeRatios);
-            }
-            if (!scattered) break;
-            if (depth + 1 >= mMaxDepth) {
+            if (!goesOn) break;
+            if (path.depth + 1 >= mMaxDepth) {
                 mCapped.fetch_add(1, std::memory_order_relaxed);
                 break;
             }
-            if (!path.roulette(sampler)) break;
-            ray = next;
+            if (!path.throughput.roulette(sampler)) break;
         }
-        if (fluoresced) ts.tracking.setWavelengths(w);  // the caller's, for its next path
-        out.finish(path);
+        if (path.reemitted) ts.tracking.setWavelengths(w);  // the caller's, for its next path
+        rec.finish(path.throughput);
         return out;
     }
 
@@ -192,6 +116,109 @@ public:
     }
 
 private:
+    // The flight along the path's ray over (0, tEnd): emission scored at every tentative
+    // collision, then the event chosen there (transport/path_vertex.h), or in a fluorescent
+    // medium first the inelastic one (fluoresce). A holdout medium the camera sees only
+    // attenuates: no emission, and a real event in it ends the path with nothing.
+    static Flight fly(float tEnd, Sampler& sampler, ThreadState& ts, CameraPath& path,
+                      PathRecorder& rec) {
+        Flight f;
+        CameraRayData* data = rec.cameraRayData();
+        PathThroughput& throughput = path.throughput;
+        const bool reached =
+            trackCollisions(ts.tracking, path.ray, tEnd, sampler, [&](const Collision& c) {
+                if (data) data->seen(c);
+                const Medium& m = ts.tracking.medium(c.medium);
+                if (rec.holdout(m)) {
+                    if (chooseEvent(c, throughput, sampler).event == MediumEvent::Null)
+                        return Track::Continue;
+                    f.end = Flight::End::HeldOut;
+                    return Track::Stop;
+                }
+                if (m.emissive()) {
+                    SampledSpectrum e;
+                    scoreEmission(c, m, throughput, &e);
+                    rec.emittedInMedium(e, c.t);
+                }
+                if (m.fluorescent() && fluoresce(m, c, sampler, ts, throughput, &f))
+                    return Track::Stop;
+                const MediumEvent e = chooseEvent(c, throughput, sampler).event;
+                if (e == MediumEvent::Null) return Track::Continue;
+                if (e == MediumEvent::Scattered) {
+                    f.end = Flight::End::Scattered;
+                    f.at = c;
+                }
+                return Track::Stop;  // scattered, or absorbed for good
+            });
+        if (reached) f.end = Flight::End::Escaped;
+        rec.cameraFlightEnded(reached);
+        return f;
+    }
+
+    // A real scattering event at x: next-event estimation, weighed against the lobe walks of the
+    // run x belongs to, a lobe walk of its own where paths are guided, and the phase function's
+    // sample that continues the path.
+    void scatterInMedium(const RenderScene& scene, const Collision& x, Sampler& sampler,
+                         ThreadState& ts, CameraPath& path, PathRecorder& rec) const {
+        const float ratios = path.lobeRatios;  // the run's sum on the segment that reached x
+        rec.litInMedium(path.throughput.beta / (1.f + ratios),
+                        directLightMedium(scene, x, -path.ray.d, sampler, ts), x.t);
+        rec.scatteredInMedium(x.t);
+        path.specularChain = false;  // a medium event: next-event estimation counted the dome
+        const Medium& m = ts.tracking.medium(x.medium);
+        if (!path.guided || path.depth + 1 >= mMaxDepth) {
+            path.ray =
+                Ray{x.p, samplePhase(m, x, path.ray.d, sampler, &path.throughput), kInfinity};
+            path.lobeRatios = 0.f;
+            return;
+        }
+        const LightLobes lobes(scene, x.p, path.wavelengths);
+        if (!lobes.empty()) walkFromMedium(scene, lobes, x, path, sampler, ts, rec);
+        float pdf;
+        const Vec3 dir = samplePhase(m, x, path.ray.d, sampler, &path.throughput, &pdf);
+        // Walks from earlier vertices pass this one even where no light has a lobe (outside a
+        // spot's cone): their share decays all the same.
+        path.lobeRatios = kLobeWalkGoesOn * ratios + (lobes.empty() ? 0.f : lobes.pdf(dir) / pdf);
+        path.ray = Ray{x.p, dir, kInfinity};
+    }
+
+    // The path fluoresced at f.at (fluoresce): from here it carries the absorbed wavelength λi,
+    // gathers next-event estimation through the isotropic lobe of re-emission
+    // (render/inelastic_light.h), and goes on along the re-emitted direction.
+    static void reemit(const RenderScene& scene, const Flight& f, Sampler& sampler, ThreadState& ts,
+                       CameraPath& path, PathRecorder& rec) {
+        path.wavelengths.lambda.fill(f.lambdaIn);
+        ts.tracking.setWavelengths(path.wavelengths);
+        path.reemitted = true;
+        rec.litInMedium(path.throughput.beta, directLightIsotropic(scene, f.at.p, sampler, ts),
+                        f.at.t);
+        rec.scatteredInMedium(f.at.t);
+        path.specularChain = false;
+        path.lobeRatios = 0.f;  // no lobe walk crosses a re-emission
+        path.ray = Ray{f.at.p, f.wi, kInfinity};
+    }
+
+    // The surface vertex: emission and, where it is diffuse, next-event estimation
+    // (gatherAtSurface), then the BSDF sample that continues the path. Returns false when the
+    // path ends here. Where paths are guided, a diffuse vertex starts a lobe walk and the run of
+    // medium vertices that follows begins with its ratio.
+    bool scatterAtSurface(const RenderScene& scene, const SurfaceHit& hit, Sampler& sampler,
+                          ThreadState& ts, CameraPath& path, PathRecorder& rec) const {
+        const Material& mat = gatherAtSurface(scene, hit, true, sampler, ts, path, rec);
+        path.lobeRatios = 0.f;
+        const bool walks = path.guided && !mat.specular() && path.depth + 1 < mMaxDepth;
+        const LightLobes lobes = walks ? LightLobes(scene, hit.p, path.wavelengths) : LightLobes();
+        if (!lobes.empty()) walkFromSurface(scene, lobes, hit, path, sampler, ts, rec);
+        const Vec3 dirIn = path.ray.d;
+        if (!continueAtSurface(mat, hit, path.wavelengths, TransportMode::Radiance, sampler, &path))
+            return false;
+        if (lobes.empty()) return true;
+        const Frame frame(hit.ns);
+        const float pdf = mat.pdf(frame.toLocal(-dirIn), frame.toLocal(path.ray.d));
+        path.lobeRatios = pdf > 0.f ? lobes.pdf(path.ray.d) / pdf : 0.f;
+        return true;
+    }
+
     // The next direction from the medium's phase function; β times its weight p/pdf.
     static Vec3 samplePhase(const Medium& m, const Collision& c, const Vec3& dir, Sampler& sampler,
                             PathThroughput* path, float* pdfOut = nullptr) {
@@ -202,6 +229,31 @@ private:
         if (pdfOut) *pdfOut = pdf;
         path->beta *= weight;
         return wo;
+    }
+
+    // The inelastic event at a collision in a fluorescent medium (the top of the file). True
+    // when it was chosen, and the flight ends: *f says Reemitted (β hero-only, as after
+    // dispersion), or Absorbed when no λi feeds λo (β = 0). Not chosen, β carries the ordinary
+    // events' factor 1 / (1 − P_f).
+    static bool fluoresce(const Medium& m, const Collision& c, Sampler& sampler, ThreadState& ts,
+                          PathThroughput& path, Flight* f) {
+        const InelasticEvent in = sampleInelasticEvent(
+            m, ts.tracking.context(size_t(c.medium)), c.p, ts.tracking.wavelengths(), c.sigmaMaj,
+            eventProbabilities(c, path.beta).pAbsorb, sampler);
+        if (!in.chosen) {
+            path.beta *= in.otherScale;
+            return false;
+        }
+        const float hero = path.beta[0] * in.weight;
+        path.keepHeroOnly();
+        path.beta[0] = hero;
+        if (hero > 0.f) {
+            f->end = Flight::End::Reemitted;
+            f->at = c;
+            f->lambdaIn = in.lambdaInNm;
+            f->wi = in.wi;
+        }
+        return true;
     }
 
     // Lobe walks (render/light_lobes.h). In a strongly forward medium under a light, the
@@ -221,7 +273,7 @@ private:
     //     1 / (1 + Σ_j r_j q^(k−1−j)),  r_j = pdf_lobes(ω_j) / pdf_phase(ω_j),
     // on the directions the estimate's own path took, with its throughput taken as if every
     // direction had been drawn from the phase function (p/pdf_phase). The sum is kept along the
-    // path (lobeRatios: S ← q S + r at each vertex). No walk crosses a surface or a
+    // path (CameraPath::lobeRatios: S ← q S + r at each vertex). No walk crosses a surface or a
     // re-emission, so the sum restarts there; a diffuse surface starts a walk of its own, the
     // BSDF in the phase function's place, and its r begins the next run (the sand under a
     // sunlit sea, the walls of a lit water box). Weights never exceed one, and the path's own
@@ -235,130 +287,72 @@ private:
     // walks from the sand too, for 1.32× the instructions per sample (callgrind, 64 samples):
     // 15× less time to the same error.
 
-    // The walk from a medium vertex x that the path reached along dirIn, ratios its sum there.
+    // The walk from a medium vertex x, started with the path as it reached x (its ray, its
+    // throughput, the run's sum there).
     void walkFromMedium(const RenderScene& scene, const LightLobes& lobes, const Collision& x,
-                        const Vec3& dirIn, const PathThroughput& path, float ratios, int depth,
-                        const DeepView& view, Sampler& sampler, ThreadState& ts,
-                        RadianceSample* out) const {
+                        const CameraPath& path, Sampler& sampler, ThreadState& ts,
+                        const PathRecorder& rec) const {
         const float ul = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
         const Vec3 dir = lobes.sample(ul, u1, u2);
         const Medium& m = ts.tracking.medium(x.medium);
+        const Vec3 dirIn = path.ray.d;
         const float pdf = m.phasePdf(x.mp, dirIn, dir);
         if (!(pdf > 0.f)) return;
-        PathThroughput walk = path;
-        walk.beta *= m.phaseEval(x.mp, dirIn, dir) / pdf;
-        lobeWalk(scene, Ray{x.p, dir, kInfinity}, kLobeWalkGoesOn * ratios + lobes.pdf(dir) / pdf,
-                 depth, view, sampler, ts, &walk, out);
+        CameraPath walk = path;
+        walk.throughput.beta *= m.phaseEval(x.mp, dirIn, dir) / pdf;
+        walk.ray = Ray{x.p, dir, kInfinity};
+        walk.lobeRatios = kLobeWalkGoesOn * path.lobeRatios + lobes.pdf(dir) / pdf;
+        lobeWalk(scene, walk, sampler, ts, rec.branch());
     }
 
     // The walk from a diffuse surface vertex, where a run of medium vertices begins: the BSDF
     // takes the phase function's place (f |cos| and its pdf).
-    void walkFromSurface(const RenderScene& scene, const LightLobes& lobes, const Material& mat,
-                         const SurfaceHit& hit, const Vec3& dirIn, const PathThroughput& path,
-                         int depth, const DeepView& view, Sampler& sampler, ThreadState& ts,
-                         RadianceSample* out) const {
+    void walkFromSurface(const RenderScene& scene, const LightLobes& lobes, const SurfaceHit& hit,
+                         const CameraPath& path, Sampler& sampler, ThreadState& ts,
+                         const PathRecorder& rec) const {
         const float ul = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
         const Vec3 dir = lobes.sample(ul, u1, u2);
+        const Vec3 dirIn = path.ray.d;
         // A Lambertian surface reflects only: a lobe's direction through it scores f = 0.
         if ((dot(dir, hit.ng) > 0.f) != (dot(-dirIn, hit.ng) > 0.f)) return;
+        const Material& mat = scene.geometry->materialAt(hit);
         const Frame frame(hit.ns);
         const Vec3 woL = frame.toLocal(-dirIn), wiL = frame.toLocal(dir);
         const float pdf = mat.pdf(woL, wiL);
         if (!(pdf > 0.f)) return;
-        PathThroughput walk = path;
-        walk.beta *= mat.eval(woL, wiL, ts.tracking.wavelengths()) * (std::abs(wiL.z) / pdf);
-        walk.history.scatter(true);
-        lobeWalk(scene, spawnRay(hit, dir), lobes.pdf(dir) / pdf, depth, view, sampler, ts, &walk,
-                 out);
+        CameraPath walk = path;
+        walk.throughput.beta *= mat.eval(woL, wiL, path.wavelengths) * (std::abs(wiL.z) / pdf);
+        walk.ray = spawnRay(hit, dir);
+        walk.lobeRatios = lobes.pdf(dir) / pdf;
+        lobeWalk(scene, walk, sampler, ts, rec.branch());
     }
 
-    // A lobe walk from its first ray on, its first direction's weight in walk->beta and its
-    // sum in ratios.
-    void lobeWalk(const RenderScene& scene, Ray ray, float ratios, int depth, const DeepView& view,
-                  Sampler& sampler, ThreadState& ts, PathThroughput* walkPtr,
-                  RadianceSample* out) const {
-        PathThroughput& walk = *walkPtr;
-        for (int d = depth + 1; walk.alive() && d < mMaxDepth; ++d) {
-            float tEnd = kInfinity;
-            if (scene.hasSurfaces())
-                if (const auto hit = scene.geometry->intersect(ray)) tEnd = hit->t;
+    // A lobe walk from its first ray on, its first direction's weight in its throughput and its
+    // run's sum in its lobeRatios; rec is its branch of the path's record.
+    void lobeWalk(const RenderScene& scene, CameraPath walk, Sampler& sampler, ThreadState& ts,
+                  PathRecorder rec) const {
+        PathThroughput& throughput = walk.throughput;
+        for (++walk.depth; throughput.alive() && walk.depth < mMaxDepth; ++walk.depth) {
+            const float tEnd = surfaceAhead(scene, walk.ray).tEnd;
             std::optional<Collision> y;
-            trackCollisions(ts.tracking, ray, tEnd, sampler, [&](const Collision& c) {
-                const MediumEvent e = chooseEvent(c, walk, sampler).event;
+            trackCollisions(ts.tracking, walk.ray, tEnd, sampler, [&](const Collision& c) {
+                const MediumEvent e = chooseEvent(c, throughput, sampler).event;
                 if (e == MediumEvent::Null) return Track::Continue;
                 if (e == MediumEvent::Scattered) y = c;
                 return Track::Stop;
             });
             if (!y) return;
-            out->addLit(
-                walk.beta / (1.f + ratios), directLightMedium(scene, *y, -ray.d, sampler, ts),
-                walk.history.gathered(false), ts.lightSplit, view.at(walk.history, y->t, false));
-            walk.history.scatter(false);
+            rec.litInMedium(throughput.beta / (1.f + walk.lobeRatios),
+                            directLightMedium(scene, *y, -walk.ray.d, sampler, ts), y->t);
+            rec.scatteredInMedium(y->t);
             if (sampler.get1D() >= kLobeWalkGoesOn) return;
             float pdf;
-            const Vec3 dir =
-                samplePhase(ts.tracking.medium(y->medium), *y, ray.d, sampler, &walk, &pdf);
-            ratios = kLobeWalkGoesOn * ratios +
-                     LightLobes(scene, y->p, ts.tracking.wavelengths()).pdf(dir) / pdf;
-            ray = Ray{y->p, dir, kInfinity};
+            const Vec3 dir = samplePhase(ts.tracking.medium(y->medium), *y, walk.ray.d, sampler,
+                                         &throughput, &pdf);
+            walk.lobeRatios = kLobeWalkGoesOn * walk.lobeRatios +
+                              LightLobes(scene, y->p, walk.wavelengths).pdf(dir) / pdf;
+            walk.ray = Ray{y->p, dir, kInfinity};
         }
-    }
-
-    // The inelastic event at a collision in a fluorescent medium (the top of the file). True
-    // when it was chosen: the path goes on hero-only at *lambdaIn along *next (β may be 0 when
-    // no λi feeds λo). Not chosen, β carries the ordinary events' factor 1 / (1 − P_f).
-    static bool fluoresce(const Medium& m, const Collision& c, ThreadState& ts, Sampler& sampler,
-                          PathThroughput* path, Ray* next, float* lambdaIn) {
-        const InelasticEvent in = sampleInelasticEvent(
-            m, ts.tracking.context(size_t(c.medium)), c.p, ts.tracking.wavelengths(), c.sigmaMaj,
-            eventProbabilities(c, path->beta).pAbsorb, sampler);
-        if (!in.chosen) {
-            path->beta *= in.otherScale;
-            return false;
-        }
-        const float hero = path->beta[0] * in.weight;
-        path->keepHeroOnly();
-        path->beta[0] = hero;
-        if (hero > 0.f) {
-            *lambdaIn = in.lambdaInNm;
-            *next = Ray{c.p, in.wi, kInfinity};
-        }
-        return true;
-    }
-
-    // The surface vertex: emission, NEE on diffuse surfaces, then the BSDF sample that
-    // continues the path. Returns false when the path ends here. Where paths are guided, a
-    // diffuse vertex starts a lobe walk and *ratios the sum of the run of medium vertices
-    // that follows.
-    bool scatterAtSurface(const RenderScene& scene, bool guided, const SurfaceHit& hit,
-                          const Ray& ray, const SampledWavelengths& w, int depth, Sampler& sampler,
-                          ThreadState& ts, PathThroughput* path, DeepView* view,
-                          RadianceSample* out, Ray* next, float* ratios) const {
-        const Material& mat = scene.geometry->materialAt(hit);
-        const DeepAt at = view->at(path->history, hit.t, true);
-        if (mat.emissive())
-            out->add(path->beta * mat.emission(w), path->history.emitted(), kEmissionGroup, at);
-        if (!mat.specular())
-            out->addLit(path->beta, directLightSurface(scene, hit, mat, -ray.d, sampler, ts),
-                        path->history.gathered(true), ts.lightSplit, at);
-        if (mat.specular())
-            view->specular(path->history, hit.t);
-        else
-            view->scatter(path->history, hit.t, true);
-        if (!guided || mat.specular() || depth + 1 >= mMaxDepth)
-            return continueAtSurface(mat, hit, ray.d, w, TransportMode::Radiance, sampler, path,
-                                     next);
-        const LightLobes lobes(scene, hit.p, w);
-        if (lobes.empty())
-            return continueAtSurface(mat, hit, ray.d, w, TransportMode::Radiance, sampler, path,
-                                     next);
-        walkFromSurface(scene, lobes, mat, hit, ray.d, *path, depth, *view, sampler, ts, out);
-        if (!continueAtSurface(mat, hit, ray.d, w, TransportMode::Radiance, sampler, path, next))
-            return false;
-        const Frame frame(hit.ns);
-        const float pdf = mat.pdf(frame.toLocal(-ray.d), frame.toLocal(next->d));
-        *ratios = pdf > 0.f ? lobes.pdf(next->d) / pdf : 0.f;
-        return true;
     }
 
     int mMaxDepth;

@@ -11,6 +11,7 @@
 
 #include "render/curved_camera.h"
 #include "render/passes.h"
+#include "render/photon_integrator.h"
 #include "render/render_scene.h"
 #include "render/renderer.h"
 #include "scene/motion_loader.h"

@@ -3,17 +3,13 @@
 
 namespace mirage {
 
-SampledSpectrum curvedTransmittance(TrackingContext& ctx, const IndexField& field,
-                                    const CurvedPathSettings& settings,
-                                    const ChordSurfaceTest& surfaces, const Vec3& origin,
-                                    const Vec3& dir, float lambdaNm, float maxArc,
-                                    Sampler& sampler, CurvedWalkEnd* endOut) {
+SampledSpectrum curvedTransmittance(TrackingContext& ctx, const CurvedWalk& walk, const Ray& start,
+                                    float lambdaNm, Sampler& sampler, CurvedWalkEnd* endOut) {
     // The product over chords of each chord's transmittance estimate: the estimates are
     // independent given the (deterministic) path, so the product is unbiased.
     SampledSpectrum T(1.f);
-    const CurvedWalkEnd end = walkCurvedChords(
-        field, settings, surfaces, origin, dir, lambdaNm, maxArc,
-        [&](const CurvedChord& chord, CurvedWalkEnd* e) {
+    const CurvedWalkEnd end =
+        walkCurvedChords(walk, start, lambdaNm, [&](const CurvedChord& chord, CurvedWalkEnd* e) {
             T *= transmittance(ctx, chord.arcRay, chord.tStop, sampler);
             // Nothing more gets through: stop walking (the estimate is 0 from here on). A
             // surface on this chord ends the walk there instead.

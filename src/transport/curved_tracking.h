@@ -29,6 +29,17 @@ namespace mirage {
 // (0, tMax), or +∞ for none.
 using ChordSurfaceTest = std::function<float(const Ray& chord, float tMax)>;
 
+// A walk along curved paths as the trackers take it: the field and the stepper's settings
+// (curved_path.h), the arc length it may cover (m), and the surfaces it may meet (an empty
+// test: none). It starts from a ray's origin along its unit direction, on the path of one
+// wavelength.
+struct CurvedWalk {
+    const IndexField& field;
+    const CurvedPathSettings& settings;
+    float maxArc;
+    ChordSurfaceTest surfaces;
+};
+
 struct CurvedWalkEnd {
     enum class Kind { Reached, Surface, Stopped, Capped } kind = Kind::Reached;
     Vec3 p;              // where the walk ended (world, m)
@@ -61,9 +72,9 @@ struct CurvedChord {
 // chord ends the walk there; otherwise the walk ends where the path does (Reached) or at the
 // stepper's cap (Capped).
 template <typename Step>
-CurvedWalkEnd walkCurvedChords(const IndexField& field, const CurvedPathSettings& settings,
-                               const ChordSurfaceTest& surfaces, const Vec3& origin,
-                               const Vec3& dir, float lambdaNm, float maxArc, Step&& step) {
+CurvedWalkEnd walkCurvedChords(const CurvedWalk& walk, const Ray& start, float lambdaNm,
+                               Step&& step) {
+    const ChordSurfaceTest& surfaces = walk.surfaces;
     CurvedWalkEnd end;
     auto visit = [&](const PathState& a, const PathState& b, bool) {
         ++end.chords;
@@ -93,8 +104,8 @@ CurvedWalkEnd walkCurvedChords(const IndexField& field, const CurvedPathSettings
         }
         return true;
     };
-    const CurvedPathResult r = traceCurvedPath(field, Vec3d(origin), Vec3d(dir), lambdaNm,
-                                               maxArc, settings, visit);
+    const CurvedPathResult r = traceCurvedPath(walk.field, Vec3d(start.o), Vec3d(start.d), lambdaNm,
+                                               walk.maxArc, walk.settings, visit);
     if (r.stopped) return end;
     end.kind = r.capped ? CurvedWalkEnd::Kind::Capped : CurvedWalkEnd::Kind::Reached;
     end.p = Vec3(r.end.r);
@@ -103,18 +114,14 @@ CurvedWalkEnd walkCurvedChords(const IndexField& field, const CurvedPathSettings
     return end;
 }
 
-// Calls f(const Collision&, float arc) at every tentative collision along the curved path from
-// origin along the unit dir, over arc length maxArc (Collision::t is the arc length within the
-// chord, Collision::p lies on the chord). f returns Track::Stop to end the walk there.
+// Calls f(const Collision&, float arc) at every tentative collision along the curved path of
+// the walk from `start` (Collision::t is the arc length within the chord, Collision::p lies on
+// the chord). f returns Track::Stop to end the walk there.
 template <typename F>
-CurvedWalkEnd trackCurvedCollisions(TrackingContext& ctx, const IndexField& field,
-                                    const CurvedPathSettings& settings,
-                                    const ChordSurfaceTest& surfaces, const Vec3& origin,
-                                    const Vec3& dir, float lambdaNm, float maxArc,
-                                    Sampler& sampler, F&& f) {
+CurvedWalkEnd trackCurvedCollisions(TrackingContext& ctx, const CurvedWalk& walk, const Ray& start,
+                                    float lambdaNm, Sampler& sampler, F&& f) {
     return walkCurvedChords(
-        field, settings, surfaces, origin, dir, lambdaNm, maxArc,
-        [&](const CurvedChord& chord, CurvedWalkEnd* end) {
+        walk, start, lambdaNm, [&](const CurvedChord& chord, CurvedWalkEnd* end) {
             bool stopped = false;
             trackCollisions(ctx, chord.arcRay, chord.tStop, sampler, [&](const Collision& c) {
                 if (f(c, chord.arcStart + c.t) == Track::Continue) return Track::Continue;
@@ -130,13 +137,11 @@ CurvedWalkEnd trackCurvedCollisions(TrackingContext& ctx, const IndexField& fiel
         });
 }
 
-// Transmittance along the curved path over arc length maxArc, up to the first surface (the walk
-// ends there: end->kind says Surface, and a shadow query treats that as blocked). Homogeneous
-// media take the closed form exp(−σt·arc), the others ratio tracking, chord by chord.
-SampledSpectrum curvedTransmittance(TrackingContext& ctx, const IndexField& field,
-                                    const CurvedPathSettings& settings,
-                                    const ChordSurfaceTest& surfaces, const Vec3& origin,
-                                    const Vec3& dir, float lambdaNm, float maxArc,
-                                    Sampler& sampler, CurvedWalkEnd* end = nullptr);
+// Transmittance along the curved path of the walk from `start`, up to the first surface (the
+// walk ends there: end->kind says Surface, and a shadow query treats that as blocked).
+// Homogeneous media take the closed form exp(−σt·arc), the others ratio tracking, chord by
+// chord.
+SampledSpectrum curvedTransmittance(TrackingContext& ctx, const CurvedWalk& walk, const Ray& start,
+                                    float lambdaNm, Sampler& sampler, CurvedWalkEnd* end = nullptr);
 
 }  // namespace mirage

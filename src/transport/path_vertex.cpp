@@ -25,10 +25,10 @@ CollisionOutcome chooseEvent(const Collision& c, PathThroughput& path, Sampler& 
     return {MediumEvent::Null, e.pAbsorb};
 }
 
-bool continueAtSurface(const Material& material, const SurfaceHit& hit, const Vec3& dir,
-                       const SampledWavelengths& w, TransportMode mode, Sampler& sampler,
-                       PathThroughput* path, Ray* next, BsdfSample* sample) {
-    const Vec3 wo = -dir;
+bool continueAtSurface(const Material& material, const SurfaceHit& hit, const SampledWavelengths& w,
+                       TransportMode mode, Sampler& sampler, PathSegment* path,
+                       BsdfSample* sample) {
+    const Vec3 wo = -path->ray.d;
     const Frame frame(hit.ns);
     const float uc = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
     BsdfSample bs;
@@ -36,13 +36,10 @@ bool continueAtSurface(const Material& material, const SurfaceHit& hit, const Ve
     const Vec3 wi = frame.toWorld(bs.wi);
     const bool crosses = (dot(wi, hit.ng) > 0.f) != (dot(wo, hit.ng) > 0.f);
     if (crosses != bs.transmitted) return false;
-    path->beta *= bs.weight;
-    if (material.specular())
-        path->history.specular();
-    else
-        path->history.scatter(true);
-    if (bs.dispersed && !path->heroOnly) path->keepHeroOnly();
-    *next = spawnRay(hit, wi);
+    PathThroughput& throughput = path->throughput;
+    throughput.beta *= bs.weight;
+    if (bs.dispersed && !throughput.heroOnly) throughput.keepHeroOnly();
+    path->ray = spawnRay(hit, wi);
     if (sample) *sample = bs;
     return true;
 }

@@ -1,10 +1,11 @@
 // The path-vertex core every estimator shares: the state a path carries from vertex to vertex
-// (PathThroughput), the event at a tentative collision in a medium (collisionEvent), and the
-// continuation at a surface (continueAtSurface). Camera paths (render/) and photon paths
-// (photon/) both walk with these, so a rule about surfaces or throughput is written once.
+// (PathThroughput, and with its ray PathSegment), the event at a tentative collision in a medium
+// (collisionEvent), and the continuation at a surface (continueAtSurface). Camera paths (render/)
+// and photon paths (photon/) both walk with these, so a rule about surfaces or throughput is
+// written once.
 #pragma once
 
-#include "core/light_path.h"
+#include "core/math.h"
 #include "core/rng.h"
 #include "core/spectral.h"
 #include "geometry/geometry_scene.h"
@@ -24,13 +25,9 @@ constexpr float kRouletteThreshold = 0.25f;
 // it alone (a dispersive refraction, a fluorescent re-emission); its estimate is then L[0]
 // weighted by the number of wavelengths — the estimate of a path that drew one wavelength
 // from p(λ) instead of four stratified ones (pbrt-v4's TerminateSecondary).
-//
-// The history says which light-path class (core/light_path.h) what the path gathers next
-// belongs to; continueAtSurface records surface vertices, the integrators their medium ones.
 struct PathThroughput {
     SampledSpectrum beta{1.f};
     bool heroOnly = false;
-    PathHistory history;
 
     void keepHeroOnly() {
         heroOnly = true;
@@ -72,6 +69,14 @@ struct PathThroughput {
     }
 };
 
+// A path between two vertices: the ray it travels along and the throughput it carries. Camera
+// paths (render/camera_path.h) and photons (photon/photon_pass.cpp) keep their own bookkeeping
+// beside it.
+struct PathSegment {
+    Ray ray;
+    PathThroughput throughput;
+};
+
 // What a camera path does at a tentative collision (null-collision formulation,
 // transport/tracking.h): the emission term β σa Le / σ̄ is scored into *L at every tentative
 // collision, then one event is chosen with the spectral-tracking probabilities and β weighted:
@@ -92,15 +97,14 @@ void scoreEmission(const Collision& c, const Medium& medium, const PathThroughpu
                    SampledSpectrum* L);
 CollisionOutcome chooseEvent(const Collision& c, PathThroughput& path, Sampler& sampler);
 
-// The continuation of a path at a surface it reached travelling along `dir`: a BSDF sample
-// (three numbers), β weighted by f |cos θi| / pdf, the hero wavelength alone after a
-// dispersive sample. A sample that the shading normal sends to the other side of the
-// geometric surface than its lobe says (a reflection below it, a refraction above it) would
-// leak light through the surface and ends the path. The vertex enters the path's history
-// (specular, or a diffuse scattering vertex) once its sample is taken. Returns false when the path
-// ends here; else *next continues it and *sample (when given) says what was sampled.
-bool continueAtSurface(const Material& material, const SurfaceHit& hit, const Vec3& dir,
-                       const SampledWavelengths& w, TransportMode mode, Sampler& sampler,
-                       PathThroughput* path, Ray* next, BsdfSample* sample = nullptr);
+// The continuation of a path at the surface its ray reached: a BSDF sample (three numbers), β
+// weighted by f |cos θi| / pdf, the hero wavelength alone after a dispersive sample. A sample
+// that the shading normal sends to the other side of the geometric surface than its lobe says
+// (a reflection below it, a refraction above it) would leak light through the surface and ends
+// the path. Returns false when the path ends here; else path->ray continues it from the
+// surface and *sample (when given) says what was sampled.
+bool continueAtSurface(const Material& material, const SurfaceHit& hit, const SampledWavelengths& w,
+                       TransportMode mode, Sampler& sampler, PathSegment* path,
+                       BsdfSample* sample = nullptr);
 
 }  // namespace mirage

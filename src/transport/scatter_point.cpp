@@ -3,9 +3,9 @@
 namespace mirage {
 
 ScatterPointWalk chooseScatterPoints(TrackingContext& ctx, const Ray& worldRay, float tEnd,
-                                     const SampledSpectrum& beta, Sampler& sampler,
-                                     SampledSpectrum* L, std::vector<EmissionAt>* parts,
+                                     Sampler& sampler, const EmissionSink& emission,
                                      CollisionObserver* observer, const ScatterGuide* guide) {
+    const SampledSpectrum& beta = emission.beta;
     ScatterPointWalk walk;
     SampledSpectrum T(1.f);
     // One uniform per reservoir, stratified: (u + k) / kScatterPoints. A reservoir fed with one
@@ -23,10 +23,10 @@ ScatterPointWalk chooseScatterPoints(TrackingContext& ctx, const Ray& worldRay, 
         const Medium& m = ctx.medium(size_t(c.medium));
         if (m.holdout())
             walk.holdoutCoverage += (T * (c.mp.sigmaA + c.mp.sigmaS) / c.sigmaMaj).average();
-        else if (m.emissive() && parts)
-            parts->push_back({c.t, beta * T * c.mp.sigmaA * c.mp.Le / c.sigmaMaj});
+        else if (m.emissive() && emission.parts)
+            emission.parts->push_back({c.t, beta * T * c.mp.sigmaA * c.mp.Le / c.sigmaMaj});
         else if (m.emissive())
-            *L += beta * T * c.mp.sigmaA * c.mp.Le / c.sigmaMaj;
+            *emission.L += beta * T * c.mp.sigmaA * c.mp.Le / c.sigmaMaj;
         const SampledSpectrum w = m.holdout() ? SampledSpectrum(0.f) : T * c.mp.sigmaS / c.sigmaMaj;
         // The resampling weight: w̄, times the guide's guess of the light at the point.
         const float wMean = guide && w.average() > 0.f ? w.average() * guide->at(c.p) : w.average();

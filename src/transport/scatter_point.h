@@ -38,22 +38,27 @@ struct ScatterPointWalk {
     float holdoutCoverage = 0.f;
 };
 
-// Walks worldRay over (0, tEnd). Emission is scored into *L at every tentative collision
-// (β T σa Le / σ̄, the collision estimator of ∫ T σa Le). A holdout medium (Medium::holdout)
-// only attenuates: it emits nothing and holds no scattering point. β is the path's throughput so
-// far.
-// With `parts` (render passes, deep output), each collision's emission is appended there
-// instead, with its distance along worldRay, and L may be null. An observer sees every
-// tentative collision the walk meets. With a guide (transport/scatter_guide.h), the points are
-// drawn ∝ T σs g(p) instead of T σs and weighted by 1/g: the same expectation, less variance
-// where g follows the light.
+// Where a walk's emission goes, weighted by beta, the path's throughput so far: summed into *L,
+// or with `parts` (render passes, deep output), each collision's apart, with its distance along
+// the ray.
 struct EmissionAt {
     float t;
     SampledSpectrum L;
 };
+struct EmissionSink {
+    SampledSpectrum beta;
+    SampledSpectrum* L = nullptr;
+    std::vector<EmissionAt>* parts = nullptr;
+};
+
+// Walks worldRay over (0, tEnd). Emission is scored into `emission` at every tentative
+// collision (β T σa Le / σ̄, the collision estimator of ∫ T σa Le). A holdout medium
+// (Medium::holdout) only attenuates: it emits nothing and holds no scattering point. An observer
+// sees every tentative collision the walk meets. With a guide (transport/scatter_guide.h), the
+// points are drawn ∝ T σs g(p) instead of T σs and weighted by 1/g: the same expectation, less
+// variance where g follows the light.
 ScatterPointWalk chooseScatterPoints(TrackingContext& ctx, const Ray& worldRay, float tEnd,
-                                     const SampledSpectrum& beta, Sampler& sampler,
-                                     SampledSpectrum* L, std::vector<EmissionAt>* parts = nullptr,
+                                     Sampler& sampler, const EmissionSink& emission,
                                      CollisionObserver* observer = nullptr,
                                      const ScatterGuide* guide = nullptr);
 

@@ -12,7 +12,7 @@
 #include <cmath>
 
 #include "geometry/shape_region.h"
-#include "render/integrator.h"
+#include "render/photon_integrator.h"
 #include "transport/ray_optical_depth.h"
 #include "transport/tracking.h"
 

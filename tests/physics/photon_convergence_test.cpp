@@ -20,6 +20,7 @@
 #include "core/clock.h"
 #include "film/color.h"
 #include "fog_box_scene.h"
+#include "render/photon_integrator.h"
 #include "render/renderer.h"
 #include "test_support.h"
 

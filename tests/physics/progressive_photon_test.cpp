@@ -22,6 +22,7 @@
 #include "film/color.h"
 #include "fog_box_scene.h"
 #include "render/passes.h"
+#include "render/photon_integrator.h"
 #include "spectrum/cie.h"
 #include "spectrum/spectrum.h"
 #include "test_support.h"

@@ -10,7 +10,7 @@
 
 #include <cmath>
 
-#include "render/integrator.h"
+#include "render/photon_integrator.h"
 #include "spectrum/cie.h"
 #include "test_support.h"
 

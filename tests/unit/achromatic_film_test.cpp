@@ -10,6 +10,7 @@
 
 #include "photon/photon_pass.h"
 #include "photon/volume_estimate.h"
+#include "render/photon_integrator.h"
 #include "render/renderer.h"
 #include "spectrum/cie.h"
 #include "test_support.h"

@@ -171,7 +171,7 @@ CurvedWalkEnd walkToPlane(const Apex& a, double yPlane, const CurvedPathSettings
         const float t = (float(yPlane) - chord.o.y) / chord.d.y;
         return t > 0.f && t < tMax ? t : kInfinity;
     };
-    return walkCurvedChords(field, set, plane, Vec3(0, 0, 0), Vec3(a.d), 550, 6.f,
+    return walkCurvedChords(CurvedWalk{field, set, 6.f, plane}, Ray{Vec3(0, 0, 0), Vec3(a.d)}, 550,
                             [](const CurvedChord&, CurvedWalkEnd*) { return true; });
 }
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <string>
 
 #include "film/image_io.h"
@@ -49,7 +50,7 @@ TEST(CurvedPhotons, CollimatedBeamLandsOnTheCatenarysSpot) {
     ps.seed = 3;
     ps.progress = Progress::Mode::Quiet;
     ps.storeFirstInteraction = true;
-    ps.field = &field;
+    ps.field = std::make_shared<const LinearIndexField>(field);
     ps.curvedPath.tolerance = 1e-9;
     ps.curvedPath.maxStep = 0.1;
     PhotonPassStats stats;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <string>
 
 #include "film/image_io.h"
@@ -33,7 +34,7 @@ TEST(CurvedStepCap, PhotonPassCountsFlightsStoppedByTheStepCap) {
     ps.seed = 7;
     ps.progress = Progress::Mode::Quiet;
     ps.storeFirstInteraction = true;
-    ps.field = &field;
+    ps.field = std::make_shared<const LinearIndexField>(field);
     ps.curvedPath.maxStep = 0.1;
     PhotonPassStats uncapped;
     const PhotonMapLists landed = tracePhotonMaps({spot.get()}, {}, &geo, ps, &uncapped);

@@ -47,8 +47,8 @@ TEST(CurvedTracking, TransmittanceIsBeerLambertOverArcLength) {
     CurvedPathSettings set;
     set.tolerance = 1e-9;
     CurvedWalkEnd end;
-    const SampledSpectrum T =
-        curvedTransmittance(ctx, field, set, nullptr, o, d, 550, 10.f, sampler, &end);
+    const SampledSpectrum T = curvedTransmittance(ctx, CurvedWalk{field, set, 10.f, nullptr},
+                                                  Ray{o, d}, 550, sampler, &end);
     EXPECT_EQ(end.kind, CurvedWalkEnd::Kind::Reached);
     EXPECT_NEAR(end.arc, 10.f, 1e-5f);
     for (int i = 0; i < 4; ++i) EXPECT_NEAR(T[i], std::exp(-3.0), 2e-6) << i;
@@ -81,8 +81,9 @@ TEST(CurvedTracking, ChordsStopAtTheSurfaceWhereTheCurvedPathMeetsIt) {
     set.tolerance = 1e-9;
     set.maxStep = 0.1;  // sagitta ≤ h²/(8R) = 0.01 / (8 · 19) m
     CurvedWalkEnd end;
-    const SampledSpectrum T = curvedTransmittance(ctx, field, set, surfaces, Vec3(0, 1, 0),
-                                                  Vec3(1, 0, 0), 550, 100.f, sampler, &end);
+    const SampledSpectrum T =
+        curvedTransmittance(ctx, CurvedWalk{field, set, 100.f, surfaces},
+                            Ray{Vec3(0, 1, 0), Vec3(1, 0, 0)}, 550, sampler, &end);
     ASSERT_EQ(end.kind, CurvedWalkEnd::Kind::Surface);
     EXPECT_EQ(T[0], 1.f);
     // Where the exact path reaches y = 0 (bisection on its arc length).
@@ -115,9 +116,10 @@ TEST(CurvedTracking, FreeFlightsAreExponentialInArcLength) {
     int beyondMean = 0;
     for (int i = 0; i < n; ++i) {
         Sampler sampler(3, uint64_t(i), 0);
-        const CurvedWalkEnd end = trackCurvedCollisions(
-            ctx, field, set, nullptr, Vec3(0, 0, 0), normalize(Vec3(1, -0.5f, 0.2f)), 550, 40.f,
-            sampler, [](const Collision&, float) { return Track::Stop; });
+        const CurvedWalkEnd end =
+            trackCurvedCollisions(ctx, CurvedWalk{field, set, 40.f, nullptr},
+                                  Ray{Vec3(0, 0, 0), normalize(Vec3(1, -0.5f, 0.2f))}, 550, sampler,
+                                  [](const Collision&, float) { return Track::Stop; });
         ASSERT_EQ(end.kind, CurvedWalkEnd::Kind::Stopped);
         sum += end.arc;
         if (end.arc > 1 / sigmaT) ++beyondMean;

@@ -19,6 +19,7 @@
 #include "core/interrupt.h"
 #include "film/film_error.h"
 #include "film/image_io.h"
+#include "render/photon_integrator.h"
 #include "test_support.h"
 
 using namespace mirage;

@@ -75,8 +75,9 @@ TEST(ScatterGuide, GuidedScatteringPointsKeepTheirExpectation) {
             Sampler s(SamplerKind::Random, 5, 0, uint64_t(i));
             ts.tracking.setWavelengths(SampledWavelengths::sampleVisible(s.get1D()));
             SampledSpectrum L(0.f);
-            const ScatterPointWalk walk = chooseScatterPoints(
-                ts.tracking, ray, kInfinity, SampledSpectrum(1.f), s, &L, nullptr, nullptr, gd);
+            const ScatterPointWalk walk =
+                chooseScatterPoints(ts.tracking, ray, kInfinity, s,
+                                    EmissionSink{SampledSpectrum(1.f), &L}, nullptr, gd);
             double x = 0.0;
             for (int k = 0; walk.chosen && k < kScatterPoints; ++k)
                 x += walk.weight[k][0] * f(walk.collision[k].t);

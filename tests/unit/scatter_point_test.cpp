@@ -77,8 +77,8 @@ void expectWalkExpectations(const RenderScene& scene, const float (&sigmaT)[2],
             Sampler s = test::pathSampler(kind, 3, uint64_t(i));
             ts.tracking.setWavelengths(SampledWavelengths::sampleVisible(s.get1D()));
             SampledSpectrum L(0.f);
-            const ScatterPointWalk walk =
-                chooseScatterPoints(ts.tracking, kRay, kInfinity, SampledSpectrum(1.f), s, &L);
+            const ScatterPointWalk walk = chooseScatterPoints(
+                ts.tracking, kRay, kInfinity, s, EmissionSink{SampledSpectrum(1.f), &L});
             sumT += walk.T[0];
             sumT2 += double(walk.T[0]) * walk.T[0];
             double x = 0.0;

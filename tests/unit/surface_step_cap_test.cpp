@@ -57,9 +57,9 @@ Walk walkToPlane(double k, const Vec3d& o, const Vec3d& d, double yPlane, bool c
         const float t = (float(yPlane) - chord.o.y) / chord.d.y;
         return t > 0.f && t < tMax ? t : kInfinity;
     };
-    const CurvedWalkEnd end = walkCurvedChords(
-        field, set, plane, Vec3(o), Vec3(d), 550, 20.f,
-        [](const CurvedChord&, CurvedWalkEnd*) { return true; });
+    const CurvedWalkEnd end =
+        walkCurvedChords(CurvedWalk{field, set, 20.f, plane}, Ray{Vec3(o), Vec3(d)}, 550,
+                         [](const CurvedChord&, CurvedWalkEnd*) { return true; });
     EXPECT_TRUE(std::isfinite(end.p.x) && std::isfinite(end.p.y) && std::isfinite(end.p.z));
     return {end.kind == CurvedWalkEnd::Kind::Surface, Vec3d(end.p), end.chords};
 }

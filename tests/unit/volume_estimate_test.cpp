@@ -259,8 +259,8 @@ TEST(VolumeEstimate, UniformPhotonDensityGivesTheKnownRadiance) {
     for (int i = 0; i < points; ++i) {
         Sampler s(23, uint64_t(i), 0);
         Vec3 x(s.get1D(), s.get1D(), s.get1D());
-        Vec3 est = pointEstimate(photons, x, sampleUniformSphere(s.get1D(), s.get1D()), k, 0.3f,
-                                 buffer.data());
+        Vec3 est = pointEstimate(photons, x, sampleUniformSphere(s.get1D(), s.get1D()),
+                                 PhotonSearch{k, 0.3f, buffer.data()});
         sumX += est.x;
         sumY += est.y;
         sumZ += est.z;
@@ -299,8 +299,9 @@ TEST(VolumeEstimate, UniformPhotonDensityGivesTheKnownRadiance) {
         Ray ray{o, Vec3(0, 0, 1), kInfinity};
         depth.march(ray, kInfinity);
         beamY += beam.estimate(ray, kInfinity, depth, &hits).y;
-        marchY += pointEstimateAlongRay(mono, ray, depth, k, 0.3f, 0.02f, 0.5f,
-                                        buffer.data(), probe).y;
+        marchY += pointEstimateAlongRay(mono, ray, depth, PhotonSearch{k, 0.3f, buffer.data()},
+                                        PointMarch{0.02f, 0.5f, &probe})
+                      .y;
         // ∫ (σs/σs,max) T dt by quadrature, over the cloud and over the medium's span.
         const int steps = 2000;
         const double dt = 1.8 / steps;
@@ -440,8 +441,8 @@ TEST(VolumeEstimate, AThinSidePhotonLightsTheDenseSideAtMostSixteenfold) {
     auto along = [&](float x) {
         const Ray ray{Vec3(x, 0.5f, -1.f), Vec3(0, 0, 1), kInfinity};
         depth.march(ray, kInfinity);
-        return pointEstimateAlongRay(photons, ray, depth, 2, radius, 0.005f, 0.5f, buffer.data(),
-                                     probe)
+        return pointEstimateAlongRay(photons, ray, depth, PhotonSearch{2, radius, buffer.data()},
+                                     PointMarch{0.005f, 0.5f, &probe})
             .y;
     };
     const float dense = along(0.45f), thin = along(0.65f);
@@ -609,9 +610,9 @@ TEST(PhotonGroups, EstimatesSplitExactlyByTheLightOfEachPhoton) {
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c], total[c], 1e-5f * total[c]);
         // The marched point estimate: its groups sum to it.
         std::fill(groups.begin(), groups.end(), Vec3(0.f));
-        const Vec3 point =
-            pointEstimateAlongRay(photons, ray, depth, 16, 0.2f, 0.05f, 0.5f, buffer.data(), probe,
-                                  ViewWeight(), PhotonGroups(&slotOfLight, &groups));
+        const Vec3 point = pointEstimateAlongRay(
+            photons, ray, depth, PhotonSearch{16, 0.2f, buffer.data()},
+            PointMarch{0.05f, 0.5f, &probe}, ViewWeight(), PhotonGroups(&slotOfLight, &groups));
         ASSERT_GT(point.y, 0.f);
         const Vec3 pointSum = groups[0] + groups[1] + groups[2];
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(pointSum[c], point[c], 1e-5f * point[c]);

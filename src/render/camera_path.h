@@ -1,0 +1,53 @@
+// A camera path as every camera estimator walks it: the one per-sample set-up (a RadianceSample,
+// its recorder, render/path_recorder.h, and a CameraPath from the camera ray), the flight to the
+// next surface, and the steps at a surface and out of the scene that single scattering, the
+// path tracer and the photon mapper's specular chain share. A new estimator starts from these
+// instead of copying a neighbour's loop.
+#pragma once
+
+#include <optional>
+
+#include "render/integrator.h"
+#include "render/path_recorder.h"
+#include "transport/path_vertex.h"
+
+namespace mirage {
+
+// Where a camera path is between two vertices: its ray and throughput (PathSegment), and what
+// its vertices so far decide about the next ones.
+struct CameraPath : PathSegment {
+    CameraPath(const Ray& cameraRay, const SampledWavelengths& w)
+        : PathSegment{cameraRay, PathThroughput()}, wavelengths(w) {}
+
+    // The wavelengths the path carries, those of the thread's tracking context; a fluorescent
+    // re-emission switches them to the absorbed one (volpath), and `reemitted` says so.
+    SampledWavelengths wavelengths;
+    bool reemitted = false;
+    int depth = 0;              // vertices before the current ray (scattering and specular)
+    bool specularChain = true;  // every vertex so far a mirror or glass: escapes see the dome
+    // Lobe walks (render/light_lobes.h, volpath.cpp): whether the path draws them, and the sum
+    // Σ_j r_j q^(k−1−j) over the medium vertices of the run the current ray ends.
+    bool guided = false;
+    float lobeRatios = 0.f;
+};
+
+// The flight ahead of a ray: the nearest surface on it, if any, and where the flight through the
+// media ends (that surface, or the ray's tMax).
+struct SurfaceAhead {
+    std::optional<SurfaceHit> hit;
+    float tEnd = 0.f;
+};
+SurfaceAhead surfaceAhead(const RenderScene& scene, const Ray& ray);
+
+// The light a camera path gathers at the surface its ray reached, before it goes on: the
+// surface's emission and, where it is diffuse and `nee`, next-event estimation to the lights
+// (render/direct_light.h); then the vertex enters the record. Returns the surface's material.
+const Material& gatherAtSurface(const RenderScene& scene, const SurfaceHit& hit, bool nee,
+                                Sampler& sampler, ThreadState& ts, CameraPath& path,
+                                PathRecorder& rec);
+
+// A path that leaves the scene sees the lights at infinity (the dome) where no next-event
+// estimate has counted them: on the camera ray and after mirrors and glass only.
+void escapeToDome(const RenderScene& scene, const CameraPath& path, PathRecorder& rec);
+
+}  // namespace mirage

@@ -1,0 +1,66 @@
+// The recorder's rules away from the innermost loops (path_recorder.h says what and why).
+#include "render/path_recorder.h"
+
+#include <algorithm>
+
+#include "render/camera_ray_data.h"
+
+namespace mirage {
+
+PhotonGroups PathRecorder::photonGroups(const std::vector<int>& slotOfLight) {
+    if (!mAov || mAov->groupXyz.empty()) return PhotonGroups();
+    mTs->lightSplitXyz.assign(mAov->groupXyz.size(), Vec3(0.f));
+    return PhotonGroups(&slotOfLight, &mTs->lightSplitXyz);
+}
+
+// The photons' radiance on the camera ray's side of a vertex: light that scattered before it
+// scattered there (the photon pass stores no first interaction that a shadow ray computes).
+void PathRecorder::photonsInMedium(const Vec3& xyz) {
+    addXyz(xyz, LightPath::VolumeIndirect, kUnplaced);
+}
+
+void PathRecorder::photonsAtSurface(const Vec3& caustic, const Vec3& global, float t) {
+    const Vec3 c = caustic + global;
+    mOut->xyz += c;
+    if (mDeep) mDeep->radiance.push_back({at(t, true), SampledSpectrum(0.f), c});
+    if (!mAov) return;
+    mAov->addPathXyz(caustic, LightPath::Caustic);
+    mAov->addPathXyz(global, LightPath::SurfaceIndirect);
+    if (!mAov->groupXyz.empty()) mAov->addGroupXyz(mTs->lightSplitXyz);
+}
+
+void PathRecorder::addXyz(const Vec3& c, LightPath p, DeepAt where) {
+    mOut->xyz += c;
+    if (mDeep) mDeep->radiance.push_back({where, SampledSpectrum(0.f), c});
+    if (!mAov) return;
+    mAov->addPathXyz(c, p);
+    if (!mAov->groupXyz.empty()) mAov->addGroupXyz(mTs->lightSplitXyz);
+}
+
+void PathRecorder::cameraFlightEnded(bool reachedEnd) {
+    if (CameraRayData* data = cameraRayData()) data->walked(reachedEnd);
+}
+
+void PathRecorder::coverage(bool reachedPlate, float transmittance, float heldOutShare) {
+    if (!mOnCameraRay) return;
+    mOut->alpha = clamp((reachedPlate ? 1.f - transmittance : 1.f) - heldOutShare, 0.f, 1.f);
+}
+
+void PathRecorder::addNested(const RadianceSample& s, const SampledSpectrum& T, float k) {
+    mOut->L += s.L * T * k;
+    mOut->xyz += s.xyz * k;
+    if (mAov) mAov->addWeighted(mTs->nestedAov, T, k);
+}
+
+void PathRecorder::coverageThrough(const SampledSpectrum& T, float beyond) {
+    mOut->alpha = T.maxValue() <= 0.f ? 1.f : 1.f - T.average() * (1.f - beyond);
+}
+
+void PathRecorder::finish(const PathThroughput& path) {
+    mOut->L = path.estimate(mOut->L);
+    if (mAov) mAov->forEachRadiance([&](SampledSpectrum& s) { s = path.estimate(s); });
+    if (mDeep)
+        for (DeepSample::Radiance& r : mDeep->radiance) r.L = path.estimate(r.L);
+}
+
+}  // namespace mirage

@@ -14,9 +14,9 @@
 #include <openvdb_ax/compiler/VolumeExecutable.h>
 
 #include <algorithm>
-#include <chrono>
 #include <mutex>
 
+#include "core/clock.h"
 #include "volume/openvdb_expression.h"
 
 namespace mirage {
@@ -120,7 +120,7 @@ std::string describeAccess(const ExpressionAccess& access) {
 
 double runGridExpression(const GridExpression& e, openvdb::GridPtrVec& grids,
                          const std::string& file) {
-    const auto start = std::chrono::steady_clock::now();
+    const Clock::time_point start = Clock::now();
     const openvdb::ax::ast::Tree::ConstPtr tree = parse(e);
     ErrorLog log;
     openvdb::ax::VolumeExecutable::Ptr exe;
@@ -143,7 +143,7 @@ double runGridExpression(const GridExpression& e, openvdb::GridPtrVec& grids,
     } catch (const std::exception& ex) {
         fail(e, "OpenVDB AX failed on " + file + ": " + boundedMessage(ex.what()));
     }
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return secondsSince(start);
 }
 
 }  // namespace mirage

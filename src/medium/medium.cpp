@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "volume/grid_lookup.h"
 
 namespace mirage {
 
@@ -206,7 +207,8 @@ double Medium::checkedSigmaMax(int i, const FloatGrid* grid, float k) const {
 Medium::Context::Context(const Medium& m)
     : mMedium(&m), mObjectToWorld(m.mObjectToWorld), mWorldToObject(m.mWorldToObject) {
     for (const auto& g : m.mGrids) mAcc.push_back(g.accessor());
-    if (m.mVelocity.valid()) mVelocityAcc.emplace(m.mVelocity.accessor());
+    if (m.mVelocity.valid())
+        mVelocityAcc = std::make_unique<VectorGrid::Accessor>(m.mVelocity.accessor());
     for (size_t i = 0; i < m.mShader.components.size(); ++i) {
         mSlot[i] = m.mComponentSlot[i];
         mModel[i] = m.mModels[i].get();
@@ -218,6 +220,10 @@ Medium::Context::Context(const Medium& m)
         mGrey = true;
     }
 }
+
+Medium::Context::Context(Context&&) noexcept = default;
+Medium::Context& Medium::Context::operator=(Context&&) noexcept = default;
+Medium::Context::~Context() = default;
 
 void Medium::Context::setWavelengths(const SampledWavelengths& w) {
     mLambda = w;
@@ -289,6 +295,16 @@ void Medium::setMotion(VectorGrid velocity, float velocityScale, float maxTimeOf
 
 void Medium::excludeFrom(std::shared_ptr<const Region> region) {
     if (region) mExcluded.push_back(std::move(region));
+}
+
+Vec3 Medium::displacement(Context& ctx, const Vec3& p) const {
+    if (ctx.mTime == 0.f) return Vec3(0.f);
+    return mVelocity.sample(*ctx.mVelocityAcc, p) * (mVelocityScale * ctx.mTime);
+}
+
+inline float Medium::gridValue(const Context& ctx, int i, const Vec3& p) const {
+    int slot = ctx.mSlot[size_t(i)];
+    return slot < 0 ? 1.f : mGrids[size_t(slot)].sample(ctx.mAcc[size_t(slot)], p);
 }
 
 void Medium::eval(const Vec3& p, Context& ctx, MediumPoint* out) const {

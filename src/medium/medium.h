@@ -7,7 +7,6 @@
 
 #include <array>
 #include <memory>
-#include <optional>
 #include <vector>
 
 #include "core/keyed_transform.h"
@@ -149,6 +148,10 @@ public:
     class Context {
     public:
         explicit Context(const Medium& m);
+        // Out of line: the accessors are NanoVDB's types (volume/grid_lookup.h).
+        Context(Context&&) noexcept;
+        Context& operator=(Context&&) noexcept;
+        ~Context();
         void setWavelengths(const SampledWavelengths& w);
         const SampledWavelengths& wavelengths() const { return mLambda; }
         // The path's time relative to the frame, Δt = t − t₀ (seconds): lookups of a moving
@@ -174,7 +177,7 @@ public:
         float mPathTime = 0.f;  // as set
         float mTime = 0.f;      // the advection's Δt: 0 when the medium has no velocity
         std::vector<FloatGrid::Accessor> mAcc;
-        std::optional<VectorGrid::Accessor> mVelocityAcc;
+        std::unique_ptr<VectorGrid::Accessor> mVelocityAcc;
         // Per component: its coefficients at the path's wavelengths, its law, its grid index.
         std::array<PathCoefficients, kMaxComponents> mPath;
         std::array<const ComponentModel*, kMaxComponents> mModel;
@@ -195,10 +198,7 @@ public:
 
     // How far the flow carries the medium at object-space point p over the context's time
     // offset, v(p)·velocityScale·Δt (object metres); 0 for a still context.
-    Vec3 displacement(Context& ctx, const Vec3& p) const {
-        if (ctx.mTime == 0.f) return Vec3(0.f);
-        return mVelocity.sample(*ctx.mVelocityAcc, p) * (mVelocityScale * ctx.mTime);
-    }
+    Vec3 displacement(Context& ctx, const Vec3& p) const;
     // The object-space point whose still grids hold the medium at p at the context's time.
     Vec3 lookupPoint(Context& ctx, const Vec3& p) const { return advected(ctx, p); }
 
@@ -249,10 +249,7 @@ private:
     double checkedSigmaMax(int i, const FloatGrid* grid, float k) const;
     void checkEmissionBound(double sigmaMax) const;
     // Component i's grid value at an object-space point (1 for a constant component).
-    float gridValue(const Context& ctx, int i, const Vec3& p) const {
-        int slot = ctx.mSlot[size_t(i)];
-        return slot < 0 ? 1.f : mGrids[size_t(slot)].sample(ctx.mAcc[size_t(slot)], p);
-    }
+    float gridValue(const Context& ctx, int i, const Vec3& p) const;
 
     ShaderDesc mShader;
     std::vector<FloatGrid> mGrids;

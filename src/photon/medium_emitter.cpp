@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/sampling.h"
 #include "core/spectral.h"
+#include "volume/grid_lookup.h"
 
 namespace mirage {
 

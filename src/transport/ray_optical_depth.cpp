@@ -4,8 +4,15 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "volume/grid_lookup.h"
 
 namespace mirage {
+
+RayOpticalDepth::MediumInfo::MediumInfo(const Medium* m) : medium(m), context(*m) {}
+
+RayOpticalDepth::RayOpticalDepth(RayOpticalDepth&&) noexcept = default;
+RayOpticalDepth& RayOpticalDepth::operator=(RayOpticalDepth&&) noexcept = default;
+RayOpticalDepth::~RayOpticalDepth() = default;
 
 RayOpticalDepth::RayOpticalDepth(const std::vector<const Medium*>& media, float stepVoxels)
     : mStepVoxels(stepVoxels) {
@@ -16,8 +23,7 @@ RayOpticalDepth::RayOpticalDepth(const std::vector<const Medium*>& media, float 
         info.voxel = kInfinity;
         for (const FloatGrid& g : m->grids()) {
             info.accessors.push_back(g.accessor());
-            auto v = g.grid()->voxelSize();
-            info.voxel = std::min(info.voxel, float(std::min(v[0], std::min(v[1], v[2]))));
+            info.voxel = std::min(info.voxel, g.minVoxelSize());
         }
         if (m->grids().empty()) {
             const MajorantGrid& maj = m->majorant();

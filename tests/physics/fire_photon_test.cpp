@@ -19,6 +19,7 @@
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "test_support.h"
+#include "volume/grid_lookup.h"
 
 using namespace mirage;
 

@@ -12,6 +12,7 @@
 #include "medium/phase.h"
 #include "render/renderer.h"
 #include "test_support.h"
+#include "volume/grid_lookup.h"
 
 using namespace mirage;
 

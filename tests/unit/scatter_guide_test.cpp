@@ -14,6 +14,7 @@
 #include "render/scatter_guide_build.h"
 #include "test_support.h"
 #include "transport/scatter_point.h"
+#include "volume/grid_lookup.h"
 
 using namespace mirage;
 

@@ -11,6 +11,7 @@
 
 #include "render/integrator.h"
 #include "test_support.h"
+#include "volume/grid_lookup.h"
 
 using namespace mirage;
 

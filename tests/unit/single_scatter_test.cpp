@@ -9,6 +9,7 @@
 #include "film/color.h"
 #include "render/renderer.h"
 #include "test_support.h"
+#include "volume/grid_lookup.h"
 
 using namespace mirage;
 

@@ -20,6 +20,7 @@
 #include "photon/beam_estimate.h"
 #include "spectrum/cie.h"
 #include "test_support.h"
+#include "volume/grid_lookup.h"
 
 using namespace mirage;
 

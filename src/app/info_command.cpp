@@ -72,7 +72,7 @@ void printOutput(const Scene& scene) {
     }
     std::vector<std::string> holdouts;
     for (size_t i = 0; i < scene.render.media.size(); ++i)
-        if (scene.render.media[i]->holdout()) holdouts.push_back("volume " + std::to_string(i));
+        if (scene.render.holdout(i)) holdouts.push_back("volume " + std::to_string(i));
     const GeometryScene* g = scene.render.geometry.get();
     for (size_t i = 0; g && i < g->shapeCount(); ++i)
         if (g->shape(int(i)).holdout) holdouts.push_back("shape " + std::to_string(i));

@@ -62,10 +62,6 @@ public:
     Bounds3 objectBounds() const { return mMajorant.bounds(); }
     const MajorantGrid& majorant() const { return mMajorant; }
     bool emissive() const { return mShader.emission.has_value(); }
-    // A holdout ([[volume]] holdout = true): it attenuates and shadows, but the camera sees no
-    // light of its own and no coverage of its own (docs/aovs.md, "Holdouts").
-    bool holdout() const { return mHoldout; }
-    void setHoldout(bool holdout) { mHoldout = holdout; }
     // Some component re-emits absorbed light (Γ > 0): the Γ roulette applies (reemission.h).
     bool fluorescent() const { return mFluorescent; }
     // The largest forward value of a component's lobe, p(0) (1/sr): 1/4π isotropic, 26 for
@@ -273,7 +269,6 @@ private:
     bool mFluorescent = false;
     float mPeakPhase = 0.f;
     bool mGreyCoefficients = false, mGreyPath = true;
-    bool mHoldout = false;
 };
 
 }  // namespace mirage

@@ -65,7 +65,7 @@ public:
             CameraRayData* data = bounce == 0 ? ts.cameraData : nullptr;
             const ScatterPointWalk walk = chooseScatterPoints(
                 ts.tracking, ray, tEnd, path.beta, sampler, split ? nullptr : &out.L,
-                split ? &ts.emitted : nullptr, data, mGuide.get());
+                split ? &ts.emitted : nullptr, data, mGuide.get(), &scene.mediumHoldouts);
             if (data) data->walked(walk.reachedEnd);
             for (const EmissionAt& e : ts.emitted)
                 out.add(e.L, path.history.emitted(), kEmissionGroup,

@@ -93,7 +93,7 @@ public:
                     const Medium& m = ts.tracking.medium(c.medium);
                     // A holdout medium seen by the camera only attenuates: no emission, and a
                     // real event in it ends the path with nothing (and no coverage).
-                    if (m.holdout() && path.history.vertices == 0) {
+                    if (scene.holdout(size_t(c.medium)) && path.history.vertices == 0) {
                         heldOut = chooseEvent(c, path, sampler).event != MediumEvent::Null;
                         return heldOut ? Track::Stop : Track::Continue;
                     }

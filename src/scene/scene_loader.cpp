@@ -449,7 +449,8 @@ void readVolume(const TableReader& v, const Resolve& resolve, const std::string&
         applyTransformMotion(*scene, keys, medium.get());
         scene->render.media.push_back(std::move(medium));
     }
-    scene->render.media.back()->setHoldout(holdout);
+    scene->render.mediumHoldouts.resize(scene->render.media.size());
+    scene->render.mediumHoldouts.back() = holdout;
     scene->volumes.push_back(std::move(rec));
 }
 

@@ -39,9 +39,9 @@ struct ScatterPointWalk {
 };
 
 // Walks worldRay over (0, tEnd). Emission is scored into *L at every tentative collision
-// (β T σa Le / σ̄, the collision estimator of ∫ T σa Le). A holdout medium (Medium::holdout)
-// only attenuates: it emits nothing and holds no scattering point. β is the path's throughput so
-// far.
+// (β T σa Le / σ̄, the collision estimator of ∫ T σa Le). A holdout medium (`holdouts`, indexed
+// like ctx's media, RenderScene::mediumHoldouts; null or short: none there) only attenuates: it
+// emits nothing and holds no scattering point. β is the path's throughput so far.
 // With `parts` (render passes, deep output), each collision's emission is appended there
 // instead, with its distance along worldRay, and L may be null. An observer sees every
 // tentative collision the walk meets. With a guide (transport/scatter_guide.h), the points are
@@ -55,6 +55,7 @@ ScatterPointWalk chooseScatterPoints(TrackingContext& ctx, const Ray& worldRay, 
                                      const SampledSpectrum& beta, Sampler& sampler,
                                      SampledSpectrum* L, std::vector<EmissionAt>* parts = nullptr,
                                      CollisionObserver* observer = nullptr,
-                                     const ScatterGuide* guide = nullptr);
+                                     const ScatterGuide* guide = nullptr,
+                                     const std::vector<bool>* holdouts = nullptr);
 
 }  // namespace mirage

@@ -124,12 +124,9 @@ void Medium::updateWorldBounds() {
     mWorldBounds = mTransformKeys.moves()
                        ? mTransformKeys.sweep(mMajorant.bounds(), mShutterOpen, mShutterClose)
                        : mObjectToWorld.apply(mMajorant.bounds());
-    if (!mRegion) return;
-    // The medium's world bounds (the photon pass aims sun photons at them) shrink to the region
+    // The medium's world bounds (the photon pass aims sun photons at them) shrink to its region
     // (empty when the two do not overlap: then the medium is nowhere).
-    const Bounds3 r = mRegion->bounds();
-    mWorldBounds.lo = vmax(mWorldBounds.lo, r.lo);
-    mWorldBounds.hi = vmin(mWorldBounds.hi, r.hi);
+    mWorldBounds = mConfinement.clipBounds(mWorldBounds);
 }
 
 void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantResolution) {
@@ -247,8 +244,8 @@ void Medium::setTransformMotion(KeyedTransform keys, float shutterOpen, float sh
     updateWorldBounds();
 }
 
-void Medium::confineTo(std::shared_ptr<const Region> region) {
-    mRegion = std::move(region);
+void Medium::setConfinement(Confinement confinement) {
+    mConfinement = std::move(confinement);
     updateWorldBounds();
 }
 
@@ -293,10 +290,6 @@ void Medium::setMotion(VectorGrid velocity, float velocityScale, float maxTimeOf
     updateWorldBounds();
 }
 
-void Medium::excludeFrom(std::shared_ptr<const Region> region) {
-    if (region) mExcluded.push_back(std::move(region));
-}
-
 Vec3 Medium::displacement(Context& ctx, const Vec3& p) const {
     if (ctx.mTime == 0.f) return Vec3(0.f);
     return mVelocity.sample(*ctx.mVelocityAcc, p) * (mVelocityScale * ctx.mTime);
@@ -305,6 +298,11 @@ Vec3 Medium::displacement(Context& ctx, const Vec3& p) const {
 inline float Medium::gridValue(const Context& ctx, int i, const Vec3& p) const {
     int slot = ctx.mSlot[size_t(i)];
     return slot < 0 ? 1.f : mGrids[size_t(slot)].sample(ctx.mAcc[size_t(slot)], p);
+}
+
+inline bool Medium::inRegion(const Vec3& pObject, const Context& ctx) const {
+    if (!mConfinement.confines()) return true;
+    return mConfinement.contains(ctx.mObjectToWorld.point(pObject));
 }
 
 void Medium::eval(const Vec3& p, Context& ctx, MediumPoint* out) const {

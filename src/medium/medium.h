@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "core/keyed_transform.h"
-#include "core/region.h"
 #include "core/transform.h"
 #include "medium/component.h"
+#include "medium/confinement.h"
 #include "medium/fluorescence.h"
 #include "medium/phase.h"
 #include "medium/shader.h"
@@ -83,34 +83,13 @@ public:
     // exp(−σt(λ) · length inside the box).
     bool homogeneous() const { return mGrids.empty(); }
 
-    // Confines the medium to a closed region (the interior of a closed shape, `interior_medium`
-    // in a scene file): every coefficient is zero outside it. The majorant grid stays a valid
-    // upper bound, so null-collision tracking needs no change; transmittance keeps its closed
-    // form while the region is convex (the ray's chord through region ∩ box).
-    void confineTo(std::shared_ptr<const Region> region);
-    const Region* region() const { return mRegion.get(); }
-    // Cuts a closed region out of the medium (the inside of a shape that holds another
-    // medium): every coefficient is zero inside it.
-    void excludeFrom(std::shared_ptr<const Region> region);
-    const std::vector<std::shared_ptr<const Region>>& excluded() const { return mExcluded; }
+    // Where in its box the medium exists (medium/confinement.h): every coefficient is zero
+    // elsewhere. Set once the shapes that hold media are known; the world bounds shrink to it.
+    const Confinement& confinement() const { return mConfinement; }
+    void setConfinement(Confinement confinement);
     // Beer–Lambert's closed form applies along any ray: homogeneous, and one interval of the
-    // ray inside (no region or a convex one, nothing cut out).
-    bool closedFormTransmittance() const {
-        return homogeneous() && (!mRegion || mRegion->convex()) && mExcluded.empty();
-    }
-    // False for an object-space point outside the region the medium is confined to, or inside
-    // one cut out of it (where the medium is at the context's time).
-    class Context;
-    bool inRegion(const Vec3& pObject, const Context& ctx) const {
-        if (!mRegion && mExcluded.empty()) return true;
-        return inRegionWorld(ctx.mObjectToWorld.point(pObject));
-    }
-    bool inRegionWorld(const Vec3& p) const {
-        if (mRegion && !mRegion->contains(p)) return false;
-        for (const auto& r : mExcluded)
-            if (r->contains(p)) return false;
-        return true;
-    }
+    // ray inside.
+    bool closedFormTransmittance() const { return homogeneous() && mConfinement.oneInterval(); }
 
     // Velocity motion blur. The medium at time t₀ + Δt is the still medium advected by its
     // velocity field v (object-space metres per second, times velocityScale) to first order,
@@ -241,6 +220,9 @@ private:
     }
     // The shader's coefficients from the still grids read at p (already advected, if at all).
     void evalGridsAt(const Vec3& p, Context& ctx, MediumPoint* out) const;
+    // False for an object-space point where the confinement leaves no medium (at the context's
+    // time).
+    bool inRegion(const Vec3& pObject, const Context& ctx) const;
     void setZero(MediumPoint* out) const;
     double checkedSigmaMax(int i, const FloatGrid* grid, float k) const;
     void checkEmissionBound(double sigmaMax) const;
@@ -264,8 +246,7 @@ private:
     float mVelocityScale = 1.f, mBlurRadius = 0.f;
     std::vector<ComponentPhase> mPhases;
     std::vector<FluorescenceEmission> mFluorescence;  // per component (empty when Γ = 0)
-    std::shared_ptr<const Region> mRegion;             // null: the whole box
-    std::vector<std::shared_ptr<const Region>> mExcluded;
+    Confinement mConfinement;
     bool mFluorescent = false;
     float mPeakPhase = 0.f;
     bool mGreyCoefficients = false, mGreyPath = true;

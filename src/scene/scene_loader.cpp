@@ -459,17 +459,20 @@ void readVolume(const TableReader& v, const Resolve& resolve, const std::string&
 void confineInteriorMedia(Scene* scene) {
     const GeometryScene* geometry = scene->render.geometry.get();
     if (!geometry) return;
+    std::vector<Confinement> where(scene->render.media.size());
     for (size_t i = 0; i < geometry->shapeCount(); ++i) {
         int m = geometry->shape(int(i)).interiorMedium;
         if (m < 0) continue;
         auto region = geometry->interiorRegion(int(i));
-        for (size_t j = 0; j < scene->render.media.size(); ++j) {
+        for (size_t j = 0; j < where.size(); ++j) {
             if (int(j) == m)
-                scene->render.media[j]->confineTo(region);
+                where[j].confineTo(region);
             else
-                scene->render.media[j]->excludeFrom(region);
+                where[j].excludeFrom(region);
         }
     }
+    for (size_t j = 0; j < where.size(); ++j)
+        scene->render.media[j]->setConfinement(std::move(where[j]));
 }
 
 // [refraction]; a field with ∇n = 0 everywhere bends nothing: the scene renders as without it.

@@ -75,7 +75,8 @@ void RayOpticalDepth::march(const Ray& ray, float tMax) {
             continue;
         // A medium confined to a region: its chord (convex), or first entry to last exit, where
         // the nodes' midpoints test the region.
-        if (m.region() && (!m.region()->clip(ray, &a, &b) || !(a < b))) continue;
+        const Confinement& where = m.confinement();
+        if (!where.clip(ray, &a, &b) || !(a < b)) continue;
         mSpans.push_back({int(i), objectRay, a, b});
         t0 = std::min(t0, a);
         t1 = std::max(t1, b);
@@ -83,9 +84,10 @@ void RayOpticalDepth::march(const Ray& ray, float tMax) {
         h = std::min(h, mStepVoxels * mMedia[i].voxel / length(objectRay.d));
         // A non-convex region, and every region cut out, is sampled at the nodes' midpoints:
         // 1/64 of its size apart.
-        if (m.region() && !m.region()->convex())
-            h = std::min(h, length(m.region()->bounds().diagonal()) / 64.f);
-        for (const auto& r : m.excluded()) h = std::min(h, length(r->bounds().diagonal()) / 64.f);
+        if (where.region() && !where.region()->convex())
+            h = std::min(h, length(where.region()->bounds().diagonal()) / 64.f);
+        for (const auto& r : where.excluded())
+            h = std::min(h, length(r->bounds().diagonal()) / 64.f);
     }
     if (mSpans.empty() || !(t0 < t1)) {
         mT0 = mT1 = 0.f;
@@ -121,8 +123,8 @@ void RayOpticalDepth::addSpan(const Ray& ray, const Span& s) {
     MediumInfo& info = mMedia[size_t(s.medium)];
     const Medium& medium = *info.medium;
     const auto& grids = medium.grids();
-    const bool convex = !medium.region() || medium.region()->convex();
-    const bool testRegion = !convex || !medium.excluded().empty();
+    const Confinement& where = medium.confinement();
+    const bool testRegion = !where.oneInterval();
     const size_t C = size_t(mChannels);
     // The nodes whose intervals overlap the span.
     const int jBegin = std::max(0, int(std::floor((s.t0 - mT0) / mH)) - 1);
@@ -135,7 +137,7 @@ void RayOpticalDepth::addSpan(const Ray& ray, const Span& s) {
         const float lo = std::max(a, s.t0), hi = std::min(b, s.t1);
         if (!(hi > lo)) continue;
         const float mid = 0.5f * (lo + hi);
-        if (testRegion && !medium.inRegionWorld(ray.at(mid))) continue;
+        if (testRegion && !where.contains(ray.at(mid))) continue;
         const Vec3 q = medium.lookupPoint(info.context, s.objectRay.at(mid));  // p unless blurred
         float* inc = &mTau[size_t(j + 1) * C];
         for (const Term& term : info.terms) {

@@ -117,7 +117,7 @@ SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float t
         float t0, t1;
         if (!m.objectBounds().intersect(r.o, r.d, 0.f, tMax, &t0, &t1) || !(t1 > t0)) continue;
         // A medium confined to a convex region: the chord through region ∩ box.
-        if (m.region() && (!m.region()->clip(worldRay, &t0, &t1) || !(t1 > t0))) continue;
+        if (!m.confinement().clip(worldRay, &t0, &t1) || !(t1 > t0)) continue;
         MediumPoint mp;
         m.eval(r.at(0.5f * (t0 + t1)), ctx.context(i), &mp);  // inside box and region
         tau += (mp.sigmaA + mp.sigmaS) * (t1 - t0);

@@ -473,7 +473,9 @@ TEST(BeamEstimate, FogInAGlassBallStaysInTheBall) {
     const int glass = geometry.addMaterial(Material::dielectric("glass", 1.5f));
     const int ball = geometry.addSphere(Vec3(0.f), radius, glass, 0);
     geometry.commit();
-    fog.confineTo(geometry.interiorRegion(ball));
+    Confinement interior;
+    interior.confineTo(geometry.interiorRegion(ball));
+    fog.setConfinement(interior);
     const Bounds3 cube{Vec3(-radius), Vec3(radius)};
     const size_t n = 1000000;
     PhotonList inside;

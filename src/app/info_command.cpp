@@ -131,12 +131,12 @@ int runInfo(const InfoOptions& o) {
             if (!velocity.grid.empty() && !velocity.velocity.valid())
                 velocity.velocity = loadVelocityGrid(v.file, velocity.grid);
             std::printf("    velocity: %s\n", describeVelocity(velocity).c_str());
-            if (m.moving())
+            if (m.motion().moving())
                 std::printf("    motion blur: lookups advected by up to %g m within the shutter; "
                             "majorant dilated by it\n",
-                            double(m.blurRadius()));
+                            double(m.motion().blurRadius()));
         }
-        if (m.transformMoves())
+        if (m.motion().transformMoves())
             std::printf(
                 "    transform keyed: the volume moves rigidly within the shutter "
                 "(each path sees it where its time places it)\n");

@@ -89,11 +89,10 @@ void Medium::resolveSlots() {
     if (slots.size() != mGrids.size()) {
         std::vector<std::string> missing;
         for (size_t i = mGrids.size(); i < slots.size(); ++i) missing.push_back(slots[i]);
-        throw MirageError("shader '" + mShader.name + "' reads grid slot(s) " +
-                          quotedList(slots) + ", but " + std::to_string(mGrids.size()) +
-                          " grid(s) are bound" +
-                          (missing.empty() ? std::string()
-                                           : "; no grid for " + quotedList(missing)));
+        throw MirageError(
+            "shader '" + mShader.name + "' reads grid slot(s) " + quotedList(slots) + ", but " +
+            std::to_string(mGrids.size()) + " grid(s) are bound" +
+            (missing.empty() ? std::string() : "; no grid for " + quotedList(missing)));
     }
     auto indexOf = [&](const std::string& name) {
         if (name.empty()) return -1;
@@ -121,9 +120,7 @@ void Medium::fillMajorant(const Bounds3& objectBounds, int majorantResolution) {
 }
 
 void Medium::updateWorldBounds() {
-    mWorldBounds = mTransformKeys.moves()
-                       ? mTransformKeys.sweep(mMajorant.bounds(), mShutterOpen, mShutterClose)
-                       : mObjectToWorld.apply(mMajorant.bounds());
+    mWorldBounds = mMotion.sweep(mMajorant.bounds(), mObjectToWorld);
     // The medium's world bounds (the photon pass aims sun photons at them) shrink to its region
     // (empty when the two do not overlap: then the medium is nowhere).
     mWorldBounds = mConfinement.clipBounds(mWorldBounds);
@@ -147,10 +144,9 @@ void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantRes
         mPeakPhase = std::max(mPeakPhase, mPhases.back().eval(1.f));
         greyAll &= mModels[i]->grey() && !c.fluorescent();
         mFluorescent |= c.fluorescent();
-        mFluorescence.push_back(c.fluorescent() ? FluorescenceEmission(c.emissionPeakNm,
-                                                                       c.emissionFwhmNm,
-                                                                       c.antiStokes)
-                                                : FluorescenceEmission());
+        mFluorescence.push_back(
+            c.fluorescent() ? FluorescenceEmission(c.emissionPeakNm, c.emissionFwhmNm, c.antiStokes)
+                            : FluorescenceEmission());
     }
     mGreyCoefficients = greyAll;
     if (!(sigmaMax <= kMaxSigma))
@@ -175,9 +171,9 @@ void Medium::checkEmissionBound(double sigmaMax) const {
         leMax = std::max(leMax, planck(l, T) * 1e-9 * e.intensity);
     if (!(sigmaMax * leMax <= kMaxSigma))
         throw MirageError("shader '" + mShader.name + "': emission σa·Le up to " +
-                          formatNumber(sigmaMax * leMax) + " W/(m³·sr·nm) at " +
-                          formatNumber(T) + " K (grid '" + mGrids[slot].name() +
-                          "') is above the limit of " + formatNumber(kMaxSigma) +
+                          formatNumber(sigmaMax * leMax) + " W/(m³·sr·nm) at " + formatNumber(T) +
+                          " K (grid '" + mGrids[slot].name() + "') is above the limit of " +
+                          formatNumber(kMaxSigma) +
                           "; lower the temperature scale, intensity or density");
 }
 
@@ -190,22 +186,21 @@ double Medium::checkedSigmaMax(int i, const FloatGrid* grid, float k) const {
     const double gridMax = grid ? double(grid->maxValue()) : 1.0;
     const double sigma = mModels[size_t(i)]->sigmaTBound(double(k) * gridMax);
     if (!(sigma <= kMaxSigma))
-        throw MirageError("shader '" + mShader.name + "': component '" + c.name + "'" +
-                          (grid ? " on grid '" + grid->name() + "' (max value " +
-                                      formatNumber(gridMax) + ")"
-                                : std::string()) +
-                          ": σt up to " + formatNumber(sigma) +
-                          " 1/m (concentration × density_scale × grid × cross-section) is above "
-                          "the limit of " + formatNumber(kMaxSigma) +
-                          " 1/m; lower density_scale, concentration or the cross-sections");
+        throw MirageError(
+            "shader '" + mShader.name + "': component '" + c.name + "'" +
+            (grid ? " on grid '" + grid->name() + "' (max value " + formatNumber(gridMax) + ")"
+                  : std::string()) +
+            ": σt up to " + formatNumber(sigma) +
+            " 1/m (concentration × density_scale × grid × cross-section) is above "
+            "the limit of " +
+            formatNumber(kMaxSigma) +
+            " 1/m; lower density_scale, concentration or the cross-sections");
     return sigma;
 }
 
 Medium::Context::Context(const Medium& m)
-    : mMedium(&m), mObjectToWorld(m.mObjectToWorld), mWorldToObject(m.mWorldToObject) {
+    : mMedium(&m), mMotion(m.mMotion, m.mObjectToWorld, m.mWorldToObject) {
     for (const auto& g : m.mGrids) mAcc.push_back(g.accessor());
-    if (m.mVelocity.valid())
-        mVelocityAcc = std::make_unique<VectorGrid::Accessor>(m.mVelocity.accessor());
     for (size_t i = 0; i < m.mShader.components.size(); ++i) {
         mSlot[i] = m.mComponentSlot[i];
         mModel[i] = m.mModels[i].get();
@@ -228,20 +223,7 @@ void Medium::Context::setWavelengths(const SampledWavelengths& w) {
     // What depends only on λ is evaluated here, once per path, not per lookup.
     const auto& comps = mMedium->mShader.components;
     for (size_t i = 0; i < comps.size(); ++i)
-        mModel[i]->sampleWavelengths(w, comps[i].concentration * mMedium->mDensityScale,
-                                     &mPath[i]);
-}
-
-void Medium::Context::placeAt(float seconds) {
-    mObjectToWorld = mMedium->mTransformKeys.at(seconds);
-    mWorldToObject = mObjectToWorld.inverse();
-}
-
-void Medium::setTransformMotion(KeyedTransform keys, float shutterOpen, float shutterClose) {
-    mTransformKeys = std::move(keys);
-    mShutterOpen = shutterOpen;
-    mShutterClose = shutterClose;
-    updateWorldBounds();
+        mModel[i]->sampleWavelengths(w, comps[i].concentration * mMedium->mDensityScale, &mPath[i]);
 }
 
 void Medium::setConfinement(Confinement confinement) {
@@ -249,50 +231,48 @@ void Medium::setConfinement(Confinement confinement) {
     updateWorldBounds();
 }
 
-void Medium::setMotion(VectorGrid velocity, float velocityScale, float maxTimeOffset) {
-    mVelocity = std::move(velocity);
-    mVelocityScale = velocityScale;
-    mBlurRadius = 0.f;
-    if (!mVelocity.valid() || homogeneous()) return;
-    const double R = double(mVelocity.magnitudeBound()) * std::abs(double(velocityScale)) *
-                     std::abs(double(maxTimeOffset));
-    if (!(R > 0.0)) return;
-    // A displacement far beyond the medium's size smears it over a box the majorant grid
-    // cannot resolve (a few cells, each as dense as the densest voxel), and tracking then
-    // crawls through it: almost always a unit mistake (cm/s read as m/s, a frame count taken
-    // for seconds), so it is refused with the figures that show it.
+void Medium::setMotion(MediumMotion motion) {
+    if (homogeneous()) motion.setVelocity(VectorGrid(), 1.f, 0.f);
+    checkBlurRadius(motion);
+    mMotion = std::move(motion);
+    if (mMotion.moving()) dilateMajorant();
+    updateWorldBounds();
+}
+
+// A displacement far beyond the medium's size smears it over a box the majorant grid cannot
+// resolve (a few cells, each as dense as the densest voxel), and tracking then crawls through
+// it: almost always a unit mistake (cm/s read as m/s, a frame count taken for seconds), so it
+// is refused with the figures that show it.
+void Medium::checkBlurRadius(const MediumMotion& motion) const {
+    const double R = double(motion.blurRadius());
     const double size = double(length(mStillBounds.diagonal()));
-    if (!(R <= kMaxBlurToSize * size))
-        throw MirageError("velocity grid '" + mVelocity.name() + "': |v| up to " +
-                          formatNumber(mVelocity.magnitudeBound()) + " m/s × velocity_scale " +
-                          formatNumber(velocityScale) + " moves shader '" + mShader.name +
-                          "' up to " + formatNumber(R) + " m within the shutter, more than " +
-                          formatNumber(kMaxBlurToSize) + " times its size (" +
-                          formatNumber(size) +
-                          " m); velocities are in object units per second: check "
-                          "velocity_scale, [output] fps and the shutter");
-    mBlurRadius = float(R);
-    // σt at x and time Δt is the still σt at x − v·Δt, a point at most |v_a|·|Δt| away along
-    // each axis a: the maximum of the still majorant over the cells within that reach bounds
-    // it, over bounds grown by it. Per axis, so a rising plume's box grows mostly upwards.
-    const Vec3 reach = mVelocity.componentBound() *
-                       float(std::abs(double(velocityScale)) * std::abs(double(maxTimeOffset)));
+    if (R <= kMaxBlurToSize * size) return;
+    const VectorGrid& v = motion.velocity();
+    throw MirageError("velocity grid '" + v.name() + "': |v| up to " +
+                      formatNumber(v.magnitudeBound()) + " m/s × velocity_scale " +
+                      formatNumber(motion.velocityScale()) + " moves shader '" + mShader.name +
+                      "' up to " + formatNumber(R) + " m within the shutter, more than " +
+                      formatNumber(kMaxBlurToSize) + " times its size (" + formatNumber(size) +
+                      " m); velocities are in object units per second: check "
+                      "velocity_scale, [output] fps and the shutter");
+}
+
+// σt at x and time Δt is the still σt at x − v·Δt, a point at most |v_a|·|Δt| away along each
+// axis a: the maximum of the still majorant over the cells within that reach bounds it, over
+// bounds grown by it. Per axis, so a rising plume's box grows mostly upwards.
+void Medium::dilateMajorant() {
+    const VectorGrid& velocity = mMotion.velocity();
+    const float k = mMotion.reachPerVelocity();
+    const Vec3 reach = velocity.componentBound() * k;
     Bounds3 grown = mStillBounds;
     grown.lo = grown.lo - reach;
     grown.hi = grown.hi + reach;
     fillMajorant(grown, mMajorantResolution);
     // Per cell, the reach of the velocity found in that cell: a fast jet then widens the
     // majorant only around itself, not across the whole cache.
-    std::vector<Vec3> local = mMajorant.cellComponentBounds(mVelocity);
-    const float k = float(std::abs(double(velocityScale)) * std::abs(double(maxTimeOffset)));
+    std::vector<Vec3> local = mMajorant.cellComponentBounds(velocity);
     for (Vec3& r : local) r = r * k;
     mMajorant.dilateLocally(local);
-    updateWorldBounds();
-}
-
-Vec3 Medium::displacement(Context& ctx, const Vec3& p) const {
-    if (ctx.mTime == 0.f) return Vec3(0.f);
-    return mVelocity.sample(*ctx.mVelocityAcc, p) * (mVelocityScale * ctx.mTime);
 }
 
 inline float Medium::gridValue(const Context& ctx, int i, const Vec3& p) const {
@@ -302,7 +282,7 @@ inline float Medium::gridValue(const Context& ctx, int i, const Vec3& p) const {
 
 inline bool Medium::inRegion(const Vec3& pObject, const Context& ctx) const {
     if (!mConfinement.confines()) return true;
-    return mConfinement.contains(ctx.mObjectToWorld.point(pObject));
+    return mConfinement.contains(ctx.objectToWorld().point(pObject));
 }
 
 void Medium::eval(const Vec3& p, Context& ctx, MediumPoint* out) const {
@@ -324,7 +304,7 @@ void Medium::setZero(MediumPoint* out) const {
 }
 
 void Medium::evalUnconfined(const Vec3& pAtTime, Context& ctx, MediumPoint* out) const {
-    evalGridsAt(advected(ctx, pAtTime), ctx, out);
+    evalGridsAt(ctx.mMotion.lookupPoint(pAtTime), ctx, out);
 }
 
 void Medium::evalGridsAt(const Vec3& p, Context& ctx, MediumPoint* out) const {
@@ -368,7 +348,7 @@ void Medium::evalGridsAt(const Vec3& p, Context& ctx, MediumPoint* out) const {
 float Medium::sigmaSAt(const Vec3& pAtTime, Context& ctx, float lambdaNm) const {
     float sigmaS = 0.f;
     if (!inRegion(pAtTime, ctx)) return 0.f;
-    const Vec3 p = advected(ctx, pAtTime);
+    const Vec3 p = ctx.mMotion.lookupPoint(pAtTime);
     if (ctx.mGrey) {
         // The grey path's coefficients (set once in the context), as evalGridsAt reads them:
         // no spectrum or component law to evaluate per lookup (the photon estimates call this
@@ -391,7 +371,7 @@ float Medium::sigmaSAt(const Vec3& pAtTime, Context& ctx, float lambdaNm) const 
 void Medium::sigmaAComponentsAt(const Vec3& pAtTime, Context& ctx, float lambdaNm,
                                 float* sigmaA) const {
     const bool inside = inRegion(pAtTime, ctx);
-    const Vec3 p = advected(ctx, pAtTime);
+    const Vec3 p = ctx.mMotion.lookupPoint(pAtTime);
     for (size_t i = 0; i < mShader.components.size(); ++i) {
         if (!inside) {
             sigmaA[i] = 0.f;
@@ -425,7 +405,10 @@ Vec3 Medium::phaseSample(const MediumPoint& mp, const Vec3& wi, float uc, float 
     float acc = 0.f;
     for (int i = 0; i < mp.components; ++i) {
         acc += mp.sigmaSComponent[i].average();
-        if (uc * total < acc) { chosen = i; break; }
+        if (uc * total < acc) {
+            chosen = i;
+            break;
+        }
     }
     Vec3 wo = mPhases[chosen].sample(wi, u1, u2, nullptr);
     const float mixPdf = phasePdf(mp, wi, wo);

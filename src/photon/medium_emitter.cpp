@@ -251,7 +251,7 @@ bool MediumEmitter::sample(Sampler& sampler, Medium::Context& ctx, PhotonEmissio
     // pObject + v·Δt at the photon's time (to first order, and with the power it had: the
     // advection of Medium::setMotion moves emission without creating it).
     const float time = ctx.timeOffset();
-    const Vec3 moved = pObject + mMedium->displacement(ctx, pObject);
+    const Vec3 moved = pObject + ctx.motion().displacement(pObject);
     ctx.setTimeOffset(0.f);
     MediumPoint mp;
     mMedium->eval(pObject, ctx, &mp);
@@ -263,7 +263,7 @@ bool MediumEmitter::sample(Sampler& sampler, Medium::Context& ctx, PhotonEmissio
     // A volume whose transform is keyed is where the photon's time places it; a keyed scale
     // changes its world volume, and the power it emits with it.
     const Transform& xf = ctx.objectToWorld();
-    if (mMedium->transformMoves())
+    if (mMedium->motion().transformMoves())
         out->weight *= float(
             std::abs(xf.linear.determinant() / mMedium->objectToWorld().linear.determinant()));
     out->origin = xf.point(moved);

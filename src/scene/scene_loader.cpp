@@ -435,20 +435,15 @@ void readVolume(const TableReader& v, const Resolve& resolve, const std::string&
     scene->render.cryptoObjects.volumes.push_back(
         readObjectName(v, "volume" + std::to_string(scene->render.media.size())));
     v.finish();
-    if (boxed) {
-        scene->render.media.push_back(std::make_unique<Medium>(shader, box, xf, rec.densityScale));
-        applyTransformMotion(*scene, keys, scene->render.media.back().get());
-    } else {
-        auto medium = buildMedium(shader, rec, bind, xf, scene->majorantResolution, where, *scene,
-                                  options);
-        try {
-            applyVelocity(*scene, medium.get(), &rec);
-        } catch (const MirageError& e) {
-            v.fail(v.has("velocity") ? "velocity" : "file", e.what());
-        }
-        applyTransformMotion(*scene, keys, medium.get());
-        scene->render.media.push_back(std::move(medium));
+    auto medium = boxed ? std::make_unique<Medium>(shader, box, xf, rec.densityScale)
+                        : buildMedium(shader, rec, bind, xf, scene->majorantResolution, where,
+                                      *scene, options);
+    try {
+        medium->setMotion(volumeMotion(*scene, keys, &rec));
+    } catch (const MirageError& e) {
+        v.fail(v.has("velocity") ? "velocity" : "file", e.what());
     }
+    scene->render.media.push_back(std::move(medium));
     scene->render.mediumHoldouts.resize(scene->render.media.size());
     scene->render.mediumHoldouts.back() = holdout;
     scene->volumes.push_back(std::move(rec));
@@ -557,7 +552,7 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
     scene.render.camera = frameBounds(medium->worldBounds(), 40.f, aspect);
     rec.velocity = findVelocity(rec.file, names, scene.shutter.blurs());
     try {
-        applyVelocity(scene, medium.get(), &rec);
+        medium->setMotion(volumeMotion(scene, KeyedTransform(), &rec));
     } catch (const MirageError& e) {
         throw MirageError(rec.file + ": " + e.what());
     }

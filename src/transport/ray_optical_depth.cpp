@@ -138,7 +138,7 @@ void RayOpticalDepth::addSpan(const Ray& ray, const Span& s) {
         if (!(hi > lo)) continue;
         const float mid = 0.5f * (lo + hi);
         if (testRegion && !where.contains(ray.at(mid))) continue;
-        const Vec3 q = medium.lookupPoint(info.context, s.objectRay.at(mid));  // p unless blurred
+        const Vec3 q = info.context.motion().lookupPoint(s.objectRay.at(mid));  // p unless blurred
         float* inc = &mTau[size_t(j + 1) * C];
         for (const Term& term : info.terms) {
             const size_t g = size_t(term.grid);

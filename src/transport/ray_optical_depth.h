@@ -58,7 +58,7 @@ public:
     // Tabulates τ along worldRay (unit direction) over [0, tMax].
     void march(const Ray& worldRay, float tMax);
     // The time (s from the frame, motion blur) of the rays marched from now on: moving media
-    // are read where Medium::lookupPoint says.
+    // are read where MediumMotion::Path::lookupPoint says.
     void setTimeOffset(float seconds) {
         mTime = seconds;
         for (MediumInfo& m : mMedia) m.context.setTimeOffset(seconds);

@@ -119,6 +119,13 @@ public:
         const Transform& worldToObject() const { return mMotion.worldToObject(); }
         // The path's view of the medium's motion: its displacement and advected lookup point.
         MediumMotion::Path& motion() { return mMotion; }
+        // A world ray in object space at the context's time, with the same parameter t
+        // (direction not renormalised); and a world point.
+        Ray toObject(const Ray& worldRay) const {
+            const Transform& w2o = worldToObject();
+            return {w2o.point(worldRay.o), w2o.vector(worldRay.d), worldRay.tMax};
+        }
+        Vec3 pointToObject(const Vec3& pWorld) const { return worldToObject().point(pWorld); }
 
     private:
         friend class Medium;
@@ -133,16 +140,6 @@ public:
         int mTemperatureSlot = -1;
         bool mGrey = false;  // the medium's grey path: σ set once, scalar eval
     };
-
-    // A world ray in object space at the context's time, with the same parameter t (direction
-    // not renormalised); and a world point.
-    Ray toObject(const Ray& worldRay, const Context& ctx) const {
-        const Transform& w2o = ctx.worldToObject();
-        return {w2o.point(worldRay.o), w2o.vector(worldRay.d), worldRay.tMax};
-    }
-    Vec3 pointToObject(const Vec3& pWorld, const Context& ctx) const {
-        return ctx.worldToObject().point(pWorld);
-    }
 
     // Coefficients at an object-space point (zero outside the region the medium is confined to).
     void eval(const Vec3& pObject, Context& ctx, MediumPoint* out) const;

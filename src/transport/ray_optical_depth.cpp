@@ -69,7 +69,7 @@ void RayOpticalDepth::march(const Ray& ray, float tMax) {
     float t0 = kInfinity, t1 = -kInfinity, h = kInfinity;
     for (size_t i = 0; i < mMedia.size(); ++i) {
         const Medium& m = *mMedia[i].medium;
-        Ray objectRay = m.toObject(ray, mMedia[i].context);
+        Ray objectRay = mMedia[i].context.toObject(ray);
         float a, b;
         if (!m.objectBounds().intersect(objectRay.o, objectRay.d, 0.f, tMax, &a, &b) || !(a < b))
             continue;

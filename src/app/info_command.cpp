@@ -105,7 +105,7 @@ int runInfo(const InfoOptions& o) {
                     m.shader().source.c_str(), v.densityScale);
         for (const std::string& n : v.notes) std::printf("    %s\n", n.c_str());
         for (size_t b = 0; b < v.bindings.size(); ++b) {
-            const FloatGrid& g = m.grids()[b];
+            const FloatGrid& g = m.binding().grids()[b];
             // The dense copy's size, or why lookups go through the tree (volume/dense_block.h).
             const std::string dense = g.denseBytes() ? "dense copy " + formatBytes(g.denseBytes())
                                       : g.activeVoxels()

@@ -10,19 +10,16 @@
 #include <vector>
 
 #include "core/transform.h"
-#include "medium/component.h"
 #include "medium/confinement.h"
 #include "medium/fluorescence.h"
 #include "medium/medium_motion.h"
 #include "medium/phase.h"
-#include "medium/shader.h"
+#include "medium/shader_binding.h"
 #include "volume/grid.h"
 #include "volume/majorant.h"
 #include "volume/vector_grid.h"
 
 namespace mirage {
-
-constexpr int kMaxComponents = 8;
 
 // Coefficients at one point for a path's wavelengths.
 struct MediumPoint {
@@ -49,19 +46,15 @@ public:
     Medium(ShaderDesc shader, const Bounds3& objectBox, const Transform& objectToWorld,
            float densityScale);
 
-    const ShaderDesc& shader() const { return mShader; }
-    const std::vector<FloatGrid>& grids() const { return mGrids; }
-    // The law of component i (medium/component.h).
-    const ComponentModel& componentModel(int i) const { return *mModels[size_t(i)]; }
-    // Index into grids() of the grid component i reads, −1 for a constant component; and of the
-    // emission's temperature grid, −1 without emission. Resolved once, when the medium is built.
-    int componentSlot(int i) const { return mComponentSlot[size_t(i)]; }
-    int temperatureSlot() const { return mTemperatureSlot; }
+    // The shader and the grids it reads, with each component's law and grid
+    // (medium/shader_binding.h): what the photon emitter and the optical-depth march integrate.
+    const ShaderBinding& binding() const { return mBinding; }
+    const ShaderDesc& shader() const { return mBinding.shader(); }
     const Transform& objectToWorld() const { return mObjectToWorld; }
     Bounds3 worldBounds() const { return mWorldBounds; }
     Bounds3 objectBounds() const { return mMajorant.bounds(); }
     const MajorantGrid& majorant() const { return mMajorant; }
-    bool emissive() const { return mShader.emission.has_value(); }
+    bool emissive() const { return shader().emission.has_value(); }
     // Some component re-emits absorbed light (Γ > 0): the Γ roulette applies (reemission.h).
     bool fluorescent() const { return mFluorescent; }
     // The largest forward value of a component's lobe, p(0) (1/sr): 1/4π isotropic, 26 for
@@ -77,11 +70,9 @@ public:
     // path, for the test and benchmark that compare the two. Call before making contexts.
     void setGreyPath(bool on) { mGreyPath = on; }
     bool greyPath() const { return mGreyPath && mGreyCoefficients; }
-    // The scale the constructor applied to every component's concentration.
-    float densityScale() const { return mDensityScale; }
     // Constant coefficients over objectBounds(): transmittance has the closed form
     // exp(−σt(λ) · length inside the box).
-    bool homogeneous() const { return mGrids.empty(); }
+    bool homogeneous() const { return mBinding.grids().empty(); }
 
     // Where in its box the medium exists (medium/confinement.h): every coefficient is zero
     // elsewhere. Set once the shapes that hold media are known; the world bounds shrink to it.
@@ -171,7 +162,6 @@ public:
     float phasePdf(const MediumPoint& mp, const Vec3& wi, const Vec3& wo) const;
 
 private:
-    void resolveSlots();
     void buildMajorantAndPhases(const Bounds3& objectBounds, int majorantResolution);
     void fillMajorant(const Bounds3& objectBounds, int majorantResolution);
     void updateWorldBounds();
@@ -188,13 +178,8 @@ private:
     // Component i's grid value at an object-space point (1 for a constant component).
     float gridValue(const Context& ctx, int i, const Vec3& p) const;
 
-    ShaderDesc mShader;
-    std::vector<FloatGrid> mGrids;
+    ShaderBinding mBinding;
     Transform mObjectToWorld, mWorldToObject;
-    float mDensityScale;
-    std::vector<std::shared_ptr<const ComponentModel>> mModels;
-    std::vector<int> mComponentSlot;
-    int mTemperatureSlot = -1;
     Bounds3 mWorldBounds;
     Bounds3 mStillBounds;  // object bounds of the grids, before any motion
     int mMajorantResolution = 64;

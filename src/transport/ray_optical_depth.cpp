@@ -21,11 +21,11 @@ RayOpticalDepth::RayOpticalDepth(const std::vector<const Medium*>& media, float 
     for (const Medium* m : media) {
         MediumInfo info(m);
         info.voxel = kInfinity;
-        for (const FloatGrid& g : m->grids()) {
+        for (const FloatGrid& g : m->binding().grids()) {
             info.accessors.push_back(g.accessor());
             info.voxel = std::min(info.voxel, g.minVoxelSize());
         }
-        if (m->grids().empty()) {
+        if (m->binding().grids().empty()) {
             const MajorantGrid& maj = m->majorant();
             Vec3 diag = maj.bounds().diagonal();
             for (int a = 0; a < 3; ++a)
@@ -34,10 +34,10 @@ RayOpticalDepth::RayOpticalDepth(const std::vector<const Medium*>& media, float 
         const auto& components = m->shader().components;
         for (int i = 0; i < int(components.size()); ++i) {
             const MediumComponent& c = components[size_t(i)];
-            const ComponentModel& model = m->componentModel(i);
-            const float k = c.concentration * m->densityScale();
+            const ComponentModel& model = m->binding().componentModel(i);
+            const float k = c.concentration * m->binding().densityScale();
             Term term;
-            term.grid = m->componentSlot(i);
+            term.grid = m->binding().componentSlot(i);
             term.scale = k;
             if (model.grey()) {
                 float sigmaT = c.sigmaA.constantValue() + c.sigmaS.constantValue();
@@ -122,7 +122,7 @@ void RayOpticalDepth::march(const Ray& ray, float tMax) {
 void RayOpticalDepth::addSpan(const Ray& ray, const Span& s) {
     MediumInfo& info = mMedia[size_t(s.medium)];
     const Medium& medium = *info.medium;
-    const auto& grids = medium.grids();
+    const auto& grids = medium.binding().grids();
     const Confinement& where = medium.confinement();
     const bool testRegion = !where.oneInterval();
     const size_t C = size_t(mChannels);

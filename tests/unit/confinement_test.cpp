@@ -6,42 +6,29 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <memory>
+#include <utility>
+
+#include "geometry/shape_region.h"
 
 using namespace mirage;
 
 namespace {
 
-// A ball, or a spherical shell (convex: false), as a region.
-class Ball : public Region {
+// The balls are geometry/shape_region.h's sphere regions. This one answers as the region it
+// wraps but says it is not convex (a spherical shell's), so that a line may cross it twice.
+class NotConvex : public Region {
 public:
-    Ball(const Vec3& centre, float radius, bool convex = true)
-        : mCentre(centre), mRadius(radius), mConvex(convex) {}
-    bool contains(const Vec3& p) const override { return length(p - mCentre) <= mRadius; }
+    explicit NotConvex(std::shared_ptr<const Region> r) : mRegion(std::move(r)) {}
+    bool contains(const Vec3& p) const override { return mRegion->contains(p); }
     bool clip(const Ray& ray, float* t0, float* t1) const override {
-        // |o + t d − c|² = r² with |d| = 1.
-        const Vec3 oc = ray.o - mCentre;
-        const float b = dot(oc, ray.d), c = dot(oc, oc) - mRadius * mRadius;
-        const float disc = b * b - c;
-        if (!(disc >= 0.f)) return false;
-        const float s = std::sqrt(disc);
-        *t0 = std::max(*t0, -b - s);
-        *t1 = std::min(*t1, -b + s);
-        return *t0 < *t1;
+        return mRegion->clip(ray, t0, t1);
     }
-    bool convex() const override { return mConvex; }
-    Bounds3 bounds() const override {
-        Bounds3 b;
-        b.expand(mCentre - Vec3(mRadius));
-        b.expand(mCentre + Vec3(mRadius));
-        return b;
-    }
+    bool convex() const override { return false; }
+    Bounds3 bounds() const override { return mRegion->bounds(); }
 
 private:
-    Vec3 mCentre;
-    float mRadius;
-    bool mConvex;
+    std::shared_ptr<const Region> mRegion;
 };
 
 }  // namespace
@@ -59,8 +46,8 @@ TEST(Confinement, UnconfinedHoldsEveryPointAndEveryRay) {
 
 TEST(Confinement, InsideTheRegionAndOutsideEveryCutOut) {
     Confinement c;
-    c.confineTo(std::make_shared<Ball>(Vec3(0.f), 2.f));
-    c.excludeFrom(std::make_shared<Ball>(Vec3(1.f, 0.f, 0.f), 0.5f));
+    c.confineTo(makeSphereRegion(Vec3(0.f), 2.f));
+    c.excludeFrom(makeSphereRegion(Vec3(1.f, 0.f, 0.f), 0.5f));
     c.excludeFrom(nullptr);  // nothing to cut out
     EXPECT_TRUE(c.confines());
     EXPECT_EQ(c.excluded().size(), 1u);
@@ -73,7 +60,7 @@ TEST(Confinement, InsideTheRegionAndOutsideEveryCutOut) {
 
 TEST(Confinement, RaysTakeTheRegionsChord) {
     Confinement c;
-    c.confineTo(std::make_shared<Ball>(Vec3(0.f), 1.f));
+    c.confineTo(makeSphereRegion(Vec3(0.f), 1.f));
     EXPECT_TRUE(c.oneInterval());
     const Ray ray{Vec3(-5.f, 0.f, 0.f), Vec3(1.f, 0.f, 0.f), kInfinity};
     float t0 = 0.f, t1 = 100.f;
@@ -84,13 +71,13 @@ TEST(Confinement, RaysTakeTheRegionsChord) {
     EXPECT_FALSE(c.clip(ray, &u0, &u1));
     // A region a line may cross twice: the span from first entry to last exit, no closed form.
     Confinement shell;
-    shell.confineTo(std::make_shared<Ball>(Vec3(0.f), 1.f, false));
+    shell.confineTo(std::make_shared<NotConvex>(makeSphereRegion(Vec3(0.f), 1.f)));
     EXPECT_FALSE(shell.oneInterval());
 }
 
 TEST(Confinement, WorldBoundsShrinkToTheRegion) {
     Confinement c;
-    c.confineTo(std::make_shared<Ball>(Vec3(1.f, 0.f, 0.f), 1.f));
+    c.confineTo(makeSphereRegion(Vec3(1.f, 0.f, 0.f), 1.f));
     Bounds3 box;
     box.expand(Vec3(-1.f));
     box.expand(Vec3(1.f));
@@ -101,7 +88,7 @@ TEST(Confinement, WorldBoundsShrinkToTheRegion) {
     EXPECT_EQ(b.hi.z, 1.f);
     // No overlap: empty, the medium is nowhere.
     Confinement far;
-    far.confineTo(std::make_shared<Ball>(Vec3(10.f), 1.f));
+    far.confineTo(makeSphereRegion(Vec3(10.f), 1.f));
     EXPECT_TRUE(far.clipBounds(box).empty());
     EXPECT_EQ(Confinement().clipBounds(box).lo.x, -1.f);
 }

@@ -5,8 +5,8 @@
 //
 // A closed shape (sphere or closed mesh) may bound a medium: `interiorMedium` names the scene
 // medium placed inside it, and interiorRegion() gives the shape's inside, to which the scene
-// stage confines that medium (Medium::confineTo) and cuts out of every other medium
-// (Medium::excludeFrom). Every surface, glass included, blocks shadow rays:
+// stage confines that medium and cuts out of every other medium (medium/confinement.h).
+// Every surface, glass included, blocks shadow rays:
 // light through specular surfaces (caustics) comes from the photon map.
 #pragma once
 

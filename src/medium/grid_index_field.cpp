@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "core/error.h"
-#include "volume/grid.h"
+#include "volume/grid_lookup.h"
 
 namespace mirage {
 

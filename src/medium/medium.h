@@ -7,28 +7,24 @@
 
 #include <array>
 #include <memory>
-#include <optional>
 #include <vector>
 
-#include "core/keyed_transform.h"
-#include "core/region.h"
 #include "core/transform.h"
-#include "medium/component.h"
+#include "medium/confinement.h"
 #include "medium/fluorescence.h"
+#include "medium/medium_motion.h"
 #include "medium/phase.h"
-#include "medium/shader.h"
+#include "medium/shader_binding.h"
 #include "volume/grid.h"
 #include "volume/majorant.h"
 #include "volume/vector_grid.h"
 
 namespace mirage {
 
-constexpr int kMaxComponents = 8;
-
 // Coefficients at one point for a path's wavelengths.
 struct MediumPoint {
     SampledSpectrum sigmaA, sigmaS;  // 1/m
-    SampledSpectrum Le;              // emitted radiance, W·m⁻²·sr⁻¹·nm⁻¹ (emission = σa·Le)
+    SampledSpectrum Le;  // emitted radiance, W·m⁻²·sr⁻¹·nm⁻¹ (emission = σa·Le)
     int components = 0;
     std::array<SampledSpectrum, kMaxComponents> sigmaSComponent;  // for the phase mixture
 };
@@ -50,23 +46,15 @@ public:
     Medium(ShaderDesc shader, const Bounds3& objectBox, const Transform& objectToWorld,
            float densityScale);
 
-    const ShaderDesc& shader() const { return mShader; }
-    const std::vector<FloatGrid>& grids() const { return mGrids; }
-    // The law of component i (medium/component.h).
-    const ComponentModel& componentModel(int i) const { return *mModels[size_t(i)]; }
-    // Index into grids() of the grid component i reads, −1 for a constant component; and of the
-    // emission's temperature grid, −1 without emission. Resolved once, when the medium is built.
-    int componentSlot(int i) const { return mComponentSlot[size_t(i)]; }
-    int temperatureSlot() const { return mTemperatureSlot; }
+    // The shader and the grids it reads, with each component's law and grid
+    // (medium/shader_binding.h): what the photon emitter and the optical-depth march integrate.
+    const ShaderBinding& binding() const { return mBinding; }
+    const ShaderDesc& shader() const { return mBinding.shader(); }
     const Transform& objectToWorld() const { return mObjectToWorld; }
     Bounds3 worldBounds() const { return mWorldBounds; }
     Bounds3 objectBounds() const { return mMajorant.bounds(); }
     const MajorantGrid& majorant() const { return mMajorant; }
-    bool emissive() const { return mShader.emission.has_value(); }
-    // A holdout ([[volume]] holdout = true): it attenuates and shadows, but the camera sees no
-    // light of its own and no coverage of its own (docs/aovs.md, "Holdouts").
-    bool holdout() const { return mHoldout; }
-    void setHoldout(bool holdout) { mHoldout = holdout; }
+    bool emissive() const { return shader().emission.has_value(); }
     // Some component re-emits absorbed light (Γ > 0): the Γ roulette applies (reemission.h).
     bool fluorescent() const { return mFluorescent; }
     // The largest forward value of a component's lobe, p(0) (1/sr): 1/4π isotropic, 26 for
@@ -82,99 +70,60 @@ public:
     // path, for the test and benchmark that compare the two. Call before making contexts.
     void setGreyPath(bool on) { mGreyPath = on; }
     bool greyPath() const { return mGreyPath && mGreyCoefficients; }
-    // The scale the constructor applied to every component's concentration.
-    float densityScale() const { return mDensityScale; }
     // Constant coefficients over objectBounds(): transmittance has the closed form
     // exp(−σt(λ) · length inside the box).
-    bool homogeneous() const { return mGrids.empty(); }
+    bool homogeneous() const { return mBinding.grids().empty(); }
 
-    // Confines the medium to a closed region (the interior of a closed shape, `interior_medium`
-    // in a scene file): every coefficient is zero outside it. The majorant grid stays a valid
-    // upper bound, so null-collision tracking needs no change; transmittance keeps its closed
-    // form while the region is convex (the ray's chord through region ∩ box).
-    void confineTo(std::shared_ptr<const Region> region);
-    const Region* region() const { return mRegion.get(); }
-    // Cuts a closed region out of the medium (the inside of a shape that holds another
-    // medium): every coefficient is zero inside it.
-    void excludeFrom(std::shared_ptr<const Region> region);
-    const std::vector<std::shared_ptr<const Region>>& excluded() const { return mExcluded; }
+    // Where in its box the medium exists (medium/confinement.h): every coefficient is zero
+    // elsewhere. Set once the shapes that hold media are known; the world bounds shrink to it.
+    const Confinement& confinement() const { return mConfinement; }
+    void setConfinement(Confinement confinement);
     // Beer–Lambert's closed form applies along any ray: homogeneous, and one interval of the
-    // ray inside (no region or a convex one, nothing cut out).
-    bool closedFormTransmittance() const {
-        return homogeneous() && (!mRegion || mRegion->convex()) && mExcluded.empty();
-    }
-    // False for an object-space point outside the region the medium is confined to, or inside
-    // one cut out of it (where the medium is at the context's time).
-    class Context;
-    bool inRegion(const Vec3& pObject, const Context& ctx) const {
-        if (!mRegion && mExcluded.empty()) return true;
-        return inRegionWorld(ctx.mObjectToWorld.point(pObject));
-    }
-    bool inRegionWorld(const Vec3& p) const {
-        if (mRegion && !mRegion->contains(p)) return false;
-        for (const auto& r : mExcluded)
-            if (r->contains(p)) return false;
-        return true;
-    }
+    // ray inside.
+    bool closedFormTransmittance() const { return homogeneous() && mConfinement.oneInterval(); }
 
-    // Velocity motion blur. The medium at time t₀ + Δt is the still medium advected by its
-    // velocity field v (object-space metres per second, times velocityScale) to first order,
-    // backward (Kim & Ko 2007, semi-Lagrangian): every grid the shader reads is looked up at
-    // x − v(x)·Δt instead of x. maxTimeOffset (seconds) is the largest |Δt| a path may carry
-    // (the shutter's reach from the frame); the majorant grid is rebuilt over bounds grown by
-    // the largest displacement along each axis, max|v_a|·velocityScale·maxTimeOffset, and
-    // each cell is dilated by the displacement of the velocity found in it, so that it bounds
-    // σt at every time in the shutter. R = max|v|·velocityScale·maxTimeOffset = 0 leaves the
-    // medium as it was.
-    void setMotion(VectorGrid velocity, float velocityScale, float maxTimeOffset);
-    const VectorGrid& velocity() const { return mVelocity; }
-    float velocityScale() const { return mVelocityScale; }
-    // Whether lookups move with time (a velocity grid and a non-zero displacement bound).
-    bool moving() const { return mBlurRadius > 0.f; }
-    // R above: the longest displacement a lookup can make (object-space metres).
-    float blurRadius() const { return mBlurRadius; }
-
-    // Rigid motion of the whole volume within the shutter (`[[volume.transform.key]]`): at time
-    // offset Δt its object-to-world transform is keys.at(Δt) (core/keyed_transform.h). A path
-    // has one time, so along it the volume stands still and its rays stay straight in object
-    // space: each lookup is the still volume's, in the frame the context's time places it in
-    // (Context::setTimeOffset), and the object-space majorant bounds it at every time. The
-    // world bounds grow to what the volume sweeps over [shutterOpen, shutterClose] (seconds).
-    // The transform given to the constructor is the one at Δt = 0.
-    void setTransformMotion(KeyedTransform keys, float shutterOpen, float shutterClose);
-    bool transformMoves() const { return mTransformKeys.moves(); }
-    const KeyedTransform& transformKeys() const { return mTransformKeys; }
+    // How the medium moves within the shutter (medium/medium_motion.h). setMotion rebuilds the
+    // majorant of a medium whose lookups move with time over bounds grown by the largest
+    // displacement along each axis, max|v_a|·|velocityScale|·maxTimeOffset, with each cell
+    // dilated by the displacement of the velocity found in it, so that it bounds σt at every
+    // time in the shutter; the world bounds grow to what keyed transforms sweep. A homogeneous
+    // medium has no grids for a flow to carry: it keeps only the keys.
+    const MediumMotion& motion() const { return mMotion; }
+    void setMotion(MediumMotion motion);
 
     // Per-path state: grid accessors and the cross-sections at the path's wavelengths.
     class Context {
     public:
         explicit Context(const Medium& m);
+        // Out of line: the accessors are NanoVDB's types (volume/grid_lookup.h).
+        Context(Context&&) noexcept;
+        Context& operator=(Context&&) noexcept;
+        ~Context();
         void setWavelengths(const SampledWavelengths& w);
         const SampledWavelengths& wavelengths() const { return mLambda; }
-        // The path's time relative to the frame, Δt = t − t₀ (seconds): lookups of a moving
-        // medium are advected by it. Ignored (kept 0) by a medium that does not move, so a
-        // still medium makes exactly the lookups it makes without motion blur.
-        // A volume whose transform is keyed moves to where it is at that time.
-        void setTimeOffset(float seconds) {
-            mPathTime = seconds;
-            mTime = mMedium->moving() ? seconds : 0.f;
-            if (mMedium->transformMoves()) placeAt(seconds);
-        }
-        float timeOffset() const { return mPathTime; }
+        // The path's time relative to the frame, Δt = t − t₀ (seconds), and where the medium is
+        // then (MediumMotion::Path::setTimeOffset).
+        void setTimeOffset(float seconds) { mMotion.setTimeOffset(seconds); }
+        float timeOffset() const { return mMotion.timeOffset(); }
         // The volume's transforms at the context's time.
-        const Transform& objectToWorld() const { return mObjectToWorld; }
-        const Transform& worldToObject() const { return mWorldToObject; }
+        const Transform& objectToWorld() const { return mMotion.objectToWorld(); }
+        const Transform& worldToObject() const { return mMotion.worldToObject(); }
+        // The path's view of the medium's motion: its displacement and advected lookup point.
+        MediumMotion::Path& motion() { return mMotion; }
+        // A world ray in object space at the context's time, with the same parameter t
+        // (direction not renormalised); and a world point.
+        Ray toObject(const Ray& worldRay) const {
+            const Transform& w2o = worldToObject();
+            return {w2o.point(worldRay.o), w2o.vector(worldRay.d), worldRay.tMax};
+        }
+        Vec3 pointToObject(const Vec3& pWorld) const { return worldToObject().point(pWorld); }
 
     private:
         friend class Medium;
-        void placeAt(float seconds);
         const Medium* mMedium;
-        Transform mObjectToWorld, mWorldToObject;
+        MediumMotion::Path mMotion;
         SampledWavelengths mLambda;
-        float mPathTime = 0.f;  // as set
-        float mTime = 0.f;      // the advection's Δt: 0 when the medium has no velocity
         std::vector<FloatGrid::Accessor> mAcc;
-        std::optional<VectorGrid::Accessor> mVelocityAcc;
         // Per component: its coefficients at the path's wavelengths, its law, its grid index.
         std::array<PathCoefficients, kMaxComponents> mPath;
         std::array<const ComponentModel*, kMaxComponents> mModel;
@@ -182,25 +131,6 @@ public:
         int mTemperatureSlot = -1;
         bool mGrey = false;  // the medium's grey path: σ set once, scalar eval
     };
-
-    // A world ray in object space at the context's time, with the same parameter t (direction
-    // not renormalised); and a world point.
-    Ray toObject(const Ray& worldRay, const Context& ctx) const {
-        return {ctx.mWorldToObject.point(worldRay.o), ctx.mWorldToObject.vector(worldRay.d),
-                worldRay.tMax};
-    }
-    Vec3 pointToObject(const Vec3& pWorld, const Context& ctx) const {
-        return ctx.mWorldToObject.point(pWorld);
-    }
-
-    // How far the flow carries the medium at object-space point p over the context's time
-    // offset, v(p)·velocityScale·Δt (object metres); 0 for a still context.
-    Vec3 displacement(Context& ctx, const Vec3& p) const {
-        if (ctx.mTime == 0.f) return Vec3(0.f);
-        return mVelocity.sample(*ctx.mVelocityAcc, p) * (mVelocityScale * ctx.mTime);
-    }
-    // The object-space point whose still grids hold the medium at p at the context's time.
-    Vec3 lookupPoint(Context& ctx, const Vec3& p) const { return advected(ctx, p); }
 
     // Coefficients at an object-space point (zero outside the region the medium is confined to).
     void eval(const Vec3& pObject, Context& ctx, MediumPoint* out) const;
@@ -218,8 +148,7 @@ public:
     // Absorption coefficient of each component (1/m) at an object-space point for one
     // wavelength: which component absorbed a photon decides whether it fluoresces. Writes
     // shader().components.size() values.
-    void sigmaAComponentsAt(const Vec3& pObject, Context& ctx, float lambdaNm,
-                            float* sigmaA) const;
+    void sigmaAComponentsAt(const Vec3& pObject, Context& ctx, float lambdaNm, float* sigmaA) const;
     // The emission band of component i (valid when it is fluorescent).
     const FluorescenceEmission& fluorescence(int i) const { return mFluorescence[size_t(i)]; }
 
@@ -233,50 +162,35 @@ public:
     float phasePdf(const MediumPoint& mp, const Vec3& wi, const Vec3& wo) const;
 
 private:
-    void resolveSlots();
     void buildMajorantAndPhases(const Bounds3& objectBounds, int majorantResolution);
     void fillMajorant(const Bounds3& objectBounds, int majorantResolution);
     void updateWorldBounds();
-    // Where the still grids are read for a lookup at p at the context's time: p itself when
-    // the context is still, else p − v(p)·velocityScale·Δt.
-    Vec3 advected(Context& ctx, const Vec3& p) const {
-        if (ctx.mTime == 0.f) return p;
-        return p - displacement(ctx, p);
-    }
+    void checkBlurRadius(const MediumMotion& motion) const;
+    void dilateMajorant();
     // The shader's coefficients from the still grids read at p (already advected, if at all).
     void evalGridsAt(const Vec3& p, Context& ctx, MediumPoint* out) const;
+    // False for an object-space point where the confinement leaves no medium (at the context's
+    // time).
+    bool inRegion(const Vec3& pObject, const Context& ctx) const;
     void setZero(MediumPoint* out) const;
     double checkedSigmaMax(int i, const FloatGrid* grid, float k) const;
     void checkEmissionBound(double sigmaMax) const;
     // Component i's grid value at an object-space point (1 for a constant component).
-    float gridValue(const Context& ctx, int i, const Vec3& p) const {
-        int slot = ctx.mSlot[size_t(i)];
-        return slot < 0 ? 1.f : mGrids[size_t(slot)].sample(ctx.mAcc[size_t(slot)], p);
-    }
+    float gridValue(const Context& ctx, int i, const Vec3& p) const;
 
-    ShaderDesc mShader;
-    std::vector<FloatGrid> mGrids;
+    ShaderBinding mBinding;
     Transform mObjectToWorld, mWorldToObject;
-    float mDensityScale;
-    std::vector<std::shared_ptr<const ComponentModel>> mModels;
-    std::vector<int> mComponentSlot;
-    int mTemperatureSlot = -1;
     Bounds3 mWorldBounds;
     Bounds3 mStillBounds;  // object bounds of the grids, before any motion
-    KeyedTransform mTransformKeys;
-    float mShutterOpen = 0.f, mShutterClose = 0.f;  // seconds: what the world bounds cover
     int mMajorantResolution = 64;
     MajorantGrid mMajorant;
-    VectorGrid mVelocity;
-    float mVelocityScale = 1.f, mBlurRadius = 0.f;
+    MediumMotion mMotion;
     std::vector<ComponentPhase> mPhases;
     std::vector<FluorescenceEmission> mFluorescence;  // per component (empty when Γ = 0)
-    std::shared_ptr<const Region> mRegion;             // null: the whole box
-    std::vector<std::shared_ptr<const Region>> mExcluded;
+    Confinement mConfinement;
     bool mFluorescent = false;
     float mPeakPhase = 0.f;
     bool mGreyCoefficients = false, mGreyPath = true;
-    bool mHoldout = false;
 };
 
 }  // namespace mirage

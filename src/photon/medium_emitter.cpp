@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/sampling.h"
 #include "core/spectral.h"
+#include "volume/grid_lookup.h"
 
 namespace mirage {
 
@@ -83,7 +84,7 @@ MediumEmitter::MediumEmitter(const Medium& medium) : mMedium(&medium) {
     const ShaderDesc& shader = medium.shader();
     MIRAGE_CHECK(shader.emission.has_value() && !medium.homogeneous());
     const EmissionSpec& e = *shader.emission;
-    const FloatGrid& tgrid = medium.grids()[size_t(medium.temperatureSlot())];
+    const FloatGrid& tgrid = medium.binding().grids()[size_t(medium.binding().temperatureSlot())];
     const float tMax =
         std::max(tgrid.maxValue() * e.temperatureScale + e.temperatureOffset, e.temperatureOffset);
     mTMin = e.minTemperature;
@@ -96,7 +97,7 @@ MediumEmitter::MediumEmitter(const Medium& medium) : mMedium(&medium) {
     mTStep = (tMax - mTMin) / float(steps - 1);
     mIntegral.resize(shader.components.size());
     for (size_t c = 0; c < shader.components.size(); ++c) {
-        if (!medium.componentModel(int(c)).linear()) continue;
+        if (!medium.binding().componentModel(int(c)).linear()) continue;
         mIntegral[c].resize(size_t(steps));
         for (int k = 0; k < steps; ++k)
             mIntegral[c][size_t(k)] =
@@ -119,7 +120,7 @@ MediumEmitter::MediumEmitter(const Medium& medium) : mMedium(&medium) {
     // q at every emitting voxel centre of the temperature grid.
     const nanovdb::FloatGrid& g = *tgrid.grid();
     std::vector<FloatGrid::Accessor> acc;
-    for (const auto& grid : medium.grids()) acc.push_back(grid.accessor());
+    for (const auto& grid : medium.binding().grids()) acc.push_back(grid.accessor());
     struct Corner {
         float q, T;
     };
@@ -187,7 +188,7 @@ double MediumEmitter::componentIntegral(int c, float T) const {
 
 double MediumEmitter::powerDensity(const Vec3& pObject) const {
     std::vector<FloatGrid::Accessor> acc;
-    for (const auto& grid : mMedium->grids()) acc.push_back(grid.accessor());
+    for (const auto& grid : mMedium->binding().grids()) acc.push_back(grid.accessor());
     return powerDensityAt(pObject, acc);
 }
 
@@ -196,17 +197,17 @@ double MediumEmitter::powerDensityAt(const Vec3& p,
     if (mSamplers.empty()) return 0.0;
     const ShaderDesc& shader = mMedium->shader();
     const EmissionSpec& e = *shader.emission;
-    const auto& grids = mMedium->grids();
-    const size_t ts = size_t(mMedium->temperatureSlot());
+    const auto& grids = mMedium->binding().grids();
+    const size_t ts = size_t(mMedium->binding().temperatureSlot());
     const float T = grids[ts].sample(acc[ts], p) * e.temperatureScale + e.temperatureOffset;
     if (!(T > mTMin)) return 0.0;  // Medium::eval emits nothing there either
     double sum = 0.0;
     for (size_t c = 0; c < shader.components.size(); ++c) {
         const MediumComponent& comp = shader.components[c];
-        const ComponentModel& model = mMedium->componentModel(int(c));
-        const int slot = mMedium->componentSlot(int(c));
+        const ComponentModel& model = mMedium->binding().componentModel(int(c));
+        const int slot = mMedium->binding().componentSlot(int(c));
         const float v = slot < 0 ? 1.f : grids[size_t(slot)].sample(acc[size_t(slot)], p);
-        const float C = comp.concentration * mMedium->densityScale() * v;
+        const float C = comp.concentration * mMedium->binding().densityScale() * v;
         if (!(C > 0.f)) continue;
         if (model.linear()) {
             sum += double(C) * componentIntegral(int(c), T);
@@ -231,7 +232,8 @@ bool MediumEmitter::sample(Sampler& sampler, Medium::Context& ctx, PhotonEmissio
     if (!(cellPower > 0.0)) return false;
 
     // A uniform point of the dual cell (index space maps affinely to object and world space).
-    const nanovdb::FloatGrid& g = *mMedium->grids()[size_t(mMedium->temperatureSlot())].grid();
+    const nanovdb::FloatGrid& g =
+        *mMedium->binding().grids()[size_t(mMedium->binding().temperatureSlot())].grid();
     const float u0 = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
     nanovdb::Vec3f po =
         g.indexToWorldF(nanovdb::Vec3f(float(cell.i) + u0, float(cell.j) + u1, float(cell.k) + u2));
@@ -250,7 +252,7 @@ bool MediumEmitter::sample(Sampler& sampler, Medium::Context& ctx, PhotonEmissio
     // pObject + v·Δt at the photon's time (to first order, and with the power it had: the
     // advection of Medium::setMotion moves emission without creating it).
     const float time = ctx.timeOffset();
-    const Vec3 moved = pObject + mMedium->displacement(ctx, pObject);
+    const Vec3 moved = pObject + ctx.motion().displacement(pObject);
     ctx.setTimeOffset(0.f);
     MediumPoint mp;
     mMedium->eval(pObject, ctx, &mp);
@@ -262,7 +264,7 @@ bool MediumEmitter::sample(Sampler& sampler, Medium::Context& ctx, PhotonEmissio
     // A volume whose transform is keyed is where the photon's time places it; a keyed scale
     // changes its world volume, and the power it emits with it.
     const Transform& xf = ctx.objectToWorld();
-    if (mMedium->transformMoves())
+    if (mMedium->motion().transformMoves())
         out->weight *= float(
             std::abs(xf.linear.determinant() / mMedium->objectToWorld().linear.determinant()));
     out->origin = xf.point(moved);

@@ -22,7 +22,7 @@ ScatteringProbe::ScatteringProbe(const std::vector<const Medium*>& media) : mMed
 float ScatteringProbe::sigmaS(const Vec3& worldP, float lambdaNm) {
     float sigmaS = 0.f;
     for (size_t i = 0; i < mMedia.size(); ++i) {
-        Vec3 p = mMedia[i]->pointToObject(worldP, mContexts[i]);
+        Vec3 p = mContexts[i].pointToObject(worldP);
         if (!mMedia[i]->objectBounds().contains(p)) continue;
         sigmaS += mMedia[i]->sigmaSAt(p, mContexts[i], lambdaNm);
     }
@@ -34,7 +34,7 @@ float ScatteringProbe::reemissionDensity(const Vec3& worldP, float lambdaInNm) {
     for (size_t i = 0; i < mMedia.size(); ++i) {
         const Medium& m = *mMedia[i];
         if (!m.fluorescent()) continue;
-        Vec3 p = mMedia[i]->pointToObject(worldP, mContexts[i]);
+        Vec3 p = mContexts[i].pointToObject(worldP);
         if (!m.objectBounds().contains(p)) continue;
         m.sigmaAComponentsAt(p, mContexts[i], lambdaInNm, mSigmaA.data());
         const auto& comps = m.shader().components;
@@ -99,7 +99,7 @@ VolumePhotons::VolumePhotons(PhotonList photons, const std::vector<const Medium*
                 // Outside its box a medium has no particles (its homogeneous components would
                 // still report their constant).
                 contexts[mi].setTimeOffset(mMap[i].time);
-                Vec3 p = m.pointToObject(mMap[i].p, contexts[mi]);
+                Vec3 p = contexts[mi].pointToObject(mMap[i].p);
                 if (!m.objectBounds().contains(p)) {
                     lobe += size_t(components);
                     continue;

@@ -12,7 +12,7 @@ int firstVisibleMedium(const RenderScene& scene, const Ray& ray, float tEnd) {
     float tFirst = tEnd;
     for (size_t i = 0; i < scene.media.size(); ++i) {
         float t0, t1;
-        if (scene.media[i]->holdout() ||
+        if (scene.holdout(i) ||
             !scene.media[i]->worldBounds().intersect(ray.o, ray.d, 0.f, tFirst, &t0, &t1))
             continue;
         first = int(i);
@@ -37,7 +37,7 @@ CameraRayData::CameraRayData(const RenderScene& scene, const Ray& ray, const Sam
 void CameraRayData::seen(const Collision& c) {
     if (!mAlive) return;
     mLastT = c.t;
-    const bool visible = !mTs.tracking.medium(size_t(c.medium)).holdout();
+    const bool visible = !mScene.holdout(size_t(c.medium));
     if (visible) mAlbedo += mT * c.mp.sigmaS / c.sigmaMaj;
     const float before = mT.average();
     mT *= (SampledSpectrum(c.sigmaMaj) - c.mp.sigmaA - c.mp.sigmaS) / c.sigmaMaj;

@@ -37,8 +37,11 @@ struct RadianceSample {
 
 // Per-thread state an integrator may use (allocated once per tile, reused per sample).
 struct ThreadState {
-    explicit ThreadState(const RenderScene& scene) : tracking(scene.mediaPointers()) {}
+    explicit ThreadState(const RenderScene& scene)
+        : tracking(scene.mediaPointers()), holdouts(&scene.mediumHoldouts) {}
     TrackingContext tracking;
+    // Per medium of `tracking`, whether the render holds it out (RenderScene::mediumHoldouts).
+    const std::vector<bool>* holdouts;
     // What lies in front of the ray an integrator is handed, at any wavelength, for the
     // estimates made at the photons' own wavelengths (photon/view_weight.h): the curved
     // camera's earlier chords. One (nothing) for a camera ray.

@@ -95,7 +95,9 @@ public:
 
     // Whether what the path meets is a holdout to it: a holdout object, met before the path
     // scattered.
-    bool holdout(const Medium& m) const { return mHistory.vertices == 0 && m.holdout(); }
+    bool holdout(size_t medium) const {
+        return mHistory.vertices == 0 && medium < mTs->holdouts->size() && (*mTs->holdouts)[medium];
+    }
     bool holdout(const GeometryScene& g, const SurfaceHit& hit) const {
         return mHistory.vertices == 0 && g.holdout(hit);
     }

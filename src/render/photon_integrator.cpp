@@ -160,8 +160,8 @@ public:
     void preprocess(const RenderScene& scene, uint64_t frameSamples) override {
         // A photon estimate gathers from every medium at a point alike: it cannot leave out a
         // holdout medium's in-scattering on the camera ray.
-        for (const auto& m : scene.media)
-            if (m->holdout())
+        for (size_t i = 0; i < scene.media.size(); ++i)
+            if (scene.holdout(i))
                 throw MirageError(
                     "a [[volume]] with holdout = true needs the single or volpath "
                     "integrator: photon estimates do not tell media apart");

@@ -18,6 +18,10 @@ struct RenderScene {
     CameraDesc camera;
     std::vector<std::unique_ptr<Light>> lights;
     std::vector<std::unique_ptr<Medium>> media;
+    // Per medium, whether it is a holdout ([[volume]] holdout = true): it attenuates and
+    // shadows, but the camera sees no light of its own and no coverage of its own (docs/aovs.md,
+    // "Holdouts"). What the output shows, not what the medium is; empty: no holdouts.
+    std::vector<bool> mediumHoldouts;
     // Surfaces (meshes, spheres, quads) and their materials; null when the scene has none, and
     // then every integrator behaves exactly as for media alone.
     std::unique_ptr<GeometryScene> geometry;
@@ -38,6 +42,9 @@ struct RenderScene {
     }
 
     bool hasSurfaces() const { return geometry && !geometry->empty(); }
+    bool holdout(size_t medium) const {
+        return medium < mediumHoldouts.size() && mediumHoldouts[medium];
+    }
 
     std::vector<const Medium*> mediaPointers() const {
         std::vector<const Medium*> r;

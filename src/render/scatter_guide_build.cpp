@@ -39,7 +39,7 @@ float meanExtinction(TrackingContext& ctx, const Bounds3& bounds, int n, int i, 
             const Medium& medium = ctx.medium(m);
             if (!medium.worldBounds().contains(p)) continue;
             MediumPoint mp;
-            medium.eval(medium.pointToObject(p, ctx.context(m)), ctx.context(m), &mp);
+            medium.eval(ctx.context(m).pointToObject(p), ctx.context(m), &mp);
             const float s = (mp.sigmaA + mp.sigmaS).average();
             if (s > 0.f) sum += std::min(double(s), kMaxSigma);
         }

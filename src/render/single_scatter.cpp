@@ -79,7 +79,7 @@ private:
         PathThroughput& throughput = path.throughput;
         const ScatterPointWalk walk = chooseScatterPoints(
             ts.tracking, path.ray, ahead.tEnd, sampler, rec.flightEmission(throughput.beta),
-            rec.cameraRayData(), mGuide.get());
+            rec.cameraRayData(), mGuide.get(), &scene.mediumHoldouts);
         rec.cameraFlightEnded(walk.reachedEnd);
         rec.recordFlightEmission();
         for (int k = 0; walk.chosen && mDirect && k < kScatterPoints; ++k)

@@ -129,7 +129,7 @@ private:
             trackCollisions(ts.tracking, path.ray, tEnd, sampler, [&](const Collision& c) {
                 if (data) data->seen(c);
                 const Medium& m = ts.tracking.medium(c.medium);
-                if (rec.holdout(m)) {
+                if (rec.holdout(size_t(c.medium))) {
                     if (chooseEvent(c, throughput, sampler).event == MediumEvent::Null)
                         return Track::Continue;
                     f.end = Flight::End::HeldOut;

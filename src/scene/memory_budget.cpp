@@ -99,8 +99,8 @@ MemoryEstimate estimateFrameMemory(const Scene& scene, const std::string& integr
     std::set<const void*> seen;
     uint64_t grids = 0;
     for (const auto& m : scene.render.media)
-        for (const FloatGrid& g : m->grids())
-            if (g.valid() && seen.insert(g.grid()).second) grids += g.memoryBytes();
+        for (const FloatGrid& g : m->binding().grids())
+            if (g.valid() && seen.insert(g.treeId()).second) grids += g.memoryBytes();
     uint64_t resident = currentMemoryBytes();
     e.items.push_back({"grids (" + std::to_string(seen.size()) + ", as loaded)", grids});
     e.items.push_back({"program, libraries, surfaces and majorants (resident now)",

@@ -5,7 +5,6 @@
 #include <cstdio>
 
 #include "core/grid_name.h"
-#include "medium/medium.h"
 #include "scene/geometry_loader.h"
 #include "scene/scene.h"
 #include "volume/vdb_file.h"
@@ -142,18 +141,6 @@ std::vector<std::string> fileGridNames(const std::string& file) {
     return names;
 }
 
-// Moves a medium with its velocity grid over the shutter (Medium::setMotion) and takes the
-// grids it reads off the list of unused ones.
-void applyVelocity(const Scene& scene, Medium* medium, VolumeRecord* rec) {
-    const VelocityRecord& v = rec->velocity;
-    if (v.velocity.valid())
-        medium->setMotion(v.velocity, v.scale,
-                          float(scene.shutter.maxTimeOffset(scene.output.fps)));
-    auto& unused = rec->unusedGrids;
-    for (const std::string& n : {v.grid, v.grid + ".x", v.grid + ".y", v.grid + ".z"})
-        unused.erase(std::remove(unused.begin(), unused.end(), n), unused.end());
-}
-
 KeyedTransform readVolumeTransform(const TableReader& t, int frame, double fps) {
     const TransformParts base = readTransformParts(t);
     std::vector<TransformKey> keys;
@@ -173,10 +160,19 @@ KeyedTransform readVolumeTransform(const TableReader& t, int frame, double fps) 
     return KeyedTransform(std::move(keys));
 }
 
-void applyTransformMotion(const Scene& scene, const KeyedTransform& keys, Medium* medium) {
-    if (!keys.moves() || !scene.shutter.blurs()) return;
-    medium->setTransformMotion(keys, float(scene.shutter.open / scene.output.fps),
-                               float(scene.shutter.close / scene.output.fps));
+MediumMotion volumeMotion(const Scene& scene, const KeyedTransform& keys, VolumeRecord* rec) {
+    MediumMotion motion;
+    const VelocityRecord& v = rec->velocity;
+    if (v.velocity.valid())
+        motion.setVelocity(v.velocity, v.scale,
+                           float(scene.shutter.maxTimeOffset(scene.output.fps)));
+    auto& unused = rec->unusedGrids;
+    for (const std::string& n : {v.grid, v.grid + ".x", v.grid + ".y", v.grid + ".z"})
+        unused.erase(std::remove(unused.begin(), unused.end(), n), unused.end());
+    if (keys.moves() && scene.shutter.blurs())
+        motion.setTransformKeys(keys, float(scene.shutter.open / scene.output.fps),
+                                float(scene.shutter.close / scene.output.fps));
+    return motion;
 }
 
 // The camera's shutter in seconds from the frames the scene (or the command line) gives.

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/keyed_transform.h"
+#include "medium/medium_motion.h"
 #include "scene/toml_reader.h"
 #include "volume/vector_grid.h"
 
@@ -61,16 +62,13 @@ KeyedTransform readVolumeTransform(const TableReader& transform, int frame, doub
 
 struct Scene;
 struct VolumeRecord;
-class Medium;
 
 // The grid names of a VDB file in order (an unnamed grid as "#N"), where a velocity is sought.
 std::vector<std::string> fileGridNames(const std::string& file);
-// Moves `medium` with its record's velocity grid over the scene's shutter (Medium::setMotion)
-// and takes the grids it reads off the record's unused ones.
-void applyVelocity(const Scene& scene, Medium* medium, VolumeRecord* rec);
-// Moves `medium` along its keyed transform over the scene's shutter when the keys move it and
-// the shutter is open (Medium::setTransformMotion).
-void applyTransformMotion(const Scene& scene, const KeyedTransform& keys, Medium* medium);
+// How a volume moves over the scene's shutter (medium/medium_motion.h, for Medium::setMotion):
+// with its record's velocity grid, and along its keyed transform when the keys move it and the
+// shutter is open. The grids the velocity reads are taken off the record's unused ones.
+MediumMotion volumeMotion(const Scene& scene, const KeyedTransform& keys, VolumeRecord* rec);
 // The camera's shutter in seconds, from the frames the scene (or the command line) gives.
 void setShutterSeconds(Scene* scene);
 

@@ -31,7 +31,7 @@ std::shared_ptr<const IndexField> gridField(const TableReader& t,
     const std::vector<std::string> slots = shader.gridSlots();
     size_t at = 0;
     while (at < slots.size() && slots[at] != slot) ++at;
-    if (at >= slots.size() || at >= m.grids().size()) {
+    if (at >= slots.size() || at >= m.binding().grids().size()) {
         t.fail("grid", "volume " + std::to_string(index) + "'s shader '" + shader.name +
                            "' has no grid slot '" + slot + "'; its slots are: " + joinList(slots));
     }
@@ -47,7 +47,7 @@ std::shared_ptr<const IndexField> gridField(const TableReader& t,
         t.fail("volume", "a temperature grid bends light only under a uniform scale and a "
                          "translation; volume " + std::to_string(index) +
                          " is rotated or scaled unevenly");
-    DenseScalarGrid d = denseFromFloatGrid(m.grids()[at], 0.f);
+    DenseScalarGrid d = denseFromFloatGrid(m.binding().grids()[at], 0.f);
     for (float& v : d.values) v = float(std::max(ambient, offset + scale * double(v)));
     d.background = float(ambient);
     d.origin = Vec3d(xf.point(Vec3(d.origin)));

@@ -19,7 +19,7 @@ bool isNanoVdb(const std::string& file) {
 std::vector<SlotInfo> slotsOf(const VolumeRecord& v, const Medium& m) {
     std::vector<SlotInfo> slots;
     for (size_t b = 0; b < v.bindings.size(); ++b) {
-        const FloatGrid& g = m.grids()[b];
+        const FloatGrid& g = m.binding().grids()[b];
         slots.push_back({v.bindings[b].first, v.bindings[b].second, g.activeVoxels(), g.treeBytes(),
                          g.denseBytes(), g.maxValue()});
     }
@@ -29,14 +29,14 @@ std::vector<SlotInfo> slotsOf(const VolumeRecord& v, const Medium& m) {
 // Motion: the velocity grid (described even with the shutter closed, when the render does not
 // load it) and how far it moves the lookups; a keyed transform.
 void describeMotion(const VolumeRecord& v, const Medium& m, VolumeInfo* info) {
-    info->transformMoves = m.transformMoves();
+    info->transformMoves = m.motion().transformMoves();
     if (v.file.empty()) return;
     VelocityRecord velocity = v.velocity;
     if (!velocity.grid.empty() && !velocity.velocity.valid())
         velocity.velocity = loadVelocityGrid(v.file, velocity.grid);
     info->velocity = describeVelocity(velocity);
-    info->moving = m.moving();
-    info->blurRadius = m.blurRadius();
+    info->moving = m.motion().moving();
+    info->blurRadius = m.motion().blurRadius();
 }
 
 VolumeInfo describeVolume(const VolumeRecord& v, const Medium& m) {
@@ -89,7 +89,7 @@ OutputInfo describeOutput(const Scene& scene) {
             {kind, pass, std::string(kind) == "volume" ? o.volumes : o.shapes});
     }
     for (size_t i = 0; i < scene.render.media.size(); ++i)
-        if (scene.render.media[i]->holdout()) out.holdouts.push_back("volume " + std::to_string(i));
+        if (scene.render.holdout(i)) out.holdouts.push_back("volume " + std::to_string(i));
     const GeometryScene* g = scene.render.geometry.get();
     for (size_t i = 0; g && i < g->shapeCount(); ++i)
         if (g->shape(int(i)).holdout) out.holdouts.push_back("shape " + std::to_string(i));

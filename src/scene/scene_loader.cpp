@@ -435,21 +435,17 @@ void readVolume(const TableReader& v, const Resolve& resolve, const std::string&
     scene->render.cryptoObjects.volumes.push_back(
         readObjectName(v, "volume" + std::to_string(scene->render.media.size())));
     v.finish();
-    if (boxed) {
-        scene->render.media.push_back(std::make_unique<Medium>(shader, box, xf, rec.densityScale));
-        applyTransformMotion(*scene, keys, scene->render.media.back().get());
-    } else {
-        auto medium = buildMedium(shader, rec, bind, xf, scene->majorantResolution, where, *scene,
-                                  options);
-        try {
-            applyVelocity(*scene, medium.get(), &rec);
-        } catch (const MirageError& e) {
-            v.fail(v.has("velocity") ? "velocity" : "file", e.what());
-        }
-        applyTransformMotion(*scene, keys, medium.get());
-        scene->render.media.push_back(std::move(medium));
+    auto medium = boxed ? std::make_unique<Medium>(shader, box, xf, rec.densityScale)
+                        : buildMedium(shader, rec, bind, xf, scene->majorantResolution, where,
+                                      *scene, options);
+    try {
+        medium->setMotion(volumeMotion(*scene, keys, &rec));
+    } catch (const MirageError& e) {
+        v.fail(v.has("velocity") ? "velocity" : "file", e.what());
     }
-    scene->render.media.back()->setHoldout(holdout);
+    scene->render.media.push_back(std::move(medium));
+    scene->render.mediumHoldouts.resize(scene->render.media.size());
+    scene->render.mediumHoldouts.back() = holdout;
     scene->volumes.push_back(std::move(rec));
 }
 
@@ -458,17 +454,20 @@ void readVolume(const TableReader& v, const Resolve& resolve, const std::string&
 void confineInteriorMedia(Scene* scene) {
     const GeometryScene* geometry = scene->render.geometry.get();
     if (!geometry) return;
+    std::vector<Confinement> where(scene->render.media.size());
     for (size_t i = 0; i < geometry->shapeCount(); ++i) {
         int m = geometry->shape(int(i)).interiorMedium;
         if (m < 0) continue;
         auto region = geometry->interiorRegion(int(i));
-        for (size_t j = 0; j < scene->render.media.size(); ++j) {
+        for (size_t j = 0; j < where.size(); ++j) {
             if (int(j) == m)
-                scene->render.media[j]->confineTo(region);
+                where[j].confineTo(region);
             else
-                scene->render.media[j]->excludeFrom(region);
+                where[j].excludeFrom(region);
         }
     }
+    for (size_t j = 0; j < where.size(); ++j)
+        scene->render.media[j]->setConfinement(std::move(where[j]));
 }
 
 // [refraction]; a field with ∇n = 0 everywhere bends nothing: the scene renders as without it.
@@ -560,7 +559,7 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
     scene.render.camera = frameBounds(medium->worldBounds(), 40.f, aspect);
     rec.velocity = findVelocity(rec.file, names, scene.shutter.blurs());
     try {
-        applyVelocity(scene, medium.get(), &rec);
+        medium->setMotion(volumeMotion(scene, KeyedTransform(), &rec));
     } catch (const MirageError& e) {
         throw MirageError(rec.file + ": " + e.what());
     }

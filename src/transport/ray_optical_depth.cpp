@@ -4,8 +4,15 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "volume/grid_lookup.h"
 
 namespace mirage {
+
+RayOpticalDepth::MediumInfo::MediumInfo(const Medium* m) : medium(m), context(*m) {}
+
+RayOpticalDepth::RayOpticalDepth(RayOpticalDepth&&) noexcept = default;
+RayOpticalDepth& RayOpticalDepth::operator=(RayOpticalDepth&&) noexcept = default;
+RayOpticalDepth::~RayOpticalDepth() = default;
 
 RayOpticalDepth::RayOpticalDepth(const std::vector<const Medium*>& media, float stepVoxels)
     : mStepVoxels(stepVoxels) {
@@ -14,12 +21,11 @@ RayOpticalDepth::RayOpticalDepth(const std::vector<const Medium*>& media, float 
     for (const Medium* m : media) {
         MediumInfo info(m);
         info.voxel = kInfinity;
-        for (const FloatGrid& g : m->grids()) {
+        for (const FloatGrid& g : m->binding().grids()) {
             info.accessors.push_back(g.accessor());
-            auto v = g.grid()->voxelSize();
-            info.voxel = std::min(info.voxel, float(std::min(v[0], std::min(v[1], v[2]))));
+            info.voxel = std::min(info.voxel, g.minVoxelSize());
         }
-        if (m->grids().empty()) {
+        if (m->binding().grids().empty()) {
             const MajorantGrid& maj = m->majorant();
             Vec3 diag = maj.bounds().diagonal();
             for (int a = 0; a < 3; ++a)
@@ -28,10 +34,10 @@ RayOpticalDepth::RayOpticalDepth(const std::vector<const Medium*>& media, float 
         const auto& components = m->shader().components;
         for (int i = 0; i < int(components.size()); ++i) {
             const MediumComponent& c = components[size_t(i)];
-            const ComponentModel& model = m->componentModel(i);
-            const float k = c.concentration * m->densityScale();
+            const ComponentModel& model = m->binding().componentModel(i);
+            const float k = c.concentration * m->binding().densityScale();
             Term term;
-            term.grid = m->componentSlot(i);
+            term.grid = m->binding().componentSlot(i);
             term.scale = k;
             if (model.grey()) {
                 float sigmaT = c.sigmaA.constantValue() + c.sigmaS.constantValue();
@@ -63,13 +69,14 @@ void RayOpticalDepth::march(const Ray& ray, float tMax) {
     float t0 = kInfinity, t1 = -kInfinity, h = kInfinity;
     for (size_t i = 0; i < mMedia.size(); ++i) {
         const Medium& m = *mMedia[i].medium;
-        Ray objectRay = m.toObject(ray, mMedia[i].context);
+        Ray objectRay = mMedia[i].context.toObject(ray);
         float a, b;
         if (!m.objectBounds().intersect(objectRay.o, objectRay.d, 0.f, tMax, &a, &b) || !(a < b))
             continue;
         // A medium confined to a region: its chord (convex), or first entry to last exit, where
         // the nodes' midpoints test the region.
-        if (m.region() && (!m.region()->clip(ray, &a, &b) || !(a < b))) continue;
+        const Confinement& where = m.confinement();
+        if (!where.clip(ray, &a, &b) || !(a < b)) continue;
         mSpans.push_back({int(i), objectRay, a, b});
         t0 = std::min(t0, a);
         t1 = std::max(t1, b);
@@ -77,9 +84,10 @@ void RayOpticalDepth::march(const Ray& ray, float tMax) {
         h = std::min(h, mStepVoxels * mMedia[i].voxel / length(objectRay.d));
         // A non-convex region, and every region cut out, is sampled at the nodes' midpoints:
         // 1/64 of its size apart.
-        if (m.region() && !m.region()->convex())
-            h = std::min(h, length(m.region()->bounds().diagonal()) / 64.f);
-        for (const auto& r : m.excluded()) h = std::min(h, length(r->bounds().diagonal()) / 64.f);
+        if (where.region() && !where.region()->convex())
+            h = std::min(h, length(where.region()->bounds().diagonal()) / 64.f);
+        for (const auto& r : where.excluded())
+            h = std::min(h, length(r->bounds().diagonal()) / 64.f);
     }
     if (mSpans.empty() || !(t0 < t1)) {
         mT0 = mT1 = 0.f;
@@ -114,9 +122,9 @@ void RayOpticalDepth::march(const Ray& ray, float tMax) {
 void RayOpticalDepth::addSpan(const Ray& ray, const Span& s) {
     MediumInfo& info = mMedia[size_t(s.medium)];
     const Medium& medium = *info.medium;
-    const auto& grids = medium.grids();
-    const bool convex = !medium.region() || medium.region()->convex();
-    const bool testRegion = !convex || !medium.excluded().empty();
+    const auto& grids = medium.binding().grids();
+    const Confinement& where = medium.confinement();
+    const bool testRegion = !where.oneInterval();
     const size_t C = size_t(mChannels);
     // The nodes whose intervals overlap the span.
     const int jBegin = std::max(0, int(std::floor((s.t0 - mT0) / mH)) - 1);
@@ -129,8 +137,8 @@ void RayOpticalDepth::addSpan(const Ray& ray, const Span& s) {
         const float lo = std::max(a, s.t0), hi = std::min(b, s.t1);
         if (!(hi > lo)) continue;
         const float mid = 0.5f * (lo + hi);
-        if (testRegion && !medium.inRegionWorld(ray.at(mid))) continue;
-        const Vec3 q = medium.lookupPoint(info.context, s.objectRay.at(mid));  // p unless blurred
+        if (testRegion && !where.contains(ray.at(mid))) continue;
+        const Vec3 q = info.context.motion().lookupPoint(s.objectRay.at(mid));  // p unless blurred
         float* inc = &mTau[size_t(j + 1) * C];
         for (const Term& term : info.terms) {
             const size_t g = size_t(term.grid);

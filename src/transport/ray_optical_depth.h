@@ -50,11 +50,15 @@ public:
     static constexpr float kOpaqueDepth = 30.f;
 
     explicit RayOpticalDepth(const std::vector<const Medium*>& media, float stepVoxels = 0.5f);
+    // Out of line: the accessors are NanoVDB's types (volume/grid_lookup.h).
+    RayOpticalDepth(RayOpticalDepth&&) noexcept;
+    RayOpticalDepth& operator=(RayOpticalDepth&&) noexcept;
+    ~RayOpticalDepth();
 
     // Tabulates τ along worldRay (unit direction) over [0, tMax].
     void march(const Ray& worldRay, float tMax);
     // The time (s from the frame, motion blur) of the rays marched from now on: moving media
-    // are read where Medium::lookupPoint says.
+    // are read where MediumMotion::Path::lookupPoint says.
     void setTimeOffset(float seconds) {
         mTime = seconds;
         for (MediumInfo& m : mMedia) m.context.setTimeOffset(seconds);
@@ -90,7 +94,7 @@ private:
         float exponent = 1.f;  // the channel integrates (scale · grid)^exponent
     };
     struct MediumInfo {
-        explicit MediumInfo(const Medium* m) : medium(m), context(*m) {}
+        explicit MediumInfo(const Medium* m);
         const Medium* medium;
         std::vector<Term> terms;
         std::vector<FloatGrid::Accessor> accessors;

@@ -13,7 +13,7 @@ bool sampleReemission(const Medium& m, Medium::Context& ctx, const Vec3& pWorld,
     const auto& comps = m.shader().components;
     const int n = int(comps.size());
     std::array<float, kMaxComponents> sigmaA{};
-    Vec3 pObject = m.pointToObject(pWorld, ctx);
+    Vec3 pObject = ctx.pointToObject(pWorld);
     m.sigmaAComponentsAt(pObject, ctx, lambdaInNm, sigmaA.data());
 
     float uComponent = sampler.get1D(), uGamma = sampler.get1D(), uLambda = sampler.get1D();
@@ -57,7 +57,7 @@ InelasticEvent sampleInelasticEvent(const Medium& m, Medium::Context& ctx, const
     const float uComponent = sampler.get1D(), uChoose = sampler.get1D(), uLambda = sampler.get1D();
     const float u1 = sampler.get1D(), u2 = sampler.get1D();
     const size_t c = size_t(fluorescent[size_t(std::min(int(uComponent * float(nf)), nf - 1))]);
-    const Vec3 pObject = m.pointToObject(pWorld, ctx);
+    const Vec3 pObject = ctx.pointToObject(pWorld);
     std::array<float, kMaxComponents> sigmaA{};
     float sigmaHat = 0.f;
     for (float lambda = 360.f; lambda <= 780.f; lambda += 60.f) {

@@ -4,7 +4,8 @@ namespace mirage {
 
 ScatterPointWalk chooseScatterPoints(TrackingContext& ctx, const Ray& worldRay, float tEnd,
                                      Sampler& sampler, const EmissionSink& emission,
-                                     CollisionObserver* observer, const ScatterGuide* guide) {
+                                     CollisionObserver* observer, const ScatterGuide* guide,
+                                     const std::vector<bool>* holdouts) {
     const SampledSpectrum& beta = emission.beta;
     ScatterPointWalk walk;
     SampledSpectrum T(1.f);
@@ -21,13 +22,15 @@ ScatterPointWalk chooseScatterPoints(TrackingContext& ctx, const Ray& worldRay, 
     walk.reachedEnd = trackCollisions(ctx, worldRay, tEnd, sampler, [&](const Collision& c) {
         if (observer) observer->seen(c);
         const Medium& m = ctx.medium(size_t(c.medium));
-        if (m.holdout())
+        const size_t mi = size_t(c.medium);
+        const bool holdout = holdouts && mi < holdouts->size() && (*holdouts)[mi];
+        if (holdout)
             walk.holdoutCoverage += (T * (c.mp.sigmaA + c.mp.sigmaS) / c.sigmaMaj).average();
         else if (m.emissive() && emission.parts)
             emission.parts->push_back({c.t, beta * T * c.mp.sigmaA * c.mp.Le / c.sigmaMaj});
         else if (m.emissive())
             *emission.L += beta * T * c.mp.sigmaA * c.mp.Le / c.sigmaMaj;
-        const SampledSpectrum w = m.holdout() ? SampledSpectrum(0.f) : T * c.mp.sigmaS / c.sigmaMaj;
+        const SampledSpectrum w = holdout ? SampledSpectrum(0.f) : T * c.mp.sigmaS / c.sigmaMaj;
         // The resampling weight: w̄, times the guide's guess of the light at the point.
         const float wMean = guide && w.average() > 0.f ? w.average() * guide->at(c.p) : w.average();
         if (wMean > 0.f) {

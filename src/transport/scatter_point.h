@@ -53,13 +53,15 @@ struct EmissionSink {
 
 // Walks worldRay over (0, tEnd). Emission is scored into `emission` at every tentative
 // collision (β T σa Le / σ̄, the collision estimator of ∫ T σa Le). A holdout medium
-// (Medium::holdout) only attenuates: it emits nothing and holds no scattering point. An observer
+// (`holdouts`, indexed like ctx's media, RenderScene::mediumHoldouts; null or short: none there)
+// only attenuates: it emits nothing and holds no scattering point. An observer
 // sees every tentative collision the walk meets. With a guide (transport/scatter_guide.h), the
 // points are drawn ∝ T σs g(p) instead of T σs and weighted by 1/g: the same expectation, less
 // variance where g follows the light.
 ScatterPointWalk chooseScatterPoints(TrackingContext& ctx, const Ray& worldRay, float tEnd,
                                      Sampler& sampler, const EmissionSink& emission,
                                      CollisionObserver* observer = nullptr,
-                                     const ScatterGuide* guide = nullptr);
+                                     const ScatterGuide* guide = nullptr,
+                                     const std::vector<bool>* holdouts = nullptr);
 
 }  // namespace mirage

@@ -103,7 +103,7 @@ SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float t
     // Optical depths add over superposed media, so T is the product of each medium's
     // transmittance. Homogeneous media have Beer–Lambert's closed form, exp(−σt(λ) ℓ) with ℓ
     // the length of the ray inside the box (t is world metres in object space too, see
-    // Medium::toObject): exact and noiseless (docs/design.md, "homogeneous closed-form
+    // Medium::Context::toObject): exact and noiseless (docs/design.md, "homogeneous closed-form
     // transmittance where a medium is constant").
     SampledSpectrum tau(0.f);
     bool heterogeneous = false;
@@ -113,11 +113,11 @@ SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float t
             heterogeneous = true;
             continue;
         }
-        Ray r = m.toObject(worldRay, ctx.context(i));
+        Ray r = ctx.context(i).toObject(worldRay);
         float t0, t1;
         if (!m.objectBounds().intersect(r.o, r.d, 0.f, tMax, &t0, &t1) || !(t1 > t0)) continue;
         // A medium confined to a convex region: the chord through region ∩ box.
-        if (m.region() && (!m.region()->clip(worldRay, &t0, &t1) || !(t1 > t0))) continue;
+        if (!m.confinement().clip(worldRay, &t0, &t1) || !(t1 > t0)) continue;
         MediumPoint mp;
         m.eval(r.at(0.5f * (t0 + t1)), ctx.context(i), &mp);  // inside box and region
         tau += (mp.sigmaA + mp.sigmaS) * (t1 - t0);
@@ -137,7 +137,7 @@ SampledSpectrum residualRatioTracking(TrackingContext& ctx, size_t i, const Ray&
                                       float tMax, Sampler& sampler) {
     const Medium& m = ctx.medium(i);
     Medium::Context& mc = ctx.context(i);
-    const Ray r = m.toObject(worldRay, ctx.context(i));
+    const Ray r = mc.toObject(worldRay);
     SampledSpectrum T(1.f);
     float tau = exponentialDraw(sampler);  // majorant optical depth to the next collision
     uint64_t collisions = 0;

@@ -39,7 +39,7 @@ bool trackCollisions(TrackingContext& ctx, const Ray& worldRay, float tMax, Samp
 
     for (size_t i = 0; i < n; ++i) {
         const Medium& medium = ctx.medium(i);
-        const Ray objectRay = medium.toObject(worldRay, ctx.context(i));
+        const Ray objectRay = ctx.context(i).toObject(worldRay);
         Stream& s = *new (&streams[i])
             Stream{objectRay, MajorantGrid::Walk(medium.majorant(), objectRay.o, objectRay.d, 0.f,
                                                  tMax),

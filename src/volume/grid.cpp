@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "volume/grid_lookup.h"
 #include "volume/stored_values.h"
 
 namespace mirage {
@@ -27,25 +28,32 @@ FloatGrid::FloatGrid(nanovdb::GridHandle<nanovdb::HostBuffer> handle, std::strin
     : mHandle(std::make_shared<nanovdb::GridHandle<nanovdb::HostBuffer>>(std::move(handle))),
       mName(std::move(name)),
       mSanitized(sanitizedVoxels) {
-    mGrid = mHandle->grid<float>();
-    MIRAGE_CHECK(mGrid != nullptr);
-    mIndexMap = IndexMap(mGrid->map());
+    const nanovdb::FloatGrid* g = grid();
+    MIRAGE_CHECK(g != nullptr);
+    mIndexMap = IndexMap(g->map());
 
     // A voxel at index i contributes to trilinear lookups in the open interval (i-1, i+1) on
     // each axis, so the medium is non-zero only inside the active index bbox dilated by one
     // voxel. Its 8 corners through the grid's affine index → object map bound it in object space.
-    const nanovdb::CoordBBox box = mGrid->indexBBox();
+    const nanovdb::CoordBBox box = g->indexBBox();
     if (!box.empty()) {
         for (int c = 0; c < 8; ++c) {
             nanovdb::Vec3d corner(c & 1 ? box.max()[0] + 1.0 : box.min()[0] - 1.0,
                                   c & 2 ? box.max()[1] + 1.0 : box.min()[1] - 1.0,
                                   c & 4 ? box.max()[2] + 1.0 : box.min()[2] - 1.0);
-            nanovdb::Vec3d p = mGrid->indexToWorld(corner);
+            nanovdb::Vec3d p = g->indexToWorld(corner);
             mObjectBounds.expand(Vec3(float(p[0]), float(p[1]), float(p[2])));
         }
     }
-    mMaxValue = maxStoredValue(*mGrid);
-    mDense = DenseBlock::of(*mGrid, treeBytes());
+    const nanovdb::Vec3d voxel = g->voxelSize();
+    mMinVoxelSize = float(std::min(voxel[0], std::min(voxel[1], voxel[2])));
+    mActiveVoxels = g->activeVoxelCount();
+    mMaxValue = maxStoredValue(*g);
+    mDense = DenseBlock::of(*g, treeBytes());
 }
+
+uint64_t FloatGrid::treeBytes() const { return mHandle ? mHandle->size() : 0; }
+
+uint64_t FloatGrid::denseBytes() const { return mDense ? mDense->bytes() : 0; }
 
 }  // namespace mirage

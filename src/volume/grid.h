@@ -1,34 +1,37 @@
 // A scalar volume grid in NanoVDB form: the hot-path representation every shader samples.
+//
+// This header names no NanoVDB type, so that the stages which only hold grids, bind them or
+// report on them do not compile NanoVDB's ~7 000 header lines. What a lookup needs — the
+// accessor, the inline trilinear sample, the NanoVDB grid itself — is in volume/grid_lookup.h,
+// which the files that look grids up include (docs/design.md, "Headers").
 #pragma once
 
-#include <nanovdb/NanoVDB.h>
-#include <nanovdb/util/GridHandle.h>
-#include <nanovdb/util/SampleFromVoxels.h>
-
-#include <cmath>
+#include <cstdint>
 #include <memory>
 #include <string>
 
 #include "core/math.h"
-#include "volume/dense_block.h"
 #include "volume/index_map.h"
-#include "volume/leaf_stencil.h"
+#include "volume/nanovdb_fwd.h"
 
 namespace mirage {
 
+class DenseBlock;
+
 class FloatGrid {
 public:
-    using Accessor = nanovdb::FloatGrid::AccessorType;
-    using Sampler = nanovdb::SampleFromVoxels<Accessor, 1, false>;  // trilinear
+    // A thread's cached path through the tree (volume/grid_lookup.h).
+    class Accessor;
 
     FloatGrid() = default;
     FloatGrid(nanovdb::GridHandle<nanovdb::HostBuffer> handle, std::string name,
               uint64_t sanitizedVoxels = 0);
 
-    bool valid() const { return mGrid != nullptr; }
+    bool valid() const { return mHandle != nullptr; }
     const std::string& name() const { return mName; }
-    const nanovdb::FloatGrid* grid() const { return mGrid; }
-    Accessor accessor() const { return mGrid->getAccessor(); }
+    // The NanoVDB grid (a const nanovdb::FloatGrid*) and a new accessor of it.
+    inline const auto* grid() const;
+    inline Accessor accessor() const;
 
     // Trilinear value at an object-space point (metres). Outside the active region the
     // background (0 for fog volumes) is returned.
@@ -38,34 +41,22 @@ public:
     // stencil lies inside one 8³ leaf — 343 of 512 cell positions — from that leaf at fixed
     // offsets, instead of 8 accessor lookups that each compare the cached keys of three tree
     // levels. It is the renderer's hottest call (every tentative collision and every
-    // shadow-ray control reads it).
-    float sample(const Accessor& acc, const Vec3& pObject) const {
-        using Leaf = nanovdb::NanoLeaf<float>;
-        nanovdb::Vec3f pi = mIndexMap.toIndex(nanovdb::Vec3f(pObject.x, pObject.y, pObject.z));
-        const float fi[3] = {std::floor(pi[0]), std::floor(pi[1]), std::floor(pi[2])};
-        const nanovdb::Coord ijk{int32_t(fi[0]), int32_t(fi[1]), int32_t(fi[2])};
-        const float u[3] = {pi[0] - fi[0], pi[1] - fi[1], pi[2] - fi[2]};
-        uint32_t o;
-        if (mDense && mDense->holdsStencil(ijk, &o)) {
-            const DenseBlock& d = *mDense;
-            auto v = [&](int i, int j, int k) { return d.value(o + d.step(i, j, k)); };
-            return trilinearStencil<float>(v, u);
-        }
-        constexpr int kStencil[3] = {1, 1, 1};
-        if (const Leaf* leaf = leafHoldingBox<Leaf>(acc, ijk, kStencil))
-            return trilinearInLeaf(*leaf, Leaf::CoordToOffset(ijk), u);
-        return nanovdb::createSampler<1, Accessor, false>(acc)(pi);
-    }
+    // shadow-ray control reads it). Defined in volume/grid_lookup.h.
+    inline float sample(const Accessor& acc, const Vec3& pObject) const;
 
     Bounds3 objectBounds() const { return mObjectBounds; }  // active voxels, dilated by 1 voxel
-    // Index-space active bbox, inclusive.
-    nanovdb::CoordBBox indexBounds() const { return mGrid->indexBBox(); }
+    // Index-space active bbox, inclusive (a nanovdb::CoordBBox).
+    inline auto indexBounds() const;
+    // The smallest edge of a voxel in object space (metres).
+    float minVoxelSize() const { return mMinVoxelSize; }
     float maxValue() const { return mMaxValue; }
-    uint64_t activeVoxels() const { return mGrid->activeVoxelCount(); }
-    uint64_t treeBytes() const { return mHandle ? mHandle->size() : 0; }  // the NanoVDB buffer
-    uint64_t denseBytes() const { return mDense ? mDense->bytes() : 0; }  // the dense copy
+    uint64_t activeVoxels() const { return mActiveVoxels; }
+    uint64_t treeBytes() const;   // the NanoVDB buffer
+    uint64_t denseBytes() const;  // the dense copy
     uint64_t memoryBytes() const { return treeBytes() + denseBytes(); }
     uint64_t sanitizedVoxels() const { return mSanitized; }
+    // What copies of one grid share, and grids read apart do not: the tree's buffer.
+    const void* treeId() const { return mHandle.get(); }
     // The same grid without its dense copy: lookups through the tree alone (the copy's tests).
     FloatGrid treeOnly() const {
         FloatGrid g = *this;
@@ -75,12 +66,13 @@ public:
 
 private:
     std::shared_ptr<nanovdb::GridHandle<nanovdb::HostBuffer>> mHandle;
-    const nanovdb::FloatGrid* mGrid = nullptr;
-    IndexMap mIndexMap;  // object → index space (volume/index_map.h)
+    IndexMap mIndexMap;                        // object → index space (volume/index_map.h)
     std::shared_ptr<const DenseBlock> mDense;  // null: the tree alone (volume/dense_block.h)
     std::string mName;
     Bounds3 mObjectBounds;
+    float mMinVoxelSize = 0.f;
     float mMaxValue = 0.f;
+    uint64_t mActiveVoxels = 0;
     uint64_t mSanitized = 0;
 };
 

@@ -7,10 +7,14 @@
 // OpenVDB with a uniform or per-axis voxel size have a diagonal matrix, and there the sums reduce
 // exactly: fmaf(x, m0, fmaf(y, 0, z·0)) = round(x·m0) + (±0) = round(x·m0), up to the sign of a
 // zero, which neither floor() nor the stencil's fractions can tell apart. Rotated or sheared
-// maps keep NanoVDB's own transform.
+// maps keep NanoVDB's own transform (index_map.cpp).
+//
+// The header names no NanoVDB type but the map it is built from: grids hold one by value, and
+// every stage that sees a grid sees this header (docs/design.md, "Headers").
 #pragma once
 
-#include <nanovdb/NanoVDB.h>
+#include "core/math.h"
+#include "volume/nanovdb_fwd.h"
 
 namespace mirage {
 
@@ -24,22 +28,18 @@ bool isDiagonal3x3(const T* m) {
 class IndexMap {
 public:
     IndexMap() = default;
-    explicit IndexMap(const nanovdb::Map& map) : mMap(&map) {
-        const float* m = map.mInvMatF;
-        mDiagonal = isDiagonal3x3(m);
-        for (int a = 0; a < 3; ++a) {
-            mScale[a] = m[4 * a];
-            mOffset[a] = map.mVecF[a];
-        }
-    }
+    explicit IndexMap(const nanovdb::Map& map);
 
-    nanovdb::Vec3f toIndex(const nanovdb::Vec3f& p) const {
-        if (!mDiagonal) return mMap->applyInverseMapF(p);
-        return {(p[0] - mOffset[0]) * mScale[0], (p[1] - mOffset[1]) * mScale[1],
-                (p[2] - mOffset[2]) * mScale[2]};
+    Vec3 toIndex(const Vec3& p) const {
+        if (!mDiagonal) return applyInverseMap(p);
+        return {(p.x - mOffset[0]) * mScale[0], (p.y - mOffset[1]) * mScale[1],
+                (p.z - mOffset[2]) * mScale[2]};
     }
 
 private:
+    // NanoVDB's applyInverseMapF, for maps with a rotation or shear.
+    Vec3 applyInverseMap(const Vec3& p) const;
+
     const nanovdb::Map* mMap = nullptr;
     bool mDiagonal = false;
     float mScale[3] = {0.f, 0.f, 0.f};

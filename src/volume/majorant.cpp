@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "volume/grid_lookup.h"
 #include "volume/index_map.h"
 
 namespace mirage {

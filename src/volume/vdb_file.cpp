@@ -26,6 +26,7 @@
 
 #include "core/error.h"
 #include "core/grid_name.h"
+#include "volume/grid_lookup.h"
 #include "volume/openvdb_expression.h"
 #include "volume/voxel_rule.h"
 #include "volume/vdb_format.h"
@@ -365,7 +366,7 @@ nanovdb::GridHandle<nanovdb::HostBuffer> toNanoVdb(const std::string& path,
 // the grid goes by: its own, or "#N".
 FloatGrid finishGrid(const std::string& path, const FileLayout& layout, int index,
                      nanovdb::GridHandle<nanovdb::HostBuffer> handle, const std::string& label) {
-    const SanitizeCounts sanitized = sanitizeScalarVoxels(*handle.grid<float>());
+    const SanitizeCounts sanitized = sanitizeScalarVoxels(handle);
     if (sanitized.total() > 0) warnSanitizedOnce(path, label, sanitized);
     std::string name = gridName(layout.grids[size_t(index)].name, size_t(index));
     return FloatGrid(std::move(handle), std::move(name), sanitized.total());
@@ -538,8 +539,7 @@ static VectorGrid finishVectorGrid(const std::string& path, const std::string& l
         fail(path, "could not convert grid " + label + " to NanoVDB: " + boundedMessage(e.what()));
     }
     uint64_t zeroed = 0;
-    const uint64_t changed =
-        sanitizeVectorVoxels(*handle.grid<nanovdb::Vec3f>(), kMaxVoxelValue, &zeroed);
+    const uint64_t changed = sanitizeVectorVoxels(handle, kMaxVoxelValue, &zeroed);
     if (changed > 0) {
         SanitizeCounts counts;
         counts.zeroed = zeroed;

@@ -9,8 +9,9 @@
 #include <utility>
 
 #include "core/error.h"
-#include "volume/leaf_stencil.h"
+#include "volume/grid_lookup.h"
 #include "volume/stored_values.h"
+#include "volume/voxel_rule.h"
 
 namespace mirage {
 
@@ -24,7 +25,9 @@ float norm(const nanovdb::Vec3f& v) { return float(normd(v)); }
 
 }  // namespace
 
-uint64_t sanitizeVectorVoxels(nanovdb::Vec3fGrid& grid, float maxMagnitude, uint64_t* zeroed) {
+uint64_t sanitizeVectorVoxels(nanovdb::GridHandle<nanovdb::HostBuffer>& handle, float maxMagnitude,
+                              uint64_t* zeroed) {
+    nanovdb::Vec3fGrid& grid = *handle.grid<nanovdb::Vec3f>();
     uint64_t changed = 0, zero = 0;
     forEachStoredValue(grid.tree(), [&](nanovdb::Vec3f& v, uint64_t voxels) {
         if (!(std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]))) {
@@ -54,27 +57,28 @@ VectorGrid::VectorGrid(nanovdb::GridHandle<nanovdb::HostBuffer> handle, std::str
       mName(std::move(name)),
       mStaggered(staggered),
       mSanitized(sanitizedVoxels) {
-    mGrid = mHandle->grid<nanovdb::Vec3f>();
-    MIRAGE_CHECK(mGrid != nullptr);
-    mIndexMap = IndexMap(mGrid->map());
+    const nanovdb::Vec3fGrid* g = grid();
+    MIRAGE_CHECK(g != nullptr);
+    mIndexMap = IndexMap(g->map());
+    mActiveVoxels = g->activeVoxelCount();
 
     // A collocated voxel reaches lookups within one voxel of its centre; a staggered component
     // sits half a voxel off it, so its reach is one and a half voxels on that axis.
-    const nanovdb::CoordBBox box = mGrid->indexBBox();
+    const nanovdb::CoordBBox box = g->indexBBox();
     const double reach = mStaggered ? 1.5 : 1.0;
     if (!box.empty()) {
         for (int c = 0; c < 8; ++c) {
             nanovdb::Vec3d corner(c & 1 ? box.max()[0] + reach : box.min()[0] - reach,
                                   c & 2 ? box.max()[1] + reach : box.min()[1] - reach,
                                   c & 4 ? box.max()[2] + reach : box.min()[2] - reach);
-            nanovdb::Vec3d p = mGrid->indexToWorld(corner);
+            nanovdb::Vec3d p = g->indexToWorld(corner);
             mObjectBounds.expand(Vec3(float(p[0]), float(p[1]), float(p[2])));
         }
     }
 
     // Bounds over every stored value (the stencil reads inactive ones too); the range of |v|
     // over the active voxels, for reports.
-    auto& tree = const_cast<nanovdb::Vec3fGrid*>(mGrid)->tree();
+    auto& tree = const_cast<nanovdb::Vec3fGrid*>(g)->tree();
     nanovdb::Vec3f componentMax(0.f);
     forEachStoredValue(tree, [&](nanovdb::Vec3f& v, uint64_t) {
         mMagnitudeBound = std::max(mMagnitudeBound, norm(v));
@@ -83,8 +87,8 @@ VectorGrid::VectorGrid(nanovdb::GridHandle<nanovdb::HostBuffer> handle, std::str
     if (mStaggered) mMagnitudeBound = norm(componentMax);
     mComponentBound = Vec3(componentMax[0], componentMax[1], componentMax[2]);
     mMinMagnitude = kInfinity;
-    const auto* leaf = mGrid->tree().getFirstLeaf();
-    for (uint32_t i = 0; i < mGrid->tree().nodeCount(0); ++i)
+    const auto* leaf = g->tree().getFirstLeaf();
+    for (uint32_t i = 0; i < g->tree().nodeCount(0); ++i)
         for (auto on = leaf[i].valueMask().beginOn(); on; ++on) {
             const float n = norm(leaf[i].getValue(*on));
             mMaxMagnitude = std::max(mMaxMagnitude, n);
@@ -108,7 +112,7 @@ Vec3 sampleCollocated(const VectorGrid::Accessor& acc, const nanovdb::Vec3f& pi)
         const float u[3] = {pi[0] - fi[0], pi[1] - fi[1], pi[2] - fi[2]};
         v = trilinearInLeaf(*leaf, Leaf::CoordToOffset(b), u);
     } else {
-        v = nanovdb::createSampler<1, VectorGrid::Accessor, false>(acc)(pi);
+        v = nanovdb::createSampler<1, VectorGrid::Accessor::Base, false>(acc)(pi);
     }
     return {v[0], v[1], v[2]};
 }
@@ -164,8 +168,11 @@ Vec3 sampleStaggered(const VectorGrid::Accessor& acc, const nanovdb::Vec3f& pi) 
 
 }  // namespace
 
+uint64_t VectorGrid::memoryBytes() const { return mHandle ? mHandle->size() : 0; }
+
 Vec3 VectorGrid::sample(const Accessor& acc, const Vec3& pObject) const {
-    const nanovdb::Vec3f pi = mIndexMap.toIndex(nanovdb::Vec3f(pObject.x, pObject.y, pObject.z));
+    const Vec3 p = mIndexMap.toIndex(pObject);
+    const nanovdb::Vec3f pi(p.x, p.y, p.z);
     return mStaggered ? sampleStaggered(acc, pi) : sampleCollocated(acc, pi);
 }
 

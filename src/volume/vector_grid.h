@@ -8,32 +8,36 @@
 // marker-and-cell grid). A staggered lookup therefore interpolates each component trilinearly
 // on its own lattice, shifted by half a voxel along its axis; reading the vectors as if they
 // were centred would displace every component by half a voxel.
+//
+// Like volume/grid.h, this header names no NanoVDB type: the accessor and the NanoVDB grid are
+// in volume/grid_lookup.h.
 #pragma once
 
-#include <nanovdb/NanoVDB.h>
-#include <nanovdb/util/GridHandle.h>
-
+#include <cstdint>
 #include <memory>
 #include <string>
 
 #include "core/math.h"
 #include "volume/index_map.h"
+#include "volume/nanovdb_fwd.h"
 
 namespace mirage {
 
 class VectorGrid {
 public:
-    using Accessor = nanovdb::Vec3fGrid::AccessorType;
+    // A thread's cached path through the tree (volume/grid_lookup.h).
+    class Accessor;
 
     VectorGrid() = default;
     VectorGrid(nanovdb::GridHandle<nanovdb::HostBuffer> handle, std::string name, bool staggered,
                uint64_t sanitizedVoxels = 0);
 
-    bool valid() const { return mGrid != nullptr; }
+    bool valid() const { return mHandle != nullptr; }
     const std::string& name() const { return mName; }
     bool staggered() const { return mStaggered; }
-    const nanovdb::Vec3fGrid* grid() const { return mGrid; }
-    Accessor accessor() const { return mGrid->getAccessor(); }
+    // The NanoVDB grid (a const nanovdb::Vec3fGrid*) and a new accessor of it.
+    inline const auto* grid() const;
+    inline Accessor accessor() const;
 
     // The vector at an object-space point (metres), in the grid's units; 0 outside the
     // active region (a velocity background is 0).
@@ -51,29 +55,22 @@ public:
     float minMagnitude() const { return mMinMagnitude; }
 
     Bounds3 objectBounds() const { return mObjectBounds; }
-    nanovdb::CoordBBox indexBounds() const { return mGrid->indexBBox(); }
-    uint64_t activeVoxels() const { return mGrid->activeVoxelCount(); }
-    uint64_t memoryBytes() const { return mHandle ? mHandle->size() : 0; }
+    // Index-space active bbox, inclusive (a nanovdb::CoordBBox).
+    inline auto indexBounds() const;
+    uint64_t activeVoxels() const { return mActiveVoxels; }
+    uint64_t memoryBytes() const;
     uint64_t sanitizedVoxels() const { return mSanitized; }
 
 private:
     std::shared_ptr<nanovdb::GridHandle<nanovdb::HostBuffer>> mHandle;
-    const nanovdb::Vec3fGrid* mGrid = nullptr;
     IndexMap mIndexMap;  // object → index space (volume/index_map.h)
     std::string mName;
     bool mStaggered = false;
     Bounds3 mObjectBounds;
     float mMagnitudeBound = 0.f, mMaxMagnitude = 0.f, mMinMagnitude = 0.f;
     Vec3 mComponentBound;
+    uint64_t mActiveVoxels = 0;
     uint64_t mSanitized = 0;
 };
-
-// The voxel rule for vectors, applied to every stored value (leaf voxels, active or not, and
-// tiles): a vector with a NaN or infinite component becomes 0 (it would poison every lookup
-// that reads it), and one longer than `maxMagnitude` is shortened to that length, direction
-// kept. Returns the number of voxels changed (a tile counts all of its voxels); *zeroed, when
-// given, receives how many of them were zeroed.
-uint64_t sanitizeVectorVoxels(nanovdb::Vec3fGrid& grid, float maxMagnitude,
-                              uint64_t* zeroed = nullptr);
 
 }  // namespace mirage

@@ -1,6 +1,7 @@
 #include "volume/voxel_rule.h"
 
 #include <nanovdb/util/GridChecksum.h>
+#include <nanovdb/util/GridHandle.h>
 #include <nanovdb/util/GridStats.h>
 
 #include <cstdio>
@@ -17,7 +18,8 @@ namespace mirage {
 // free-flight sampling meaningless, a NaN poisons every pixel it reaches, and an unbounded value
 // overflows σ = scale × value × cross-section. Counts are of voxels (a tile counts all of its
 // voxels).
-SanitizeCounts sanitizeScalarVoxels(nanovdb::FloatGrid& grid) {
+SanitizeCounts sanitizeScalarVoxels(nanovdb::GridHandle<nanovdb::HostBuffer>& handle) {
+    nanovdb::FloatGrid& grid = *handle.grid<float>();
     SanitizeCounts count;
     auto fix = [&count](float& v, uint64_t voxels) {
         if (!(v >= 0.f)) {  // NaN or negative

@@ -1,11 +1,12 @@
 // The voxel rule (docs/hostile-input.md, "Input rules") on a NanoVDB grid read from a file,
-// and its one warning per grid. No OpenVDB here: it runs on the converted grids.
+// and its one warning per grid. No OpenVDB here: it runs on the converted grids, given by their
+// handles so that the limit below is known without NanoVDB's headers.
 #pragma once
 
 #include <cstdint>
 #include <string>
 
-#include <nanovdb/NanoVDB.h>
+#include "volume/nanovdb_fwd.h"
 
 namespace mirage {
 
@@ -21,8 +22,17 @@ struct SanitizeCounts {
 };
 
 // NaN and negative values (−∞ included) become 0, +∞ and values above kMaxVoxelValue become
-// kMaxVoxelValue, in leaves and tiles; the node statistics and checksum are brought up to date.
-SanitizeCounts sanitizeScalarVoxels(nanovdb::FloatGrid& grid);
+// kMaxVoxelValue, in leaves and tiles of the handle's float grid; the node statistics and
+// checksum are brought up to date.
+SanitizeCounts sanitizeScalarVoxels(nanovdb::GridHandle<nanovdb::HostBuffer>& handle);
+
+// The voxel rule for vectors, applied to every stored value of the handle's Vec3f grid (leaf
+// voxels, active or not, and tiles): a vector with a NaN or infinite component becomes 0 (it
+// would poison every lookup that reads it), and one longer than `maxMagnitude` is shortened to
+// that length, direction kept. Returns the number of voxels changed (a tile counts all of its
+// voxels); *zeroed, when given, receives how many of them were zeroed. (vector_grid.cpp)
+uint64_t sanitizeVectorVoxels(nanovdb::GridHandle<nanovdb::HostBuffer>& handle, float maxMagnitude,
+                              uint64_t* zeroed = nullptr);
 
 // One warning per (file, grid) on stderr, naming both and the counts.
 void warnSanitizedOnce(const std::string& path, const std::string& label,

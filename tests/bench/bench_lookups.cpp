@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/rng.h"
 #include "transport/tracking.h"
+#include "volume/grid_lookup.h"
 #include "volume/vdb_file.h"
 
 using namespace mirage;

@@ -14,6 +14,7 @@
 #include "medium/ocean_components.h"
 #include "spectrum/ocean_spectra.h"
 #include "transport/tracking.h"
+#include "volume/grid_lookup.h"
 
 using namespace mirage;
 using Clock = std::chrono::steady_clock;

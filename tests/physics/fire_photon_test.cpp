@@ -20,6 +20,7 @@
 #include "render/renderer.h"
 #include "scene/scene.h"
 #include "test_support.h"
+#include "volume/grid_lookup.h"
 
 using namespace mirage;
 
@@ -191,7 +192,7 @@ TEST(FirePhotons, DensityAndHeatEmittedPowerMatchesGridIntegral) {
 
     // The grid integral of the emission field: midpoint rule, 4³ points per voxel over the
     // temperature grid's index box (dilated by one voxel), through the shared power density.
-    const nanovdb::FloatGrid& heat = *m.grids()[1].grid();
+    const nanovdb::FloatGrid& heat = *m.binding().grids()[1].grid();
     const nanovdb::CoordBBox box = heat.indexBBox();
     const int sub = 8;
     double integral = 0.0;

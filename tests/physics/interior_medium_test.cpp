@@ -63,7 +63,9 @@ RenderScene scene(bool cube) {
     }
     s.geometry->addQuad(Vec3(-5.f, -5.f, -3.f), Vec3(10.f, 0.f, 0.f), Vec3(0.f, 10.f, 0.f), back);
     s.geometry->commit();
-    s.media[0]->confineTo(s.geometry->interiorRegion(shape));
+    Confinement inside;
+    inside.confineTo(s.geometry->interiorRegion(shape));
+    s.media[0]->setConfinement(inside);
     s.lights.push_back(makeDistantLight(Vec3(0.f, 0.f, -1.f), 10.f, Spectrum(1.f)));
     return s;
 }
@@ -174,7 +176,9 @@ TEST(InteriorMedium, ShadowRaysAndPhotonsCrossOnlyTheInside) {
     int sphere = s.geometry->addSphere(Vec3(0.f), kRadius, glass, 0);
     s.geometry->addQuad(Vec3(-1.5f, -2.f, 1.5f), Vec3(3.f, 0.f, 0.f), Vec3(0.f, 0.f, -3.f), floor);
     s.geometry->commit();
-    s.media[0]->confineTo(s.geometry->interiorRegion(sphere));
+    Confinement inside;
+    inside.confineTo(s.geometry->interiorRegion(sphere));
+    s.media[0]->setConfinement(inside);
     s.lights.push_back(makeDistantLight(Vec3(0.f, -1.f, 0.f), 470.f, Spectrum(1.f)));
     const Vec3 eye(2.5f, -1.f, 0.3f);
 
@@ -230,7 +234,9 @@ TEST(InteriorMedium, OtherMediaAreCutOutOfTheShape) {
     box.lo = Vec3(-2.f);
     box.hi = Vec3(2.f);
     s.media.push_back(std::make_unique<Medium>(fog, box, Transform(), 1.f));
-    s.media[1]->excludeFrom(s.geometry->interiorRegion(0));
+    Confinement outside;
+    outside.excludeFrom(s.geometry->interiorRegion(0));
+    s.media[1]->setConfinement(outside);
     EXPECT_FALSE(s.media[1]->closedFormTransmittance());
 
     std::vector<const Medium*> media = s.mediaPointers();

@@ -14,6 +14,7 @@
 
 #include "film/image_io.h"
 #include "fog_box_scene.h"
+#include "volume/grid_lookup.h"
 
 namespace mirage::test {
 

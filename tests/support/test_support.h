@@ -58,7 +58,7 @@ std::string shippedSceneCopy(const std::string& dir, const std::string& name,
 #include "film/film.h"
 #include "medium/medium.h"
 #include "render/renderer.h"
-#include "volume/grid.h"
+#include "volume/grid_lookup.h"
 
 namespace mirage::test {
 

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "test_support.h"
 #include "tools/asset_writer.h"
+#include "volume/grid_lookup.h"
 #include "volume/vdb_file.h"
 
 namespace mirage {

@@ -8,6 +8,7 @@
 
 #include "test_grids.h"
 #include "test_support.h"
+#include "volume/grid_lookup.h"
 #include "volume/vdb_file.h"
 
 namespace mirage {

@@ -15,6 +15,7 @@
 #include "test_grids.h"
 #include "test_support.h"
 #include "tools/asset_writer.h"
+#include "volume/grid_lookup.h"
 #include "volume/vdb_file.h"
 
 namespace mirage {
@@ -178,7 +179,7 @@ TEST(GridExpression, ShaderExpressionSpeaksOfSlotsThroughTheVolumesBind) {
     ColorPipeline color;
     Scene s = loadScene(scene, LoadOptions{}, color);
     // Shader first (×2), then the volume's (× mask): 2 · 1.0 · 0.5 at voxel 20, 0 elsewhere.
-    const FloatGrid& g = s.render.media[0]->grids()[0];
+    const FloatGrid& g = s.render.media[0]->binding().grids()[0];
     EXPECT_NEAR(nanoValue(g, 20, 0, 0), 1.f, 1e-6f);
     EXPECT_EQ(nanoValue(g, 10, 0, 0), 0.f);
     ASSERT_EQ(s.volumes[0].expressions.size(), 2u);

@@ -4,6 +4,7 @@
 #include "volume/index_map.h"
 
 #include <gtest/gtest.h>
+#include <nanovdb/NanoVDB.h>
 
 #include <cmath>
 #include <random>
@@ -31,7 +32,8 @@ std::vector<nanovdb::Vec3f> testPoints() {
 void expectSameIndex(const nanovdb::Map& map) {
     const IndexMap fast(map);
     for (const nanovdb::Vec3f& p : testPoints()) {
-        const nanovdb::Vec3f a = fast.toIndex(p), b = map.applyInverseMapF(p);
+        const Vec3 a = fast.toIndex(Vec3(p[0], p[1], p[2]));
+        const nanovdb::Vec3f b = map.applyInverseMapF(p);
         for (int c = 0; c < 3; ++c)
             ASSERT_EQ(a[c], b[c]) << "axis " << c << " at (" << p[0] << ", " << p[1] << ", " << p[2]
                                   << ")";
@@ -64,8 +66,7 @@ TEST(IndexMap, RotatedMapsKeepNanoVdbsTransform) {
     map.set(mat, inv, nanovdb::Vec3d(0.5, 0.5, 0.5), 1.0);
     expectSameIndex(map);
     // And it is a rotation: the point one voxel along the rotated x axis is index (1, 0, 0).
-    const nanovdb::Vec3f i =
-        IndexMap(map).toIndex(nanovdb::Vec3f(0.5f + float(c), 0.5f + float(s), 0.5f));
+    const Vec3 i = IndexMap(map).toIndex(Vec3(0.5f + float(c), 0.5f + float(s), 0.5f));
     EXPECT_NEAR(i[0], 1.f, 1e-5f);
     EXPECT_NEAR(i[1], 0.f, 1e-5f);
 }

@@ -78,7 +78,7 @@ TEST(VolumeMotion, WorldBoundsHoldTheVolumeAtEveryTime) {
     ColorPipeline color;
     Scene scene = loadScene(writePuffScene(dir, "turning", p), LoadOptions{}, color);
     const Medium& m = *scene.render.media[0];
-    ASSERT_TRUE(m.transformMoves());
+    ASSERT_TRUE(m.motion().transformMoves());
     const Bounds3 world = m.worldBounds();
     Medium::Context ctx(m);
     for (int i = 0; i <= 100; ++i) {

@@ -11,6 +11,7 @@
 #include "test_grids.h"
 #include "test_support.h"
 #include "tools/asset_writer.h"
+#include "volume/grid_lookup.h"
 #include "volume/vdb_file.h"
 
 namespace mirage {

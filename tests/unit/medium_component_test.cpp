@@ -258,17 +258,17 @@ std::vector<FloatGrid> grids(const std::vector<std::string>& names) {
 
 TEST(MediumSlots, ResolvedToGridIndicesWhenTheMediumIsBuilt) {
     Medium m(slottedShader(), grids({"d", "s", "t"}), Transform(), 1.f, 4);
-    EXPECT_EQ(m.componentSlot(0), 0);
-    EXPECT_EQ(m.componentSlot(1), 1);
-    EXPECT_EQ(m.componentSlot(2), -1);
-    EXPECT_EQ(m.componentSlot(3), 0);
-    EXPECT_EQ(m.temperatureSlot(), 2);
-    EXPECT_TRUE(m.componentModel(0).linear());
+    EXPECT_EQ(m.binding().componentSlot(0), 0);
+    EXPECT_EQ(m.binding().componentSlot(1), 1);
+    EXPECT_EQ(m.binding().componentSlot(2), -1);
+    EXPECT_EQ(m.binding().componentSlot(3), 0);
+    EXPECT_EQ(m.binding().temperatureSlot(), 2);
+    EXPECT_TRUE(m.binding().componentModel(0).linear());
 
     ShaderDesc noEmission = slottedShader();
     noEmission.emission.reset();
     Medium plain(noEmission, grids({"d", "s"}), Transform(), 1.f, 4);
-    EXPECT_EQ(plain.temperatureSlot(), -1);
+    EXPECT_EQ(plain.binding().temperatureSlot(), -1);
 }
 
 TEST(MediumSlots, ASlotWithoutAGridIsRefusedByName) {
@@ -288,4 +288,15 @@ TEST(MediumSlots, ASlotWithoutAGridIsRefusedByName) {
     } catch (const MirageError& e) {
         EXPECT_NE(std::string(e.what()).find("temperature"), std::string::npos) << e.what();
     }
+}
+
+TEST(MediumSlots, TheBindingAloneNamesEachComponentsGrid) {
+    const ShaderBinding b(slottedShader(), grids({"d", "s", "t"}), 2.f);
+    EXPECT_EQ(b.componentGrid(0), &b.grids()[0]);
+    EXPECT_EQ(b.componentGrid(1), &b.grids()[1]);
+    EXPECT_EQ(b.componentGrid(2), nullptr);  // the constant component reads no grid
+    EXPECT_EQ(b.componentGrid(3), &b.grids()[0]);
+    EXPECT_EQ(b.grids()[size_t(b.temperatureSlot())].name(), "t");
+    EXPECT_EQ(b.densityScale(), 2.f);
+    EXPECT_EQ(b.shader().name, "slotted");
 }

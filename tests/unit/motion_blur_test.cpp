@@ -20,6 +20,7 @@
 #include "test_grids.h"
 #include "test_support.h"
 #include "tools/asset_writer.h"
+#include "volume/grid_lookup.h"
 #include "volume/vdb_file.h"
 
 namespace mirage {
@@ -135,9 +136,11 @@ TEST(MotionBlur, DilatedMajorantBoundsEveryAdvectedLookup) {
     writeTestGrids(path, {density, vel});
     Medium m(test::greyShader(0.5f, 1.5f), {loadFloatGrid(path, "density")}, Transform(), 1.f);
     const float maxDt = 0.05f;
-    m.setMotion(loadVectorGrid(path, "vel"), 1.f, maxDt);
-    ASSERT_TRUE(m.moving());
-    EXPECT_GT(m.blurRadius(), 0.2f);
+    MediumMotion motion;
+    motion.setVelocity(loadVectorGrid(path, "vel"), 1.f, maxDt);
+    m.setMotion(motion);
+    ASSERT_TRUE(m.motion().moving());
+    EXPECT_GT(m.motion().blurRadius(), 0.2f);
     const MajorantGrid& g = m.majorant();
     Medium::Context ctx(m);
     const Bounds3 b = g.bounds();
@@ -257,7 +260,7 @@ TEST(MotionBlur, MantaflowSequenceRendersBlurred) {
         ASSERT_EQ(scene.volumes.size(), 1u);
         EXPECT_EQ(scene.volumes[0].velocity.grid, "velocity");
         EXPECT_TRUE(scene.volumes[0].velocity.velocity.staggered());
-        EXPECT_TRUE(scene.render.media[0]->moving());
+        EXPECT_TRUE(scene.render.media[0]->motion().moving());
         const RenderStats stats = renderStats(scene, "single");
         EXPECT_EQ(stats.aboveMajorant, 0u);
         EXPECT_EQ(stats.nonFiniteSamples, 0u);

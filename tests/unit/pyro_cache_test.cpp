@@ -64,7 +64,7 @@ TEST(PyroCache, MakeAssetFireBindsTheFireShaderInKelvinAndBlurs) {
     EXPECT_EQ(m.shader().emission->temperatureScale, 1.f);  // make-asset writes kelvin
     EXPECT_EQ(m.shader().emission->temperatureOffset, 0.f);
     EXPECT_EQ(v.velocity.grid, "vel");
-    EXPECT_TRUE(m.moving());
+    EXPECT_TRUE(m.motion().moving());
     EXPECT_FALSE(v.notes.empty());
     const RenderStats stats = puff::renderStats(scene, "single");
     EXPECT_EQ(stats.aboveMajorant, 0u);

@@ -12,6 +12,7 @@
 #include "medium/phase.h"
 #include "render/renderer.h"
 #include "test_support.h"
+#include "volume/grid_lookup.h"
 
 using namespace mirage;
 
@@ -49,7 +50,7 @@ TEST(QuadLightInMedium, SingleScatteringMatchesQuadratureForwardLobeIncluded) {
     for (float g : {0.f, 0.9f}) {
         SCOPED_TRACE("g = " + std::to_string(g));
         RenderScene scene = lightInFog(g);
-        const FloatGrid& grid = scene.media[0]->grids()[0];
+        const FloatGrid& grid = scene.media[0]->binding().grids()[0];
         auto acc = grid.accessor();
         const HGPhase hg(g);
         // ∫ dt T_cam σs ρ ∫_A L p(cosθ) T_light cosθ_l / d² dA, on 240 × 40² points.

@@ -14,6 +14,7 @@
 #include "render/scatter_guide_build.h"
 #include "test_support.h"
 #include "transport/scatter_point.h"
+#include "volume/grid_lookup.h"
 
 using namespace mirage;
 
@@ -50,7 +51,7 @@ TEST(ScatterGuide, GuidedScatteringPointsKeepTheirExpectation) {
     // along a ray through the box, against the midpoint rule on the grid's own field.
     const float sa = 0.5f, ss = 2.f;
     const RenderScene scene = litBox([](int, int, int) { return 1.f; }, sa, ss);
-    const FloatGrid& g = scene.media[0]->grids()[0];
+    const FloatGrid& g = scene.media[0]->binding().grids()[0];
     auto acc = g.accessor();
     const Ray ray{Vec3(-0.2f, 0.3f, 0.6f), Vec3(1, 0, 0), kInfinity};
     auto f = [](double t) { return 1.0 + 4.0 * t; };
@@ -95,7 +96,7 @@ TEST(ScatterGuide, GuidedRenderMatchesTheQuadrature) {
     const float sa = 0.5f, ss = 2.f, E = 470.f;
     const RenderScene scene =
         litBox([](int, int j, int) { return 0.2f + 0.05f * float(j); }, sa, ss);
-    const FloatGrid& g = scene.media[0]->grids()[0];
+    const FloatGrid& g = scene.media[0]->binding().grids()[0];
     auto acc = g.accessor();
     // A ray climbing through the box: its points see the light through less and less smoke.
     const Ray ray{Vec3(-0.2f, 0.05f, 0.5f), normalize(Vec3(1.f, 0.6f, 0.f)), kInfinity};

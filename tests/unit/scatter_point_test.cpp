@@ -11,6 +11,7 @@
 
 #include "render/integrator.h"
 #include "test_support.h"
+#include "volume/grid_lookup.h"
 
 using namespace mirage;
 
@@ -37,7 +38,7 @@ Quadrature quadrature(const RenderScene& scene, const float (&sigmaT)[2], const 
         const double t = (i + 0.5) * dt;
         double st = 0.0, ss = 0.0;
         for (size_t m = 0; m < scene.media.size(); ++m) {
-            const FloatGrid& g = scene.media[m]->grids()[0];
+            const FloatGrid& g = scene.media[m]->binding().grids()[0];
             auto acc = g.accessor();
             const double d = g.sample(acc, kRay.at(float(t)));
             st += sigmaT[m] * d;

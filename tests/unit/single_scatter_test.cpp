@@ -9,6 +9,7 @@
 #include "film/color.h"
 #include "render/renderer.h"
 #include "test_support.h"
+#include "volume/grid_lookup.h"
 
 using namespace mirage;
 
@@ -33,7 +34,7 @@ TEST(SingleScatter, MatchesQuadratureOfTheSingleScatteringIntegral) {
     const float sa = 0.5f, ss = 2.f, E = 470.f;  // E/470 nm = 1 W·m⁻²·nm⁻¹ per nm
     RenderScene scene = boxScene(sa, ss, 0.f, E);
     const Medium& m = *scene.media[0];
-    const FloatGrid& g = m.grids()[0];
+    const FloatGrid& g = m.binding().grids()[0];
     auto acc = g.accessor();
 
     // Camera ray along +x through the box at y = z = 16 h; light from the top, isotropic phase.

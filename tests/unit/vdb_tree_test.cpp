@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "test_grids.h"
 #include "test_support.h"
+#include "volume/grid_lookup.h"
 #include "volume/vdb_file.h"
 #include "volume/vdb_format.h"
 #include "volume/vdb_tree.h"

@@ -20,6 +20,7 @@
 #include "photon/beam_estimate.h"
 #include "spectrum/cie.h"
 #include "test_support.h"
+#include "volume/grid_lookup.h"
 
 using namespace mirage;
 
@@ -36,7 +37,7 @@ std::unique_ptr<Medium> boxMedium(float sigmaA, float sigmaS, float g) {
 // to the medium's box as the trackers clip it.
 double referenceOpticalDepth(const Medium& m, const Ray& ray, double t, double sigmaT,
                              double constantSigmaT = 0) {
-    const FloatGrid& g = m.grids()[0];
+    const FloatGrid& g = m.binding().grids()[0];
     auto acc = g.accessor();
     float t0, t1;
     if (!m.objectBounds().intersect(ray.o, ray.d, 0.f, float(t), &t0, &t1)) return 0.0;
@@ -135,7 +136,7 @@ TEST(RayOpticalDepth, StopsWhereTheRayTurnsOpaque) {
     EXPECT_LT(depth.reach(), entry + 0.03f + 2.f * depth.step());
     EXPECT_GT(depth.reach(), entry + 0.03f - 1e-4f);
     const double tau =
-        test::opticalDepth(m->grids()[0], ray.at(entry), ray.at(entry + 0.04f), 1000.0);
+        test::opticalDepth(m->binding().grids()[0], ray.at(entry), ray.at(entry + 0.04f), 1000.0);
     EXPECT_NEAR(-std::log(depth.transmittance(entry + 0.04f, 550.f)), tau, 1e-3 * tau);
     EXPECT_LT(tau, double(RayOpticalDepth::kOpaqueDepth));
     EXPECT_LT(depth.transmittance(depth.reach(), 550.f),
@@ -279,10 +280,10 @@ TEST(VolumeEstimate, UniformPhotonDensityGivesTheKnownRadiance) {
     // the transmittance, and the wavelength noise would need many more rays to average out.
     PhotonList thinned;
     {
-        auto acc = m->grids()[0].accessor();
+        auto acc = m->binding().grids()[0].accessor();
         Sampler keep(31, 0, 0);
         for (const Photon& p : uniformPhotons(n, cloud, power, 29, 555.f))
-            if (keep.get1D() < m->grids()[0].sample(acc, p.p)) thinned.push_back(p);
+            if (keep.get1D() < m->binding().grids()[0].sample(acc, p.p)) thinned.push_back(p);
     }
     VolumePhotons mono(std::move(thinned), {m.get()});
     const double monoDensity = rho * power / (4 * M_PI) * cieXyz(555.f).y / kCieYIntegral;
@@ -306,11 +307,11 @@ TEST(VolumeEstimate, UniformPhotonDensityGivesTheKnownRadiance) {
         const int steps = 2000;
         const double dt = 1.8 / steps;
         double tau = referenceOpticalDepth(*m, ray, 0.6, sigmaT);
-        auto acc = m->grids()[0].accessor();
+        auto acc = m->binding().grids()[0].accessor();
         for (int j = 0; j < steps; ++j) {
             float t = 0.6f + float(dt * (j + 0.5));  // z from −0.4 to 1.4
             // Outside the box the grid reads its background, 0.
-            double sigma = sigmaT * m->grids()[0].sample(acc, ray.at(t));
+            double sigma = sigmaT * m->binding().grids()[0].sample(acc, ray.at(t));
             double T = std::exp(-(tau + 0.5 * sigma * dt));
             tau += sigma * dt;
             double stored = sigma / sigmaT;  // σs(t)/σs,max: the thinning of the cloud
@@ -356,10 +357,10 @@ TEST(BeamEstimate, SharpDensityEdgeKeepsEachSidesLight) {
     const size_t n = 1600000;
     PhotonList stored;
     {
-        auto acc = m->grids()[0].accessor();
+        auto acc = m->binding().grids()[0].accessor();
         Sampler keep(41, 0, 0);
         for (const Photon& p : uniformPhotons(n, cloud, power, 43, 555.f))
-            if (keep.get1D() < m->grids()[0].sample(acc, p.p)) stored.push_back(p);
+            if (keep.get1D() < m->binding().grids()[0].sample(acc, p.p)) stored.push_back(p);
     }
     VolumePhotons photons(std::move(stored), {m.get()});
     const double density = double(n) / volume(cloud) * power / (4 * M_PI) * cieXyz(555.f).y /
@@ -371,7 +372,7 @@ TEST(BeamEstimate, SharpDensityEdgeKeepsEachSidesLight) {
                                kInfinity});
         const std::vector<double> y = beamAlong(photons, *m, rays, r);
         double got = 0, expected = 0;
-        auto acc = m->grids()[0].accessor();
+        auto acc = m->binding().grids()[0].accessor();
         for (size_t i = 0; i < rays.size(); ++i) {
             got += y[i];
             const int steps = 2000;
@@ -379,7 +380,7 @@ TEST(BeamEstimate, SharpDensityEdgeKeepsEachSidesLight) {
             double tau = 0;
             for (int j = 0; j < steps; ++j) {
                 const float t = 0.9f + float(dt * (j + 0.5));  // z from −0.1 to 1.1
-                const double d = m->grids()[0].sample(acc, rays[i].at(t));
+                const double d = m->binding().grids()[0].sample(acc, rays[i].at(t));
                 const double T = std::exp(-(tau + 0.5 * sigmaS * d * dt));
                 tau += sigmaS * d * dt;
                 expected += density * d * T * dt;
@@ -473,7 +474,9 @@ TEST(BeamEstimate, FogInAGlassBallStaysInTheBall) {
     const int glass = geometry.addMaterial(Material::dielectric("glass", 1.5f));
     const int ball = geometry.addSphere(Vec3(0.f), radius, glass, 0);
     geometry.commit();
-    fog.confineTo(geometry.interiorRegion(ball));
+    Confinement interior;
+    interior.confineTo(geometry.interiorRegion(ball));
+    fog.setConfinement(interior);
     const Bounds3 cube{Vec3(-radius), Vec3(radius)};
     const size_t n = 1000000;
     PhotonList inside;
@@ -524,7 +527,7 @@ TEST(RayOpticalDepth, MarchBiasOnSharpSmokeIsBelowThePhotonNoise) {
     const double finalPresetNoise = std::sqrt(0.011);
     for (float sigmaT : {4.f, 40.f}) {
         auto m = test::gridMedium(binarySmoke, 0, 31, kH, 0.1f * sigmaT, 0.9f * sigmaT, 0.f);
-        auto acc = m->grids()[0].accessor();
+        auto acc = m->binding().grids()[0].accessor();
         RayOpticalDepth depth({m.get()});
         double sum = 0, sum2 = 0, worst = 0;
         int rays = 0;
@@ -540,7 +543,7 @@ TEST(RayOpticalDepth, MarchBiasOnSharpSmokeIsBelowThePhotonNoise) {
             double tau = 0, marched = 0, exact = 0;
             for (int j = 0; j < steps; ++j) {
                 const float t = float(t0 + (j + 0.5) * dt);
-                const double sigma = sigmaT * m->grids()[0].sample(acc, ray.at(t));
+                const double sigma = sigmaT * m->binding().grids()[0].sample(acc, ray.at(t));
                 exact += std::exp(-(tau + 0.5 * sigma * dt)) * sigma * dt;
                 marched += depth.transmittance(t, 550.f) * sigma * dt;
                 tau += sigma * dt;

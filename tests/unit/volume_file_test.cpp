@@ -15,6 +15,7 @@
 #include "core/rng.h"
 #include "test_grids.h"
 #include "test_support.h"
+#include "volume/grid_lookup.h"
 #include "volume/vdb_file.h"
 
 namespace mirage {

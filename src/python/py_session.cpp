@@ -110,6 +110,15 @@ void PySession::renderThread(std::shared_ptr<const LoadedFrame> frame, int gener
                 push(std::make_shared<PyImage>(film.develop(*color), std::move(progress),
                                                generation));
             };
+            // A time limit's coarse image comes first (render/passes.h), at once.
+            passes.coarseFinished = [&](const Film& film, int spp) {
+                std::map<std::string, std::string> progress = {
+                    {"mirage:passes", "0"},
+                    {"mirage:coarse_spp", std::to_string(spp)},
+                    {"mirage:colorSpace", color->workingSpace()}};
+                push(std::make_shared<PyImage>(film.develop(*color), std::move(progress),
+                                               generation));
+            };
             const RenderedFrame rendered =
                 renderFrame(frame->scene, *color, {nullptr, &passes, &mCancel});
             if (!mCancel.requested()) result = std::make_shared<PyImage>(*frame, color, rendered);

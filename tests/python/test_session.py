@@ -86,3 +86,13 @@ def test_update_restarts_with_the_edit_and_keeps_the_grids(fog_scene_path):
         assert not np.array_equal(after[0].beauty, before.beauty)
         with pytest.raises(mirage.Error, match="nope"):
             s.update({"camera.nope": 1})
+
+
+def test_a_time_limit_shows_the_coarse_image_first(fog_scene_path):
+    scene = mirage.load(fog_scene_path)
+    with mirage.Session(scene, time_limit=1.0) as s:
+        first = next(s)
+        assert first.metadata["mirage:passes"] == "0"
+        assert int(first.metadata["mirage:coarse_spp"]) >= 1
+        assert first.beauty.shape == (24, 24, 4) and first.beauty[..., :3].max() > 0
+        s.cancel()

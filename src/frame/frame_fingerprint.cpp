@@ -30,12 +30,15 @@ std::string fileStamp(const std::string& path) {
 // The settings lines, then the scene's own text (a bare VDB: its size and time) and every grid
 // file it read.
 FrameFingerprint fingerprintOf(const std::map<std::string, std::string>& settings,
-                               const Scene& scene, const std::string& input) {
+                               const Scene& scene, const std::string& input,
+                               const std::string& sceneText = "") {
     FrameFingerprint fp;
     for (const auto& [k, v] : settings) fp.settings += k + "=" + v + "\n";
     Fnv1a h;
     h.add(fp.settings);
-    if (isVolumeFile(input)) {
+    if (!sceneText.empty()) {
+        h.add(sceneText);
+    } else if (isVolumeFile(input)) {
         h.add(fileStamp(input));
     } else {
         std::ifstream f(input, std::ios::binary);
@@ -114,7 +117,8 @@ std::string velocityText(const Scene& scene) {
 
 FrameFingerprint frameFingerprint(const Scene& scene, const std::string& input,
                                   const std::string& integrator, int frame,
-                                  const std::vector<std::string>& overrides, bool withRegion) {
+                                  const std::vector<std::string>& overrides, bool withRegion,
+                                  const std::string& sceneText) {
     const RenderSettings& s = scene.settings;
     const CameraDesc& c = scene.render.camera;
     std::map<std::string, std::string> m;
@@ -159,7 +163,7 @@ FrameFingerprint frameFingerprint(const Scene& scene, const std::string& input,
     if (hasAov(s.aovs, cryptomattePass("volume"))) m["crypto_volumes"] = joinList(crypto.volumes);
     if (hasAov(s.aovs, cryptomattePass("shape"))) m["crypto_shapes"] = joinList(crypto.shapes);
     m["set"] = joinOverrides(overrides, false);
-    return fingerprintOf(m, scene, input);
+    return fingerprintOf(m, scene, input, sceneText);
 }
 
 FrameFingerprint photonFingerprint(const Scene& scene, const std::string& input, int frame,

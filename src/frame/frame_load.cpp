@@ -25,6 +25,7 @@ namespace {
 LoadOptions loadOptions(const FrameRequest& r) {
     LoadOptions load{r.frame, r.overrides};
     load.integrator = r.integrator;
+    load.text = r.sceneText;
     const double shutterWidth = r.motionBlur ? 0.5 : r.shutter;
     if (shutterWidth >= 0) load.shutter = ShutterFrames{-0.5 * shutterWidth, 0.5 * shutterWidth};
     if (r.memoryBudget > 0)
@@ -116,7 +117,8 @@ void attachSavedPhotons(LoadedFrame* f) {
 
 }  // namespace
 
-std::optional<LoadedFrame> loadFrame(const FrameRequest& request, const ColorPipeline& color) {
+std::optional<LoadedFrame> loadFrame(const FrameRequest& request, const ColorPipeline& color,
+                                     GridCache* grids) {
     checkFrameRequest(request);
     // With -o the output is known before loading: a complete frame costs no load at all.
     if (!request.output.empty() &&
@@ -125,7 +127,9 @@ std::optional<LoadedFrame> loadFrame(const FrameRequest& request, const ColorPip
     const auto t0 = Clock::now();
     LoadedFrame f;
     f.request = request;
-    f.scene = loadScene(request.input, loadOptions(f.request), color);
+    LoadOptions load = loadOptions(f.request);
+    load.grids = grids;
+    f.scene = loadScene(request.input, load, color);
     applyRequest(f.request, color, &f.scene);
     nameOutputs(&f);
     if (skipComplete(f.request, f.out)) return std::nullopt;

@@ -15,6 +15,7 @@
 namespace mirage {
 
 class ColorPipeline;
+class GridCache;
 
 struct LoadedFrame {
     FrameRequest request;    // as given
@@ -29,6 +30,8 @@ struct LoadedFrame {
 // frame's output complete (said on stderr unless quiet); before loading when request.output
 // names it. Throws MirageError for a bad request, scene or setting, and for a frame over its
 // memory budget (each grid is checked before it is read, the frame once loaded).
-std::optional<LoadedFrame> loadFrame(const FrameRequest& request, const ColorPipeline& color);
+// `grids`, when given, keeps the frame's grids for the next load (volume/grid_cache.h).
+std::optional<LoadedFrame> loadFrame(const FrameRequest& request, const ColorPipeline& color,
+                                     GridCache* grids = nullptr);
 
 }  // namespace mirage

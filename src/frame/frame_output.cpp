@@ -77,9 +77,9 @@ void addPassMetadata(const PassSettings& settings, const RenderSettings& s, cons
 void addFrameIdentity(const LoadedFrame& frame, ExrOptions* exr) {
     const FrameRequest& r = frame.request;
     const RenderSettings& s = frame.scene.settings;
-    exr->metadata["fingerprint"] =
-        frameFingerprint(frame.scene, r.input, frame.scene.integrator, r.frame, r.overrides, false)
-            .hash;
+    exr->metadata["fingerprint"] = frameFingerprint(frame.scene, r.input, frame.scene.integrator,
+                                                    r.frame, r.overrides, false, r.sceneText)
+                                       .hash;
     if (s.region.empty()) return;
     exr->metadata["region"] = formatPixelWindow(s.region);
     exr->dataX = s.region.x0;

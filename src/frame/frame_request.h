@@ -17,6 +17,10 @@ struct FrameRequest {
     std::string input;                   // scene .toml, or a bare .vdb/.nvdb
     int frame = 1;                       // $F patterns, keyed motion, the turntable's position
     std::vector<std::string> overrides;  // --set key.path=value, before the scene is parsed
+    // The scene's TOML when a program holds it in memory (the Python module's Scene.from_dict):
+    // `input` then only names it, in messages, and its folder resolves the scene's relative
+    // paths. "" = read `input`.
+    std::string sceneText;
 
     // The render.
     std::string integrator;         // --integrator single|volpath|photon|auto; "" = the scene's

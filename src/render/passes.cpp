@@ -102,18 +102,16 @@ public:
         CoarseImage& image = mCoarse.emplace(mS);
         image.cancel = mRun.cancel;
         if (mSettings.coarseSpp > 0)
-            return addCoarseSamples(mScene, *coarse.integrator, mS, mSettings.coarseSpp, &image)
-                       ? "coarse image (--coarse)"
-                       : "interrupted";
+            return addCoarse(mSettings.coarseSpp, &image) ? "coarse image (--coarse)"
+                                                          : "interrupted";
         const auto t0 = Clock::now();
-        if (!addCoarseSamples(mScene, *coarse.integrator, mS, 1, &image)) return "interrupted";
+        if (!addCoarse(1, &image)) return "interrupted";
         const double perSample = secondsSince(t0);
         for (;;) {
             const double left = mSettings.timeLimit - elapsed();
             if (kPassInCoarseSamples * perSample <= left) return "";
             if (image.spp * perSample > left) return "time limit (coarse image: no full pass fits)";
-            if (!addCoarseSamples(mScene, *coarse.integrator, mS, image.spp, &image))
-                return "interrupted";
+            if (!addCoarse(image.spp, &image)) return "interrupted";
         }
     }
 
@@ -163,6 +161,15 @@ public:
 private:
     // Seconds since the frame began, the runs before a resume included.
     double elapsed() const { return mBefore + secondsSince(mRun.frameStart); }
+
+    // Adds `spp` samples to the coarse image and shows it, magnified, to the checkpoint's hook;
+    // false when a stop came.
+    bool addCoarse(int spp, CoarseImage* image) {
+        if (!addCoarseSamples(mScene, *mRun.coarse.integrator, mS, spp, image)) return false;
+        PassCheckpoint* c = mRun.checkpoint;
+        if (c && c->coarseFinished) c->coarseFinished(magnifyCoarse(*image, mS), image->spp);
+        return true;
+    }
 
     // A pass ends at the time limit (no tile starts after it) where there is an image to fall
     // back on: the passes before it, or the coarse image.

@@ -67,6 +67,9 @@ struct PassCheckpoint {
     double secondsDone = 0;  // seconds of the runs before (they count towards the time limit)
     // After every pass: the film, the passes in it and the seconds spent on them (all runs).
     std::function<void(const Film&, int passes, double seconds)> passFinished;
+    // After each step of the coarse image (below: a time limit's first image): the coarse film
+    // magnified to the frame, and its samples per pixel. A program shows it while passes follow.
+    std::function<void(const Film&, int spp)> coarseFinished;
     int64_t stopAfterPasses = -1;  // test hook: raise the interrupt flag after this many passes
 };
 

@@ -20,6 +20,7 @@
 namespace mirage {
 
 class ColorPipeline;
+class GridCache;
 
 struct OutputSettings {
     std::string path = "out/render.exr";  // may hold a frame pattern ($F4, ####)
@@ -117,6 +118,12 @@ struct LoadOptions {
     // --integrator: replaces the scene's [render] integrator before the loader resolves "auto"
     // (resolveAutoIntegrator, once); "" keeps the scene's.
     std::string integrator = "";
+    // The scene file's text, when a program holds it (frame_request.h, sceneText): parsed
+    // instead of reading `path`, which names it in messages and resolves its relative paths.
+    std::string text = "";
+    // Grids kept from earlier loads (volume/grid_cache.h): a file's grids are read again only
+    // when it changed. Null: every load reads them.
+    GridCache* grids = nullptr;
 };
 
 // The default integrator: the method that renders all of this scene's light and converges

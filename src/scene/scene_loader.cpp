@@ -21,6 +21,7 @@
 #include "scene/scene.h"
 #include "scene/shader_loader.h"
 #include "scene/toml_reader.h"
+#include "volume/grid_cache.h"
 #include "volume/vdb_file.h"
 
 namespace mirage {
@@ -190,7 +191,9 @@ static std::unique_ptr<Medium> buildMedium(const ShaderDesc& shader, VolumeRecor
     std::vector<GridExpression> expressions;
     for (const ExpressionRecord& e : rec.expressions) expressions.push_back(e.expression);
     std::vector<double> seconds;
-    std::vector<FloatGrid> grids = loadFloatGrids(rec.file, bound, expressions, &seconds);
+    std::vector<FloatGrid> grids =
+        options.grids ? options.grids->loadFloatGrids(rec.file, bound, expressions, &seconds)
+                      : loadFloatGrids(rec.file, bound, expressions, &seconds);
     for (size_t i = 0; i < seconds.size() && i < rec.expressions.size(); ++i)
         rec.expressions[i].seconds = seconds[i];
     try {
@@ -490,7 +493,8 @@ void useIntegrator(const LoadOptions& options, Scene* scene) {
 
 Scene loadScene(const std::string& path, const LoadOptions& options, const ColorPipeline& color) {
     if (isVolumeFile(path)) return sceneFromVdb(path, options, color);
-    toml::table doc = parseTomlFile(path);
+    toml::table doc =
+        options.text.empty() ? parseTomlFile(path) : parseTomlText(options.text, path);
     for (const auto& o : options.overrides) applyOverride(doc, o);
     // A scene given as a bare file name lives in the working directory: its relative paths
     // (shaders, volumes, meshes) resolve from "." like any other scene's from its folder.

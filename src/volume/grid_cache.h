@@ -1,0 +1,38 @@
+// Grids kept between loads of scenes in one process: a program that loads a scene again after an
+// edit (the Python module's Session.update, a render with other settings) reads a file's grids
+// again only when the file changed (its size or modification time), or the grids or expressions
+// asked of it did. A FloatGrid shares its NanoVDB buffer and dense copy (grid.h), so a grid
+// both cached and in a medium is in memory once; dropping the cache returns what no medium holds.
+#pragma once
+
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "volume/vdb_file.h"
+
+namespace mirage {
+
+class GridCache {
+public:
+    // loadFloatGrids (vdb_file.h), or the grids of an earlier call with the same file, unchanged
+    // on disk, the same names and the same expressions (their code and bindings). Thread-safe.
+    std::vector<FloatGrid> loadFloatGrids(const std::string& path,
+                                          const std::vector<std::string>& gridNames,
+                                          const std::vector<GridExpression>& expressions,
+                                          std::vector<double>* expressionSeconds = nullptr);
+    size_t reads() const;  // the calls that read the file
+    size_t hits() const;   // the calls served from the cache
+
+private:
+    struct Entry {
+        std::string key;  // path, size and time, names, expressions
+        std::vector<FloatGrid> grids;
+        std::vector<double> seconds;
+    };
+    mutable std::mutex mMutex;
+    std::vector<Entry> mEntries;
+    size_t mReads = 0, mHits = 0;
+};
+
+}  // namespace mirage

@@ -171,6 +171,9 @@ public:
         return out->weight > 0.f && r > 0.f;
     }
 
+    // A constant dome's colour is one spectrum everywhere (render/achromatic_film.h films it
+    // exactly); an image's varies over directions.
+    const Spectrum* spectrum() const override { return mWidth == 0 ? &mConstant : nullptr; }
     std::string describe() const override {
         char buf[160];
         if (mDistribution.empty())

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "core/math.h"
@@ -39,6 +40,15 @@ struct PhotonEmission {
     // solid angle and carries its falloff here (mean 1 over its own cone, less over the
     // narrower cone of a scene seen from afar).
     float weight = 1.f;
+};
+
+// Where a light at a point sits, for drawing distances along a ray towards it
+// (transport/equiangular.h): its position, and the cone outside which it sends nothing
+// (cosCone −1: every direction).
+struct LightOrigin {
+    Vec3 p;
+    Vec3 axis{0.f, 0.f, 1.f};
+    float cosCone = -1.f;
 };
 
 class Light {
@@ -77,6 +87,8 @@ public:
     // spectrum times a factor independent of λ: every light here. Null for a light whose
     // colour varies over directions or points (render/achromatic_film.h then samples colour).
     virtual const Spectrum* spectrum() const { return nullptr; }
+    // A light at a point (point, spot): where it is. The others: nothing.
+    virtual std::optional<LightOrigin> origin() const { return std::nullopt; }
 };
 
 // Normalises a colour spectrum so that ∫ S dλ = 1 over 360–830 nm.

@@ -104,6 +104,7 @@ public:
     }
 
     const Spectrum* spectrum() const override { return &mI; }
+    std::optional<LightOrigin> origin() const override { return LightOrigin{mP}; }
 
 private:
     Vec3 mP;
@@ -168,6 +169,9 @@ public:
     }
 
     const Spectrum* spectrum() const override { return &mI; }
+    std::optional<LightOrigin> origin() const override {
+        return LightOrigin{mP, mDir, mCosOuter};
+    }
 
 private:
     float falloff(float cosT) const {

@@ -261,6 +261,7 @@ void Medium::setZero(MediumPoint* out) const {
     out->components = int(shader().components.size());
     for (int i = 0; i < out->components; ++i) out->sigmaSComponent[i] = SampledSpectrum(0.f);
     out->Le = SampledSpectrum(0.f);
+    out->temperature = 0.f;
 }
 
 void Medium::evalUnconfined(const Vec3& pAtTime, Context& ctx, MediumPoint* out) const {
@@ -292,6 +293,7 @@ void Medium::evalGridsAt(const Vec3& p, Context& ctx, MediumPoint* out) const {
         }
     }
     out->Le = SampledSpectrum(0.f);
+    out->temperature = 0.f;
     if (ctx.mTemperatureSlot >= 0 && !out->sigmaA.isZero()) {
         const EmissionSpec& e = *shader().emission;
         float T = mBinding.grids()[size_t(ctx.mTemperatureSlot)].sample(
@@ -299,6 +301,7 @@ void Medium::evalGridsAt(const Vec3& p, Context& ctx, MediumPoint* out) const {
                       e.temperatureScale +
                   e.temperatureOffset;
         if (T > e.minTemperature) {
+            out->temperature = T;
             // Planck gives W·m⁻²·sr⁻¹ per metre of wavelength; the film integrates per nm.
             for (int i = 0; i < kSpectrumSamples; ++i)
                 out->Le[i] = float(planck(ctx.mLambda.lambda[i], T) * 1e-9) * e.intensity;

@@ -24,7 +24,8 @@ namespace mirage {
 // Coefficients at one point for a path's wavelengths.
 struct MediumPoint {
     SampledSpectrum sigmaA, sigmaS;  // 1/m
-    SampledSpectrum Le;  // emitted radiance, W·m⁻²·sr⁻¹·nm⁻¹ (emission = σa·Le)
+    SampledSpectrum Le;       // emitted radiance, W·m⁻²·sr⁻¹·nm⁻¹ (emission = σa·Le)
+    float temperature = 0.f;  // K, where Le is the blackbody's (intensity · B(λ, T)); else 0
     int components = 0;
     std::array<SampledSpectrum, kMaxComponents> sigmaSComponent;  // for the phase mixture
 };

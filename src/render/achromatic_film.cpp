@@ -40,10 +40,16 @@ struct LightShapes {
     std::vector<size_t> ofLight;
 };
 
+bool emits(const RenderScene& scene) {
+    for (const auto& m : scene.media)
+        if (m->emissive()) return true;
+    return false;
+}
+
 // The lights' shapes, or nothing (with the reason) when a light has none (its colour varies)
-// or they are too many.
+// or they are too many. A scene lit by its emission alone has none.
 std::optional<LightShapes> lightShapes(const RenderScene& scene, std::string* why) {
-    if (scene.lights.empty()) {
+    if (scene.lights.empty() && !emits(scene)) {
         *why = "no lights";
         return std::nullopt;
     }
@@ -70,12 +76,13 @@ std::optional<LightShapes> lightShapes(const RenderScene& scene, std::string* wh
     return out;
 }
 
-// Empty when every medium is grey and nothing else is spectral; else what is.
-std::string spectralPart(const RenderScene& scene) {
+// Empty when every medium is grey and nothing else is spectral; else what is. A grey medium's
+// blackbody emission is not, where the integrator films it exactly (exactEmission).
+std::string spectralPart(const RenderScene& scene, bool exactEmission) {
     if (scene.hasSurfaces()) return "surfaces";
     for (const auto& m : scene.media) {
         if (!m->greyCoefficients()) return "spectral or fluorescent media";
-        if (m->emissive()) return "emission";
+        if (m->emissive() && !exactEmission) return "emission";
     }
     std::string why;
     if (!lightShapes(scene, &why)) return why;
@@ -86,7 +93,9 @@ std::string spectralPart(const RenderScene& scene) {
 
 std::optional<AchromaticFilm> AchromaticFilm::forScene(const RenderScene& scene,
                                                        const Integrator& integrator) {
-    if (!integrator.lightShapedRadiance() || !spectralPart(scene).empty()) return std::nullopt;
+    const bool exactEmission = integrator.info().exactEmission;
+    if (!integrator.lightShapedRadiance() || !spectralPart(scene, exactEmission).empty())
+        return std::nullopt;
     std::string why;
     LightShapes ls = *lightShapes(scene, &why);
     std::vector<Vec3> xyz, shapePerWatt, perWatt;
@@ -97,11 +106,13 @@ std::optional<AchromaticFilm> AchromaticFilm::forScene(const RenderScene& scene,
         shapePerWatt.push_back(Vec3(float(w.x), float(w.y), float(w.z)));
     }
     for (size_t shape : ls.ofLight) perWatt.push_back(shapePerWatt[shape]);
-    return AchromaticFilm(std::move(ls.shapes), std::move(xyz), std::move(perWatt));
+    return AchromaticFilm(std::move(ls.shapes), std::move(xyz), std::move(perWatt),
+                          exactEmission && emits(scene));
 }
 
 void AchromaticFilm::apply(const SampledWavelengths& w, RadianceSample* rs) const {
     const size_t K = mShapes.size();
+    if (K == 0) return;  // lit by its emission alone, which the recorder filmed exactly
     if (K == 1) return applyOne(w, rs);
     // The normal equations A G = b of the least-squares fit L_i = Σ_k G_k S_k(λ_i), in double:
     // A_jk = Σ_i S_j,i S_k,i, b_j = Σ_i L_i S_j,i.
@@ -154,13 +165,20 @@ void AchromaticFilm::applyOne(const SampledWavelengths& w, RadianceSample* rs) c
     rs->L = SampledSpectrum(0.f);
 }
 
-bool sampledColour(const RenderScene& scene, std::string* why) {
-    const std::string part = spectralPart(scene);
+bool sampledColour(const RenderScene& scene, const IntegratorInfo& integrator, std::string* why) {
+    const std::string part = spectralPart(scene, integrator.exactEmission);
     if (!part.empty()) {
         *why = "4 wavelengths per sample (" + part + ")";
         return true;
     }
     const size_t colours = lightShapes(scene, why)->shapes.size();
+    if (emits(scene)) {
+        *why = "grey media glowing by their temperature: " + integrator.name +
+               " adds each emission event's exact XYZ (the blackbody's at its temperature)" +
+               (colours == 0 ? std::string(", and no light: no colour noise")
+                             : ", and the lights' exact colour: no colour noise");
+        return false;
+    }
     *why = colours == 1 ? "grey media, one light colour: single and volpath add each sample's "
                           "exact XYZ, photons carry the light's XYZ (without a [refraction] "
                           "field): no colour noise"

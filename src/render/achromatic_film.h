@@ -27,6 +27,14 @@
 // ratio above, unchanged). A draw of λ at which the shapes are not independent (not met with
 // distinct shapes; the Gram matrix's pivot below 1e-9 of its diagonal) is filmed spectrally.
 // Each photon carries its own light's XYZ per watt (xyzPerWatt(light)).
+//
+// Blackbody emission in grey media (fire in its smoke): an emission event adds β σa Le / σ̄ with
+// Le = intensity · B(λ, T) and β, σa free of λ, so its radiance is a factor times B(·, T), of a
+// shape that changes from event to event with T: no fixed set of shapes to solve for. An
+// integrator that records each event with its temperature (IntegratorInfo::exactEmission:
+// volpath) instead adds the factor times XYZ[B(·, T)] (spectrum/blackbody_xyz.h), the same
+// conditional expectation per event, and the lights' part of L is filmed as above (none, for a
+// fire lit by itself alone).
 #pragma once
 
 #include <optional>
@@ -54,21 +62,29 @@ public:
     // lights sample λ with (spectrum/spectrum_sampling.h). A photon of power Φ adds Φ × this.
     Vec3 xyzPerWatt(size_t light) const { return mXyzPerWatt[light]; }
     const std::vector<Vec3>& xyzPerWattOfLights() const { return mXyzPerWatt; }
+    // Whether the scene's media glow and the integrator records each emission event in its
+    // exact colour (ThreadState::exactEmission, spectrum/blackbody_xyz.h).
+    bool exactEmission() const { return mExactEmission; }
 
 private:
     AchromaticFilm(std::vector<Spectrum> shapes, std::vector<Vec3> xyz,
-                   std::vector<Vec3> xyzPerWatt)
-        : mShapes(std::move(shapes)), mXyz(std::move(xyz)), mXyzPerWatt(std::move(xyzPerWatt)) {}
+                   std::vector<Vec3> xyzPerWatt, bool exactEmission)
+        : mShapes(std::move(shapes)),
+          mXyz(std::move(xyz)),
+          mXyzPerWatt(std::move(xyzPerWatt)),
+          mExactEmission(exactEmission) {}
     // L = G S for one shape, exactly as it always was filmed.
     void applyOne(const SampledWavelengths& w, RadianceSample* rs) const;
     std::vector<Spectrum> mShapes;  // the lights' distinct spectral shapes (any scale)
     std::vector<Vec3> mXyz;         // their XYZ, in the film's normalisation
     std::vector<Vec3> mXyzPerWatt;  // per light: its shape's XYZ / ∫ its shape dλ
+    bool mExactEmission;
 };
 
 // Whether the scene's colour is sampled at each sample's wavelengths, and why (for `mirage
 // info`): false when it is achromatic (above, one light colour or up to 3), and then single,
-// volpath and the photon mapper film it exactly.
-bool sampledColour(const RenderScene& scene, std::string* why);
+// volpath and the photon mapper film it exactly. A scene whose grey media glow is achromatic
+// to `integrator` when it films emission exactly (IntegratorInfo::exactEmission).
+bool sampledColour(const RenderScene& scene, const IntegratorInfo& integrator, std::string* why);
 
 }  // namespace mirage

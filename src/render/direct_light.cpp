@@ -1,5 +1,7 @@
 #include "render/direct_light.h"
 
+#include "render/lamp_sampling.h"
+
 namespace mirage {
 
 namespace {
@@ -27,7 +29,7 @@ float powerHeuristic(float a, float b) {
 // samples take those directions at the lobe's own density. Both are shadow rays with the same
 // transmittance estimate, so the sum stays an unbiased estimate of ∫ T p L dω.
 SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, const Vec3& wo,
-                                  Sampler& sampler, ThreadState& ts) {
+                                  Sampler& sampler, ThreadState& ts, const LampSampling* lamps) {
     SampledSpectrum L(0.f);
     const Medium& m = ts.tracking.medium(c.medium);
     const SampledWavelengths& w = ts.tracking.wavelengths();
@@ -50,9 +52,10 @@ SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, 
         if (light->sampleLi(c.p, u1, u2, w, &ls)) {
             // The light travels along −wi into the point and leaves along wo.
             const SampledSpectrum phase = m.phaseEval(c.mp, -ls.wi, wo);
-            const float mis =
-                ls.pdf > 0.f ? powerHeuristic(ls.pdf, m.phasePdf(c.mp, -wo, ls.wi)) : 1.f;
-            if (!phase.isZero()) term += shadowed(ls) * phase * mis;
+            const float mis = ls.pdf > 0.f ? powerHeuristic(ls.pdf, m.phasePdf(c.mp, -wo, ls.wi))
+                              : lamps      ? lamps->scatterPointWeight(i, c)
+                                           : 1.f;
+            if (!phase.isZero() && mis > 0.f) term += shadowed(ls) * phase * mis;
         }
         if (ls.pdf > 0.f) {
             // The phase function's sample, for a light a direction can hit (its samples have a pdf)

@@ -8,10 +8,15 @@
 
 namespace mirage {
 
+class LampSampling;
+
 // Σ_lights p(−wi, wo) · Li · T(shadow ray). wo is the direction the light leaves towards the
-// viewer (the reverse of the incoming path direction).
+// viewer (the reverse of the incoming path direction). With `lamps`, the segment c lies on
+// draws points towards the point and spot lights too (render/lamp_sampling.h), and each lamp's
+// term here carries its multiple-importance weight against them.
 SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, const Vec3& wo,
-                                  Sampler& sampler, ThreadState& ts);
+                                  Sampler& sampler, ThreadState& ts,
+                                  const LampSampling* lamps = nullptr);
 
 // Σ_lights f(wo, wi) |cos θi| · Li · T(shadow ray) at a diffuse surface point; wo (world, unit)
 // points towards the viewer. Light arriving from the other side of the surface than wo is not

@@ -9,7 +9,7 @@ namespace mirage {
 const std::vector<IntegratorInfo>& integratorInfos() {
     static const std::vector<IntegratorInfo> infos = {
         {"single", "single scattering + emission", false, false},
-        {"volpath", "the reference spectral volumetric path tracer", true, false},
+        {"volpath", "the reference spectral volumetric path tracer", true, false, true},
         {"photon", "volume photon mapping: single scattering + photon-map multiple scattering",
          true, true},
     };

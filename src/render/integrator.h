@@ -62,6 +62,9 @@ struct ThreadState {
     // A photon estimate's parts per light-group slot (XYZ, photon/photon_groups.h), likewise.
     std::vector<Vec3> lightSplitXyz;
     // Zeroes the parts for the estimate about to be made; null when the render does not split.
+    // Blackbody emission is filmed in its exact colour (render/achromatic_film.h): the recorder
+    // adds each emission event's XYZ instead of its radiance at the sample's wavelengths.
+    bool exactEmission = false;
     SampledSpectrum* startLightSplit() {
         if (!aov || aov->group.empty()) return nullptr;
         std::fill(lightSplit.begin(), lightSplit.end(), SampledSpectrum(0.f));
@@ -77,6 +80,9 @@ struct IntegratorInfo {
     bool multipleScattering;  // follows light scattered more than once
     bool photonPass;          // traces photons first: the [render] photon keys apply, the memory
                               // estimate counts the maps, the presets set photons and k
+    // Records each medium emission event with its temperature (PathRecorder::emittedInMedium),
+    // so that a grey medium's blackbody is filmed in its exact colour (render/achromatic_film.h).
+    bool exactEmission = false;
 };
 const std::vector<IntegratorInfo>& integratorInfos();
 // The descriptor of `name`; throws MirageError naming the integrators for any other.

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "render/camera_ray_data.h"
+#include "spectrum/blackbody_xyz.h"
 
 namespace mirage {
 
@@ -35,6 +36,28 @@ void PathRecorder::addXyz(const Vec3& c, LightPath p, DeepAt where) {
     if (!mAov) return;
     mAov->addPathXyz(c, p);
     if (!mAov->groupXyz.empty()) mAov->addGroupXyz(mTs->lightSplitXyz);
+}
+
+// c = k B(λ_i, T) at the sample's wavelengths, k free of λ (a grey medium's emission event,
+// render/achromatic_film.h): k by least squares over the four, exact up to rounding, then
+// k XYZ[B(·, T)]. Where B vanishes at all four (far below the visible range's glow), so does c.
+void PathRecorder::emittedBlackbody(const SampledSpectrum& c, float t, float kelvin) {
+    const SampledWavelengths& w = mTs->tracking.wavelengths();
+    double cb = 0.0, bb = 0.0;
+    for (int i = 0; i < kSpectrumSamples; ++i) {
+        const double b = planck(w.lambda[i], kelvin) * 1e-9;
+        cb += double(c[i]) * b;
+        bb += b * b;
+    }
+    if (!(bb > 0.0)) return;
+    const Vec3 xyz = blackbodyXyz(kelvin) * float(cb / bb);
+    mOut->xyz += xyz;
+    if (mDeep) mDeep->radiance.push_back({at(t, false), SampledSpectrum(0.f), xyz});
+    if (!mAov) return;
+    mAov->addPathXyz(xyz, mHistory.emitted());
+    if (mAov->groupXyz.empty()) return;
+    mAov->groupXyz[kEmissionGroup] += xyz;
+    mAov->groupsLit = true;
 }
 
 void PathRecorder::cameraFlightEnded(bool reachedEnd) {

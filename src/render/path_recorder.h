@@ -56,8 +56,12 @@ public:
     }
 
     // Light emitted by a medium or a surface at distance t along the current ray, reaching the
-    // camera as c.
-    void emittedInMedium(const SampledSpectrum& c, float t) { emitted(c, t, false); }
+    // camera as c. A medium's blackbody at `kelvin` (> 0), where the render films emission in
+    // its exact colour (ThreadState::exactEmission), adds c's XYZ at every wavelength instead.
+    void emittedInMedium(const SampledSpectrum& c, float t, float kelvin = 0.f) {
+        if (kelvin > 0.f && mTs->exactEmission) return emittedBlackbody(c, t, kelvin);
+        emitted(c, t, false);
+    }
     void emittedAtSurface(const SampledSpectrum& c, float t) { emitted(c, t, true); }
     // Next-event estimation's light `lit` at a vertex at distance t, reaching the camera through
     // the throughput beta; its groups are the parts the estimate left in ts.lightSplit.
@@ -167,6 +171,7 @@ private:
         mAov->addGroup(c, group);
     }
     void addXyz(const Vec3& c, LightPath p, DeepAt where);
+    void emittedBlackbody(const SampledSpectrum& c, float t, float kelvin);
 
     RadianceSample* mOut;
     AovSample* mAov;

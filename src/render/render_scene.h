@@ -41,6 +41,10 @@ struct RenderScene {
         return light < lightGroupIndex.size() ? lightGroupIndex[light] + 1 : 1;
     }
 
+    // Whether paths draw distances towards point and spot lights besides delta tracking's
+    // ([render] lamp_sampling, render/lamp_sampling.h).
+    bool equiangular = true;
+
     bool hasSurfaces() const { return geometry && !geometry->empty(); }
     bool holdout(size_t medium) const {
         return medium < mediumHoldouts.size() && mediumHoldouts[medium];

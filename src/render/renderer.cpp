@@ -106,6 +106,7 @@ uint64_t renderTile(const TileJob& job, int tile, ThreadState& ts) {
     const AovLayout& layout = job.film->aovs();
     TileScratch scratch(layout);
     ts.aov = layout.empty() ? nullptr : &scratch.aov;
+    ts.exactEmission = job.achromatic && job.achromatic->exactEmission();
     ts.lightSplit.assign(size_t(layout.groupSlots()), SampledSpectrum(0.f));
     ts.deep = job.deep ? &scratch.deep : nullptr;
     const PixelWindow t = tilePixels(s, tile);

@@ -3,8 +3,10 @@
 // flights by delta tracking against the majorant grid (null collisions), next-event estimation
 // at every real scattering event with ratio-tracked shadow rays, phase-function sampling for
 // the next direction, emission scored at every tentative collision, Russian roulette on the
-// throughput. Lights are reached by next-event estimation only (they are not hit by rays), so
-// no multiple importance sampling is needed for the light types Mirage has.
+// throughput. Lights are reached by next-event estimation only (they are not hit by rays); a
+// quad or the dome is sampled by the light and by the phase function (render/direct_light.cpp),
+// and point and spot lights also by a point drawn towards them along every segment, weighed
+// against the scattering points' estimates (render/lamp_sampling.h): the lamp in the fog.
 //
 // Weights (per wavelength; see transport/tracking.h):
 //   emission      β σa Le / σ̄                    at every tentative collision
@@ -42,6 +44,7 @@
 #include "render/direct_light.h"
 #include "render/inelastic_light.h"
 #include "render/integrator.h"
+#include "render/lamp_sampling.h"
 #include "render/light_lobes.h"
 #include "transport/path_vertex.h"
 #include "transport/reemission.h"
@@ -75,9 +78,15 @@ public:
         PathRecorder rec(&out, ts);
         CameraPath path(cameraRay, w);
         path.guided = guidesPaths(scene);  // render/light_lobes.h
+        // Lobe walks weigh next-event estimation against themselves; lamps draw their own
+        // points only where they do not (render/lamp_sampling.h).
+        const bool towardsLamps = !path.guided && samplesLamps(scene);
         for (;; ++path.depth) {
             const SurfaceAhead ahead = surfaceAhead(scene, path.ray);
+            const LampSampling lamps(scene, path.ray, ahead.tEnd, towardsLamps);
+            const SampledSpectrum betaAtStart = path.throughput.beta;
             const Flight f = fly(ahead.tEnd, sampler, ts, path, rec);
+            if (!lamps.empty()) lamps.gather(scene, betaAtStart, sampler, ts, rec);
             // What the camera sees through the flight: the plate, past nothing or a holdout.
             const bool plate = f.end == Flight::End::Escaped &&
                                (!ahead.hit || rec.holdout(*scene.geometry, *ahead.hit));
@@ -87,7 +96,7 @@ public:
                 rec.coverage(plate, path.throughput.beta.average());
             bool goesOn = false;
             if (f.end == Flight::End::Scattered) {
-                scatterInMedium(scene, f.at, sampler, ts, path, rec);
+                scatterInMedium(scene, f.at, lamps, sampler, ts, path, rec);
                 goesOn = true;
             } else if (f.end == Flight::End::Reemitted) {
                 reemit(scene, f, sampler, ts, path, rec);
@@ -138,7 +147,7 @@ private:
                 if (m.emissive()) {
                     SampledSpectrum e;
                     scoreEmission(c, m, throughput, &e);
-                    rec.emittedInMedium(e, c.t);
+                    rec.emittedInMedium(e, c.t, c.mp.temperature);
                 }
                 if (m.fluorescent() && fluoresce(m, c, sampler, ts, throughput, &f))
                     return Track::Stop;
@@ -156,13 +165,16 @@ private:
     }
 
     // A real scattering event at x: next-event estimation, weighed against the lobe walks of the
-    // run x belongs to, a lobe walk of its own where paths are guided, and the phase function's
+    // run x belongs to and the segment's points towards the lamps, a lobe walk of its own where paths are guided, and the phase function's
     // sample that continues the path.
-    void scatterInMedium(const RenderScene& scene, const Collision& x, Sampler& sampler,
-                         ThreadState& ts, CameraPath& path, PathRecorder& rec) const {
+    void scatterInMedium(const RenderScene& scene, const Collision& x, const LampSampling& lamps,
+                         Sampler& sampler, ThreadState& ts, CameraPath& path,
+                         PathRecorder& rec) const {
         const float ratios = path.lobeRatios;  // the run's sum on the segment that reached x
         rec.litInMedium(path.throughput.beta / (1.f + ratios),
-                        directLightMedium(scene, x, -path.ray.d, sampler, ts), x.t);
+                        directLightMedium(scene, x, -path.ray.d, sampler, ts,
+                                          lamps.empty() ? nullptr : &lamps),
+                        x.t);
         rec.scatteredInMedium(x.t);
         path.specularChain = false;  // a medium event: next-event estimation counted the dome
         const Medium& m = ts.tracking.medium(x.medium);

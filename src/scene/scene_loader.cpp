@@ -246,6 +246,11 @@ static void readSettings(const TableReader& top,
         if (sampler != "sobol" && sampler != "random")
             r->fail("sampler", "unknown sampler '" + sampler + "'; expected sobol or random");
         scene.settings.sampler = sampler == "sobol" ? SamplerKind::Sobol : SamplerKind::Random;
+        const std::string lamps = r->getString("lamp_sampling", "equiangular");
+        if (lamps != "equiangular" && lamps != "distance")
+            r->fail("lamp_sampling",
+                    "unknown lamp sampling '" + lamps + "'; expected equiangular or distance");
+        scene.render.equiangular = lamps == "equiangular";
         scene.majorantResolution = int(r->getInt("majorant_resolution", 64, 1, 1024));
         scene.photon.photons = uint64_t(r->getInt("photons", 100000, 0, int64_t(1) << 40));
         if (r->has("photons")) scene.statedPhotons = scene.photon.photons;

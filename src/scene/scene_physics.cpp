@@ -155,7 +155,7 @@ std::vector<PhysicsTerm> Scene::physics() const {
                                   "component serve all 4 wavelengths; only light and emission "
                                   "spectra are sampled)"});
     std::string colourWhy;
-    const bool colourSampled = sampledColour(render, &colourWhy);
+    const bool colourSampled = sampledColour(render, integratorInfo(name), &colourWhy);
     terms.push_back({"sampled colour", colourSampled, colourWhy});
     terms.push_back(surfacesTerm(render));
     terms.push_back({"fluorescence", !m.fluorescenceWhy.empty(),

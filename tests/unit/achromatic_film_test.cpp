@@ -91,9 +91,9 @@ TEST(AchromaticFilm, TakenOnlyWhenNothingIsSpectral) {
             makePointLight(Vec3(0.5f, 2.f, 0.5f), 50.f, blackbodyNormalized(kelvin)));
     EXPECT_FALSE(AchromaticFilm::forScene(fourColours, *volpath));
     std::string why;
-    EXPECT_TRUE(sampledColour(fourColours, &why));
+    EXPECT_TRUE(sampledColour(fourColours, integratorInfo("volpath"), &why));
     EXPECT_NE(why.find("more than 3 colours"), std::string::npos) << why;
-    EXPECT_FALSE(sampledColour(twoColours, &why));
+    EXPECT_FALSE(sampledColour(twoColours, integratorInfo("volpath"), &why));
     EXPECT_NE(why.find("2 light colours"), std::string::npos) << why;
 
     // A light with no power over part of the visible range: G is not readable at every λ.
@@ -106,9 +106,9 @@ TEST(AchromaticFilm, TakenOnlyWhenNothingIsSpectral) {
     tinted.media[0] = std::make_unique<Medium>(
         s, std::vector<FloatGrid>{test::makeGrid(ball, 0, 23, 1.0 / 24)}, Transform(), 1.f, 16);
     EXPECT_FALSE(AchromaticFilm::forScene(tinted, *volpath));
-    EXPECT_TRUE(sampledColour(tinted, &why));
+    EXPECT_TRUE(sampledColour(tinted, integratorInfo("volpath"), &why));
     EXPECT_NE(why.find("spectral"), std::string::npos);
-    EXPECT_FALSE(sampledColour(scene, &why));
+    EXPECT_FALSE(sampledColour(scene, integratorInfo("volpath"), &why));
 }
 
 // Every lit pixel of `film` has the chromaticity of kWarm, to float rounding.

@@ -1,0 +1,107 @@
+#include "render/lamp_sampling.h"
+
+#include <algorithm>
+
+namespace mirage {
+
+namespace {
+
+// Power heuristic (Veach 1997, §9.2.1, β = 2) of density a against b.
+float powerWeight(float a, float b) {
+    const float a2 = a * a, sum = a2 + b * b;
+    return sum > 0.f ? a2 / sum : 0.f;
+}
+
+// The part of the ray over (0, tEnd) inside the hull of the media's bounds: where a point can
+// scatter. False when the ray misses them.
+bool mediaSpan(const RenderScene& scene, const Ray& ray, float tEnd, float* a, float* b) {
+    bool any = false;
+    for (const auto& m : scene.media) {
+        float t0, t1;
+        if (!m->worldBounds().intersect(ray.o, ray.d, 0.f, tEnd, &t0, &t1)) continue;
+        *a = any ? std::min(*a, t0) : t0;
+        *b = any ? std::max(*b, t1) : t1;
+        any = true;
+    }
+    return any && *b > *a && std::isfinite(*b);
+}
+
+// The scattering coefficient's mean over the path's wavelengths: the proxy of delta
+// tracking's density of scattering points (lamp_sampling.h).
+float scatterProxy(const MediumPoint& mp) { return mp.sigmaS.average(); }
+
+}  // namespace
+
+bool samplesLamps(const RenderScene& scene) {
+    if (!scene.equiangular || scene.media.empty()) return false;
+    for (const auto& light : scene.lights)
+        if (light->origin()) return true;
+    return false;
+}
+
+LampSampling::LampSampling(const RenderScene& scene, const Ray& ray, float tEnd, bool on)
+    : mRay(ray) {
+    float a = 0.f, b = 0.f;
+    if (!on || !mediaSpan(scene, ray, tEnd, &a, &b)) return;
+    for (size_t i = 0; i < scene.lights.size() && mCount < kMaxLamps; ++i) {
+        const std::optional<LightOrigin> lamp = scene.lights[i]->origin();
+        float t0, t1;
+        if (!lamp || !coneInterval(ray.o, ray.d, a, b, lamp->p, lamp->axis, lamp->cosCone, &t0,
+                                   &t1))
+            continue;
+        const EquiangularSegment segment(ray.o, ray.d, t0, t1, lamp->p);
+        if (!segment.empty()) mLamps[mCount++] = Lamp{i, segment};
+    }
+}
+
+const LampSampling::Lamp* LampSampling::find(size_t light) const {
+    for (size_t k = 0; k < mCount; ++k)
+        if (mLamps[k].light == light) return &mLamps[k];
+    return nullptr;
+}
+
+float LampSampling::scatterPointWeight(size_t light, const Collision& c) const {
+    const Lamp* lamp = find(light);
+    return lamp ? powerWeight(scatterProxy(c.mp), lamp->segment.pdf(c.t)) : 1.f;
+}
+
+void LampSampling::gather(const RenderScene& scene, const SampledSpectrum& beta,
+                          Sampler& sampler, ThreadState& ts, PathRecorder& rec) const {
+    const SampledWavelengths& w = ts.tracking.wavelengths();
+    const Vec3 wo = -mRay.d;
+    for (size_t k = 0; k < mCount; ++k) {
+        const Lamp& lamp = mLamps[k];
+        const float t = lamp.segment.sample(sampler.get1D());
+        const float pe = lamp.segment.pdf(t);
+        const Vec3 x = mRay.at(t);
+        LightSample ls;
+        if (!(pe > 0.f) || !scene.lights[lamp.light]->sampleLi(x, 0.5f, 0.5f, w, &ls)) continue;
+        // What scatters towards wo at x, each medium by its phase function and its weight.
+        SampledSpectrum scattered(0.f);
+        for (size_t m = 0; m < ts.tracking.size(); ++m) {
+            const Medium& medium = ts.tracking.medium(m);
+            if (rec.holdout(m)) continue;  // a holdout the camera sees scatters nothing
+            Medium::Context& ctx = ts.tracking.context(m);
+            const Vec3 p = ctx.toObject(mRay).at(t);
+            if (!medium.objectBounds().contains(p)) continue;
+            MediumPoint mp;
+            medium.eval(p, ctx, &mp);
+            ++ts.tracking.lookups;
+            if (mp.sigmaS.isZero()) continue;
+            scattered += mp.sigmaS * medium.phaseEval(mp, -ls.wi, wo) *
+                         powerWeight(pe, scatterProxy(mp));
+        }
+        if (scattered.isZero()) continue;
+        if (scene.hasSurfaces() && scene.geometry->occluded(x, ls.wi, ls.distance)) continue;
+        const SampledSpectrum toLamp =
+            transmittance(ts.tracking, Ray{x, ls.wi, ls.distance}, ls.distance, sampler);
+        if (toLamp.isZero()) continue;
+        const SampledSpectrum toPoint = transmittance(ts.tracking, mRay, t, sampler);
+        const SampledSpectrum term = toPoint * scattered * toLamp * ls.Li / pe;
+        if (SampledSpectrum* split = ts.startLightSplit())
+            split[scene.lightGroupSlot(lamp.light)] += term;
+        rec.litInMedium(beta, term, t);
+    }
+}
+
+}  // namespace mirage

@@ -1,0 +1,64 @@
+// Light from point and spot lights scattered off a path's segment, drawn two ways and combined
+// by multiple importance sampling (Kulla & Fajardo 2012; Veach 1997 §9.2): the path tracer's
+// own scattering points, drawn by delta tracking ∝ T σs, and one point per lamp drawn by
+// equiangular sampling ∝ 1/r² towards it (transport/equiangular.h), over the part of the
+// segment inside the media and inside a spot's cone.
+//
+// Both strategies estimate the single scattering of lamp k off the segment,
+//     S_k = ∫ T(0, t) σs(t) p(θ) I_k V T(t, lamp) / r² dt,
+// per medium m at t. Delta tracking's points fall with density σs,m(t) T(0, t); equiangular
+// sampling's with p_e,k(t). The power heuristic weighs each point by its strategy's density
+// against the other's, evaluated with the same function of t on both sides: for delta
+// tracking the proxy q_m(t) = σs,m(t) (mean over the path's wavelengths; the transmittance
+// factor is left out, since an estimate of it is random and a weight must not be). Any such
+// pair of weights summing to 1 at every t keeps the sum unbiased (Veach 1997, eq. 9.3); the
+// proxy only decides how well the variance is split. Near the lamp p_e grows as 1/r and takes
+// the weight, where delta tracking's points made fireflies; far from it σs takes it back.
+//
+// The equiangular point's estimate: β T̂(0, t) σs,m(t) p(θ) Li T(t, lamp) / p_e(t), T̂ by ratio
+// tracking (unbiased), σs and p exact at t. Lamps beyond kMaxLamps, area lights and the dome
+// keep next-event estimation at the scattering points alone (weight 1).
+#pragma once
+
+#include <array>
+
+#include "render/integrator.h"
+#include "render/path_recorder.h"
+#include "transport/equiangular.h"
+
+namespace mirage {
+
+class LampSampling {
+public:
+    // The lamps' segments along `ray` over (0, tEnd): clipped to the media's bounds and to
+    // each spot's cone. Empty where the scene has no point or spot light, or `on` is false.
+    LampSampling(const RenderScene& scene, const Ray& ray, float tEnd, bool on);
+    bool empty() const { return mCount == 0; }
+
+    // The weight of next-event estimation to light `light` (an index into scene.lights) from a
+    // scattering point that delta tracking found at c on this segment.
+    float scatterPointWeight(size_t light, const Collision& c) const;
+
+    // The equiangular points' estimate, one per lamp, each recorded as light gathered in the
+    // medium at its t: beta is the path's throughput at the segment's start, wo the direction
+    // back along the segment.
+    void gather(const RenderScene& scene, const SampledSpectrum& beta, Sampler& sampler,
+                ThreadState& ts, PathRecorder& rec) const;
+
+private:
+    struct Lamp {
+        size_t light;
+        EquiangularSegment segment;
+    };
+    static constexpr size_t kMaxLamps = 8;
+    Ray mRay;
+    std::array<Lamp, kMaxLamps> mLamps{};
+    size_t mCount = 0;
+    const Lamp* find(size_t light) const;
+};
+
+// Whether a scene's paths draw points towards its lamps: any point or spot light and the
+// scene's `[render] lamp_sampling` (RenderScene::equiangular).
+bool samplesLamps(const RenderScene& scene);
+
+}  // namespace mirage

@@ -46,8 +46,8 @@ LampSampling::LampSampling(const RenderScene& scene, const Ray& ray, float tEnd,
     for (size_t i = 0; i < scene.lights.size() && mCount < kMaxLamps; ++i) {
         const std::optional<LightOrigin> lamp = scene.lights[i]->origin();
         float t0, t1;
-        if (!lamp || !coneInterval(ray.o, ray.d, a, b, lamp->p, lamp->axis, lamp->cosCone, &t0,
-                                   &t1))
+        if (!lamp ||
+            !coneInterval(ray.o, ray.d, a, b, lamp->p, lamp->axis, lamp->cosCone, &t0, &t1))
             continue;
         const EquiangularSegment segment(ray.o, ray.d, t0, t1, lamp->p);
         if (!segment.empty()) mLamps[mCount++] = Lamp{i, segment};
@@ -65,8 +65,8 @@ float LampSampling::scatterPointWeight(size_t light, const Collision& c) const {
     return lamp ? powerWeight(scatterProxy(c.mp), lamp->segment.pdf(c.t)) : 1.f;
 }
 
-void LampSampling::gather(const RenderScene& scene, const SampledSpectrum& beta,
-                          Sampler& sampler, ThreadState& ts, PathRecorder& rec) const {
+void LampSampling::gather(const RenderScene& scene, const SampledSpectrum& beta, Sampler& sampler,
+                          ThreadState& ts, PathRecorder& rec) const {
     const SampledWavelengths& w = ts.tracking.wavelengths();
     const Vec3 wo = -mRay.d;
     for (size_t k = 0; k < mCount; ++k) {
@@ -88,8 +88,8 @@ void LampSampling::gather(const RenderScene& scene, const SampledSpectrum& beta,
             medium.eval(p, ctx, &mp);
             ++ts.tracking.lookups;
             if (mp.sigmaS.isZero()) continue;
-            scattered += mp.sigmaS * medium.phaseEval(mp, -ls.wi, wo) *
-                         powerWeight(pe, scatterProxy(mp));
+            scattered +=
+                mp.sigmaS * medium.phaseEval(mp, -ls.wi, wo) * powerWeight(pe, scatterProxy(mp));
         }
         if (scattered.isZero()) continue;
         if (scene.hasSurfaces() && scene.geometry->occluded(x, ls.wi, ls.distance)) continue;

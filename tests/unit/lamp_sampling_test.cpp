@@ -3,6 +3,8 @@
 // scan, and the path tracer's single scattering from a point light and from a spot's beam
 // against quadrature, with and without the lamp's points: the same mean, and near the lamp the
 // equiangular points' samples stay bounded where delta tracking's alone make fireflies.
+#include "render/lamp_sampling.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,7 +12,6 @@
 #include <cstdio>
 
 #include "chi_square.h"
-#include "render/lamp_sampling.h"
 #include "test_support.h"
 
 using namespace mirage;
@@ -25,7 +26,7 @@ TEST(Equiangular, SamplesItsDensity) {
         {Vec3(0.f), Vec3(1, 0, 0), 0.f, 4.f, Vec3(1.f, 0.02f, 0.f)},    // close pass, inside
         {Vec3(0.f), Vec3(1, 0, 0), 0.f, 4.f, Vec3(2.f, 3.f, 0.f)},      // far
         {Vec3(0.f), Vec3(0, 0, 1), 1.f, 3.f, Vec3(0.1f, 0.f, -2.f)},    // lamp behind the segment
-        {Vec3(0.f), Vec3(0, 1, 0), 0.f, 1.f, Vec3(0.f, 0.5f, 0.f)},     // through the lamp
+        {Vec3(0.f), Vec3(0, 1, 0), 0.f, 1.f, Vec3(0.002f, 0.5f, 0.f)},  // 2 mm from the lamp
     };
     Sampler rng(7, 0, 0);
     for (const Case& k : cases) {
@@ -39,19 +40,26 @@ TEST(Equiangular, SamplesItsDensity) {
             ASSERT_LE(t, k.b);
             observed[std::min(bins - 1, int((t - k.a) / (k.b - k.a) * bins))] += 1;
         }
-        // Each bin's probability by the midpoint rule on 200 sub-steps of the density.
+        // Each bin's probability by the midpoint rule on 2000 sub-steps of the density.
         double total = 0.0;
         for (int i = 0; i < bins; ++i) {
             const double w = (k.b - k.a) / double(bins);
             double p = 0.0;
-            for (int j = 0; j < 200; ++j) p += s.pdf(float(k.a + w * (i + (j + 0.5) / 200)));
-            expected[i] = p * w / 200;
+            for (int j = 0; j < 2000; ++j) p += s.pdf(float(k.a + w * (i + (j + 0.5) / 2000)));
+            expected[i] = p * w / 2000;
             total += expected[i];
         }
         EXPECT_NEAR(total, 1.0, 2e-3);
         for (double& e : expected) e *= n / total;
         const test::ChiSquare r = test::chiSquare(observed, expected);
         EXPECT_LT(r.statistic, test::chiSquareCritical(r.dof));
+    }
+    // A ray through the lamp itself: the angle spans π, and every sample stays on the segment.
+    const EquiangularSegment through(Vec3(0.f), Vec3(0, 1, 0), 0.f, 1.f, Vec3(0.f, 0.5f, 0.f));
+    for (int i = 0; i < 1000; ++i) {
+        const float t = through.sample(rng.get1D());
+        ASSERT_TRUE(t >= 0.f && t <= 1.f) << t;
+        ASSERT_TRUE(std::isfinite(through.pdf(t)));
     }
 }
 
@@ -61,7 +69,8 @@ TEST(Equiangular, ConeIntervalMatchesAScanOfTheCone) {
     for (float cosCone : {std::cos(radians(10.f)), std::cos(radians(40.f)), 0.1f}) {
         for (int trial = 0; trial < 200; ++trial) {
             const Vec3 o(4.f * rng.get1D() - 2.f, 2.f * rng.get1D() - 1.f, 4.f * rng.get1D() - 2.f);
-            const Vec3 d = normalize(Vec3(rng.get1D() - 0.5f, rng.get1D() - 0.5f, rng.get1D() - 0.5f));
+            const Vec3 d =
+                normalize(Vec3(rng.get1D() - 0.5f, rng.get1D() - 0.5f, rng.get1D() - 0.5f));
             const float a = 0.f, b = 5.f;
             // The scan: every 1/2000 of the segment inside the forward cone.
             float lo = kInfinity, hi = -kInfinity;
@@ -126,7 +135,7 @@ Estimate singleScattering(RenderScene& scene, const Ray& ray, bool equiangular, 
 // field (the box's faces fade over half a voxel).
 double quadrature(const Medium& medium, const Ray& ray, const Vec3& lamp, double intensity,
                   const std::function<double(const Vec3&)>& falloff) {
-    const FloatGrid& grid = medium.grids()[0];
+    const FloatGrid& grid = medium.binding().grids()[0];
     auto acc = grid.accessor();
     const double sigmaT = kSigmaA + kSigmaS;
     const double delta = dot(lamp - ray.o, ray.d);
@@ -169,13 +178,15 @@ TEST(LampSampling, PointLightInFogMatchesQuadratureWithoutFireflies) {
     RenderScene scene = fogBox();
     scene.lights.push_back(makePointLight(lamp, kPower, Spectrum(1.f)));
     const double I = kPower / (4 * kPi) / double(kLambdaMax - kLambdaMin);
-    const double expected = quadrature(*scene.media[0], ray, lamp, I, [](const Vec3&) { return 1.0; });
+    const double expected =
+        quadrature(*scene.media[0], ray, lamp, I, [](const Vec3&) { return 1.0; });
     const Estimate eq = singleScattering(scene, ray, true, 40000);
     const Estimate dist = singleScattering(scene, ray, false, 40000);
-    std::printf("expected %.5g; equiangular %.5g ± %.2g (largest %.1f × mean); distance %.5g ± "
-                "%.2g (largest %.1f × mean)\n",
-                expected, eq.mean, eq.se, eq.largest / eq.mean, dist.mean, dist.se,
-                dist.largest / dist.mean);
+    std::printf(
+        "expected %.5g; equiangular %.5g ± %.2g (largest %.1f × mean); distance %.5g ± "
+        "%.2g (largest %.1f × mean)\n",
+        expected, eq.mean, eq.se, eq.largest / eq.mean, dist.mean, dist.se,
+        dist.largest / dist.mean);
     EXPECT_NEAR(eq.mean, expected, 4 * eq.se + 0.01 * expected);
     EXPECT_NEAR(dist.mean, expected, 4 * dist.se + 0.01 * expected);
     // Bounded near the lamp: the equiangular points carry the 1/r² peak.
@@ -203,8 +214,8 @@ TEST(LampSampling, SpotBeamSeenFromTheSideMatchesQuadrature) {
     const double expected = quadrature(*scene.media[0], ray, lamp, I, falloff);
     const Estimate eq = singleScattering(scene, ray, true, 40000);
     const Estimate dist = singleScattering(scene, ray, false, 40000);
-    std::printf("expected %.5g; equiangular %.5g ± %.2g; distance %.5g ± %.2g\n", expected,
-                eq.mean, eq.se, dist.mean, dist.se);
+    std::printf("expected %.5g; equiangular %.5g ± %.2g; distance %.5g ± %.2g\n", expected, eq.mean,
+                eq.se, dist.mean, dist.se);
     EXPECT_NEAR(eq.mean, expected, 4 * eq.se + 0.01 * expected);
     EXPECT_NEAR(dist.mean, expected, 4 * dist.se + 0.01 * expected);
     // The beam is a small part of the ray: points drawn inside it are the win.

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The regime suite's table (pipeline/race.sh REGIME; docs/performance.md, "The regime suite").
+"""The regime suite's table (pipeline/race.sh REGIME; docs/regimes.md).
 
 For each regime raced into OUT (OUT/<regime>.csv), Mirage's default render's time over Cycles'
 at Cycles' relMSE of 4, 16, 64 and 256 samples per pixel (pipeline/race_ratio.py's reading:

@@ -2,9 +2,8 @@
 """The sky of the regime suite's `sky-hdr` race: a lat-long Radiance .hdr with a small sun.
 
 One radiance function of direction, written twice, once in each renderer's lat-long convention,
-so that Mirage and Cycles are lit by the same sky (pipeline/race.sh sky-hdr; docs/performance.md,
-"The regime suite"). Directions are in the scene's frame, the VDB's own (y up; the race camera
-looks along -z).
+so that Mirage and Cycles are lit by the same sky (pipeline/race.sh sky-hdr; docs/regimes.md).
+Directions are in the scene's frame, the VDB's own (y up; the race camera looks along -z).
 
 The sky (linear Rec.709 radiance, W·m⁻²·sr⁻¹ in the units both renderers read an image in):
 - above the horizon, a gradient from a pale horizon (0.85, 0.90, 1.00) to a blue zenith
@@ -64,12 +63,15 @@ def sun_direction():
     return (-math.cos(e) * math.sin(a), math.sin(e), math.cos(e) * math.cos(a))
 
 
+SUN_DIR = sun_direction()
+COS_SUN_RADIUS = math.cos(math.radians(SUN_RADIUS_DEG))
+SUN = tuple(SUN_TO_ZENITH * luminance(ZENITH) * SKY / luminance(SUN_COLOUR) * c for c in SUN_COLOUR)
+
+
 def sky(d):
     """Linear Rec.709 radiance arriving from direction d (unit, pointing at the sky)."""
-    s = sun_direction()
-    if sum(a * b for a, b in zip(d, s)) >= math.cos(math.radians(SUN_RADIUS_DEG)):
-        k = SUN_TO_ZENITH * luminance(ZENITH) * SKY / luminance(SUN_COLOUR)
-        return tuple(k * c for c in SUN_COLOUR)
+    if d[0] * SUN_DIR[0] + d[1] * SUN_DIR[1] + d[2] * SUN_DIR[2] >= COS_SUN_RADIUS:
+        return SUN
     if d[1] < 0.0:
         return tuple(SKY * c for c in GROUND)
     w = math.sqrt(d[1])

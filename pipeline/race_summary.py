@@ -20,6 +20,7 @@ Usage: race_summary.py OUT                  → the tables
 """
 import csv
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -68,12 +69,33 @@ def regime_rows(name, rows):
     return out
 
 
+def check_row(name, text):
+    """The checks of OUT/<regime>.checks.txt as a table row: the noise between two seeds of
+    Mirage's default over Cycles' at equal samples, their mean seconds, the same noise ratio at
+    equal time (a variance falls as 1/time), and the long render's mean luminance against the
+    reference; "" when the file is not the checks' (an interrupted run)."""
+    seeds = {}
+    for who, a, b in re.findall(r"seeds (cycles|mirage default) .*\(([0-9.]+) s, ([0-9.]+) s\)",
+                                text):
+        seeds[who] = (float(a) + float(b)) / 2
+    ratio = re.search(r"mirage / cycles ([0-9.]+)", text)
+    mean = re.search(r"Y ([-+][0-9.]+ %)", text)
+    if len(seeds) != 2 or not ratio or not mean:
+        return ""
+    r, tm, tc = float(ratio.group(1)), seeds["mirage default"], seeds["cycles"]
+    return f"| {name} | {r:.2f} | {tm:.1f} / {tc:.1f} | {r * tm / tc:.2f} | {mean.group(1)} |"
+
+
 def tables(out_dir):
     lines = ["Mirage's default render: its time over Cycles' at Cycles' relMSE of",
              "", "| regime | the default | 4 spp | 16 spp | 64 spp | 256 spp |",
              "|---|---|---:|---:|---:|---:|"]
     cycles_lines = ["", "Cycles (seconds / relMSE against its own converged image)", "",
                     "| regime | 4 spp | 16 spp | 64 spp | 256 spp |", "|---|---:|---:|---:|---:|"]
+    checks = ["", "A light inside a medium: Mirage's default against Cycles (OUT/<regime>.checks.txt)",
+              "", "| regime | noise between seeds, Mirage / Cycles at equal samples | seconds, "
+              "Mirage / Cycles | noise at equal time | Mirage's long render's mean Y against "
+              "its reference |", "|---|---:|---:|---:|---:|"]
     notes = []
     for name in REGIMES:
         path = os.path.join(out_dir, name + ".csv")
@@ -89,12 +111,15 @@ def tables(out_dir):
             extra = os.path.join(out_dir, f"{name}.{kind}.txt")
             if os.path.isfile(extra):
                 with open(extra) as f:
-                    notes += [f"{name} {kind}: {line.rstrip()}" for line in f if line.strip()]
+                    text = f.read()
+                notes += [f"{name} {kind}: {line}" for line in text.splitlines() if line.strip()]
+                if kind == "checks" and check_row(name, text):
+                    checks.append(check_row(name, text))
     lines += ["", f"?: this series' or Cycles' relMSE does not fall with time (a later render's "
               f"above {ERRATIC}× an earlier one's: fireflies, or a short time limit's coarse image "
               "against a later full pass), so the ratio read off it is unreliable; where fireflies "
               "decide it, the checks below (noise between seeds, a long render's mean) measure it"]
-    return lines + cycles_lines + [""] + notes
+    return lines + cycles_lines + (checks if len(checks) > 5 else []) + [""] + notes
 
 
 def means(exr):
@@ -134,7 +159,9 @@ def self_test():
             f.write("renderer,spp,seconds,relmse\ncycles,16,4.0,10\ncycles,64,16.0,3\n"
                     "mirage timed,1,1.0,8\nmirage timed,3,3.0,40\nmirage timed,10,10.0,2\n")
         with open(os.path.join(tmp, "fire.checks.txt"), "w") as f:
-            f.write("mean ... R +1.0 %\n")
+            f.write("seeds cycles 64 spp: relMSE between seeds / 2 = 2 (10 s, 12 s)\n"
+                    "seeds mirage default 64 spp: relMSE between seeds / 2 = 4 (1.5 s, 2.5 s); "
+                    "mirage / cycles 2.00\nmean ... R +1.0 %, G +1.0 %, B +1.0 %, Y +1.0 %\n")
         text = "\n".join(tables(tmp))
     # Given samples: a bound at Cycles' 4-spp error, read off at 16, extrapolated at 64; given a
     # time: one render, a bound only where it is inside (none here: 0.2 is below 1.0 and above
@@ -142,7 +169,9 @@ def self_test():
     assert "| fire | given samples | ≤0.50 | 0.25 | ~0.25 |  |" in text, text
     assert "| fire | given a time |  |  |  |  |" in text, text
     assert "| fire | 1.00 / 1 | 4.00 / 0.25 | 16.00 / 0.0625 |  |" in text, text
-    assert "fire checks: mean ... R +1.0 %" in text, text
+    assert "fire checks: mean ... R +1.0 %, G +1.0 %, B +1.0 %, Y +1.0 %" in text, text
+    # Twice Cycles' noise in 2 s against 11: at equal time 2 × 2 / 11.
+    assert "| fire | 2.00 | 2.0 / 11.0 | 0.36 | +1.0 % |" in text, text
     # A timed series whose error rises from 1 s to 3 s: its cells are flagged as noise.
     assert "| haze | given a time |  | ?1.31 | ?0.53 |  |" in text, text
     print("race_summary self-test: ok")

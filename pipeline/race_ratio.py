@@ -28,30 +28,47 @@ def extrapolate(pts, target):
     return math.exp(math.log(t0) + slope * (math.log(target) - math.log(e0)))
 
 
-def ratio_lines(rows):
+def curves_of(rows):
+    """{renderer: [(seconds, relmse)] sorted by time} of a race's CSV rows."""
     curves = {}
     for r in rows:
         curves.setdefault(r["renderer"], []).append((float(r["seconds"]), float(r["relmse"])))
-    cycles = sorted(curves.pop("cycles", []))
+    return {name: sorted(pts) for name, pts in curves.items()}
+
+
+def time_to(pts, ec):
+    """A renderer's time to relMSE ec: (seconds, mark), mark "" (read off its curve), "~"
+    (extrapolated below its best error) or "<=" (its cheapest render, already below ec);
+    (None, "") from a single measurement outside it."""
+    lo, hi = min(e for _, e in pts), max(e for _, e in pts)
+    if lo <= ec <= hi:
+        return time_at(pts, ec), ""
+    if len(pts) < 2:
+        return None, ""
+    if ec > hi:
+        return min(pts)[0], "<="
+    return extrapolate(pts, ec), "~"
+
+
+def ratio_lines(rows):
+    curves = curves_of(rows)
+    cycles = curves.pop("cycles", [])
     lines = []
     for tc, ec in cycles:
         for name, pts in sorted(curves.items()):
-            pts = sorted(pts)
-            lo, hi = min(e for _, e in pts), max(e for _, e in pts)
             head = f"  at Cycles' relMSE {ec:.4g} ({tc:.2f} s): {name}"
-            if lo <= ec <= hi:
-                t = time_at(pts, ec)
-                lines.append(f"{head} {t:.2f} s, ratio {name} / cycles {t / tc:.2f}")
-                continue
-            if len(pts) < 2:
-                lines.append(f"{head}: one measurement, no curve to read it off")
-                continue
-            t = extrapolate(pts, ec)
-            if ec > hi:
-                cheapest, err = min(pts)
-                lines.append(f"{head} <={cheapest:.2f} s (its cheapest render, relMSE {err:.4g}, "
-                             f"is already below), ratio {name} / cycles <={cheapest / tc:.2f}; "
-                             f"extrapolated ~{t:.2f} s, ~{t / tc:.2f}")
+            t, mark = time_to(pts, ec)
+            if mark == "":
+                if t is None:
+                    lines.append(f"{head}: one measurement, no curve to read it off")
+                else:
+                    lines.append(f"{head} {t:.2f} s, ratio {name} / cycles {t / tc:.2f}")
+            elif mark == "<=":
+                err = min(pts)[1]
+                x = extrapolate(pts, ec)
+                lines.append(f"{head} <={t:.2f} s (its cheapest render, relMSE {err:.4g}, "
+                             f"is already below), ratio {name} / cycles <={t / tc:.2f}; "
+                             f"extrapolated ~{x:.2f} s, ~{x / tc:.2f}")
             else:
                 lines.append(f"{head} ~{t:.2f} s, ratio {name} / cycles ~{t / tc:.2f}")
     return lines

@@ -198,6 +198,23 @@ RenderScene sunlitSmokeBox() {
     return scene;
 }
 
+RayEstimate estimateAlongRay(const Integrator& integrator, const RenderScene& scene,
+                             const Ray& ray, int samples) {
+    ThreadState ts(scene);
+    double sum = 0, sum2 = 0, largest = 0;
+    for (int i = 0; i < samples; ++i) {
+        Sampler s(SamplerKind::Random, 1, 0, uint64_t(i));
+        SampledWavelengths w = SampledWavelengths::sampleVisible(s.get1D());
+        ts.tracking.setWavelengths(w);
+        const double v = integrator.Li(scene, ray, w, s, ts).L[0];
+        sum += v;
+        sum2 += v * v;
+        largest = std::max(largest, v);
+    }
+    const double mean = sum / samples;
+    return {mean, std::sqrt(std::max(0.0, sum2 / samples - mean * mean) / samples), largest};
+}
+
 bool sameFilm(const Film& a, const Film& b) {
     if (a.width() != b.width() || a.height() != b.height()) return false;
     for (int y = 0; y < a.height(); ++y)

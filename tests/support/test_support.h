@@ -97,6 +97,29 @@ RenderScene sunlitSmokeBox();
 // Whether two films hold the same bits: sums, squared sums, alpha and sample counts.
 bool sameFilm(const Film& a, const Film& b);
 
+// The mean, its standard error and the largest of `samples` estimates L[0] of one ray by an
+// integrator, each path with its own random stream and wavelengths: the known-answer checks of
+// an estimator against quadrature along a ray.
+struct RayEstimate {
+    double mean, se, largest;
+};
+RayEstimate estimateAlongRay(const Integrator& integrator, const RenderScene& scene,
+                             const Ray& ray, int samples);
+
+// volpath filmed at four wavelengths per sample (the integrator's radiance declared not
+// light-shaped), as before the exact-colour shortcuts of render/achromatic_film.h.
+class SpectralFilmVolpath : public Integrator {
+public:
+    const IntegratorInfo& info() const override { return mInner->info(); }
+    RadianceSample Li(const RenderScene& scene, const Ray& ray, const SampledWavelengths& w,
+                      Sampler& sampler, ThreadState& ts) const override {
+        return mInner->Li(scene, ray, w, sampler, ts);
+    }
+
+private:
+    std::unique_ptr<Integrator> mInner = makeVolPathIntegrator();
+};
+
 // An image against a reference over the pixels the reference covers (alpha ≥ 0.5: background
 // and fringes excluded), in scene-linear RGB, each channel on its own relative to that
 // channel's mean in the reference: an error in one colour is not diluted by the other two (a

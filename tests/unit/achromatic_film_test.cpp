@@ -37,18 +37,6 @@ RenderScene greyScene(const Spectrum& lightColour) {
     return scene;
 }
 
-// volpath filmed at four wavelengths per sample, as before the shortcut.
-class SpectralFilmVolpath : public Integrator {
-public:
-    const IntegratorInfo& info() const override { return mInner->info(); }
-    RadianceSample Li(const RenderScene& scene, const Ray& ray, const SampledWavelengths& w,
-                      Sampler& sampler, ThreadState& ts) const override {
-        return mInner->Li(scene, ray, w, sampler, ts);
-    }
-
-private:
-    std::unique_ptr<Integrator> mInner = makeVolPathIntegrator();
-};
 
 Vec3d meanXyz(const Film& film) {
     Vec3d sum(0.0);
@@ -73,7 +61,7 @@ TEST(AchromaticFilm, TakenOnlyWhenNothingIsSpectral) {
 
     PhotonIntegratorSettings ps;
     EXPECT_TRUE(AchromaticFilm::forScene(scene, *makePhotonIntegrator(ps)));
-    EXPECT_FALSE(AchromaticFilm::forScene(scene, SpectralFilmVolpath()));
+    EXPECT_FALSE(AchromaticFilm::forScene(scene, test::SpectralFilmVolpath()));
 
     // Lights of two colours: each sample's radiance is split by colour (up to 3 colours).
     RenderScene twoColours = greyScene(kWarm);
@@ -203,7 +191,7 @@ TEST(AchromaticFilm, SameMeanPerChannelAsTheSpectralFilm) {
     auto volpath = makeVolPathIntegrator();
     const RenderSettings rs = test::smallRenderSettings(64, 5, 16, 16);
     const Vec3d exact = meanXyz(render(scene, *volpath, rs, nullptr));
-    SpectralFilmVolpath spectralFilm;
+    test::SpectralFilmVolpath spectralFilm;
     const Vec3d spectral = meanXyz(render(scene, spectralFilm, rs, nullptr));
     for (int c = 0; c < 3; ++c) {
         ASSERT_GT(exact[c], 0.0);
@@ -306,7 +294,7 @@ TEST(AchromaticFilm, TwoColoursSumTheSingleLightRenders) {
     const Vec3d exact = meanXyz(render(both, *volpath, rs, nullptr));
     const Vec3d sum = meanXyz(render(warmOnly, *volpath, rs, nullptr)) +
                       meanXyz(render(blueOnly, *volpath, rs, nullptr));
-    SpectralFilmVolpath spectralFilm;
+    test::SpectralFilmVolpath spectralFilm;
     const Vec3d spectral = meanXyz(render(both, spectralFilm, rs, nullptr));
     for (int c = 0; c < 3; ++c) {
         ASSERT_GT(exact[c], 0.0);

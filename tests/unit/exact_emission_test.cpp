@@ -49,18 +49,6 @@ RenderScene glowingBall(bool graded = true) {
     return scene;
 }
 
-// volpath filmed at four wavelengths per sample, as before the shortcut.
-class SpectralFilmVolpath : public Integrator {
-public:
-    const IntegratorInfo& info() const override { return mInner->info(); }
-    RadianceSample Li(const RenderScene& scene, const Ray& ray, const SampledWavelengths& w,
-                      Sampler& sampler, ThreadState& ts) const override {
-        return mInner->Li(scene, ray, w, sampler, ts);
-    }
-
-private:
-    std::unique_ptr<Integrator> mInner = makeVolPathIntegrator();
-};
 
 Vec3d pixelMean(const Film::Pixel& p) {
     return Vec3d(p.xyz[0], p.xyz[1], p.xyz[2]) / double(std::max<uint64_t>(p.samples, 1));
@@ -112,7 +100,7 @@ TEST(ExactEmission, TakenForVolpathOnGreyGlowingMediaOnly) {
 TEST(ExactEmission, SameMeanPerChannelAsTheSpectralFilm) {
     const RenderScene scene = glowingBall(true);
     auto volpath = makeVolPathIntegrator();
-    SpectralFilmVolpath spectral;
+    test::SpectralFilmVolpath spectral;
     const int n = 16;
     const RenderSettings rs = test::smallRenderSettings(64, 3, n, n);
     const Film exact = render(scene, *volpath, rs, nullptr);

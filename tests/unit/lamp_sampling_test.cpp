@@ -106,28 +106,13 @@ namespace {
 constexpr double kH = 1.0 / 32;
 constexpr float kSigmaA = 0.2f, kSigmaS = 1.f, kPower = 50.f;
 
-struct Estimate {
-    double mean, se, largest;
-};
+using Estimate = test::RayEstimate;
 
 // Single scattering along `ray` by volpath cut after its first scattering event: next-event
 // estimation at delta tracking's point, plus (equiangular) the point drawn towards the lamp.
 Estimate singleScattering(RenderScene& scene, const Ray& ray, bool equiangular, int samples) {
     scene.equiangular = equiangular;
-    auto integrator = makeVolPathIntegrator(1);
-    ThreadState ts(scene);
-    double sum = 0, sum2 = 0, largest = 0;
-    for (int i = 0; i < samples; ++i) {
-        Sampler s(SamplerKind::Random, 1, 0, uint64_t(i));
-        SampledWavelengths w = SampledWavelengths::sampleVisible(s.get1D());
-        ts.tracking.setWavelengths(w);
-        const double v = integrator->Li(scene, ray, w, s, ts).L[0];
-        sum += v;
-        sum2 += v * v;
-        largest = std::max(largest, v);
-    }
-    const double mean = sum / samples;
-    return {mean, std::sqrt((sum2 / samples - mean * mean) / samples), largest};
+    return test::estimateAlongRay(*makeVolPathIntegrator(1), scene, ray, samples);
 }
 
 // ∫ T(0, t) σs p(θ) I f(x) T(t, lamp) / r² dt over the ray, in the angle the ray subtends at

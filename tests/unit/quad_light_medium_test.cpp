@@ -80,21 +80,9 @@ TEST(QuadLightInMedium, SingleScatteringMatchesQuadratureForwardLobeIncluded) {
             }
             tauCam += (kSigmaA + kSigmaS) * density * dt;
         }
-        auto integrator = makeSingleScatterIntegrator();
-        ThreadState ts(scene);
-        double sum = 0, sum2 = 0, largest = 0;
-        const int samples = 40000;
-        for (int i = 0; i < samples; ++i) {
-            Sampler s(SamplerKind::Random, 1, 0, uint64_t(i));
-            SampledWavelengths w = SampledWavelengths::sampleVisible(s.get1D());
-            ts.tracking.setWavelengths(w);
-            const double v = integrator->Li(scene, ray, w, s, ts).L[0];
-            sum += v;
-            sum2 += v * v;
-            largest = std::max(largest, v);
-        }
-        const double mean = sum / samples;
-        const double se = std::sqrt((sum2 / samples - mean * mean) / samples);
+        const test::RayEstimate e =
+            test::estimateAlongRay(*makeSingleScatterIntegrator(), scene, ray, 40000);
+        const double mean = e.mean, se = e.se, largest = e.largest;
         EXPECT_NEAR(mean, expected, 4 * se + 0.01 * expected) << "± " << se;
         std::printf("g %.1f: mean %.5g (quadrature %.5g), largest sample %.1f × the mean\n", g,
                     mean, expected, largest / mean);

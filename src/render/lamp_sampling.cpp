@@ -45,9 +45,9 @@ LampSampling::LampSampling(const RenderScene& scene, const Ray& ray, float tEnd,
     if (!on || !mediaSpan(scene, ray, tEnd, &a, &b)) return;
     for (size_t i = 0; i < scene.lights.size() && mCount < kMaxLamps; ++i) {
         const std::optional<LightOrigin> lamp = scene.lights[i]->origin();
-        float t0, t1;
+        float t0 = a, t1 = b;
         if (!lamp ||
-            !coneInterval(ray.o, ray.d, a, b, lamp->p, lamp->axis, lamp->cosCone, &t0, &t1))
+            !coneInterval(ray.o, ray.d, Cone{lamp->p, lamp->axis, lamp->cosCone}, &t0, &t1))
             continue;
         const EquiangularSegment segment(ray.o, ray.d, t0, t1, lamp->p);
         if (!segment.empty()) mLamps[mCount++] = Lamp{i, segment};

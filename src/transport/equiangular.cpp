@@ -37,15 +37,14 @@ float EquiangularSegment::pdf(float t) const {
     return mD / ((mThetaB - mThetaA) * (mD * mD + x * x));
 }
 
-bool coneInterval(const Vec3& o, const Vec3& d, float a, float b, const Vec3& apex,
-                  const Vec3& axis, float cosCone, float* t0, float* t1) {
+bool coneInterval(const Vec3& o, const Vec3& d, const Cone& cone, float* t0, float* t1) {
+    const float a = *t0, b = *t1;
     if (!(b > a)) return false;
     // A half-angle of 90° or more is not convex: the whole segment, a superset of the lit part.
-    if (cosCone <= 0.f) {
-        *t0 = a;
-        *t1 = b;
-        return true;
-    }
+    const float cosCone = cone.cosHalfAngle;
+    if (cosCone <= 0.f) return true;
+    const Vec3& apex = cone.apex;
+    const Vec3& axis = cone.axis;
     const Vec3 w = o - apex;
     auto inside = [&](float t) {
         const Vec3 v = w + d * t;

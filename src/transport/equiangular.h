@@ -33,10 +33,16 @@ private:
     float mThetaA = 0.f, mThetaB = 0.f;
 };
 
-// The part of the segment [a, b] of the ray o + t d inside the cone of apex `apex`, unit axis
-// `axis` and half-angle acos(cosCone) < 90°, a convex set and so one interval: *t0, *t1.
-// False when the ray misses the cone within [a, b]. cosCone ≤ −1 is every direction.
-bool coneInterval(const Vec3& o, const Vec3& d, float a, float b, const Vec3& apex,
-                  const Vec3& axis, float cosCone, float* t0, float* t1);
+// A cone of directions from an apex: unit axis, half-angle acos(cosHalfAngle).
+struct Cone {
+    Vec3 apex, axis;
+    float cosHalfAngle;
+};
+
+// The part of the segment [*t0, *t1] of the ray o + t d (d unit) inside the cone, replacing
+// them: for a half-angle under 90° a convex set, and so one interval. False when the ray misses
+// the cone within the segment. A half-angle of 90° or more (cosHalfAngle ≤ 0) keeps the whole
+// segment, a superset of the part inside.
+bool coneInterval(const Vec3& o, const Vec3& d, const Cone& cone, float* t0, float* t1);
 
 }  // namespace mirage

@@ -82,8 +82,8 @@ TEST(Equiangular, ConeIntervalMatchesAScanOfTheCone) {
                     hi = std::max(hi, t);
                 }
             }
-            float t0, t1;
-            const bool hit = coneInterval(o, d, a, b, apex, axis, cosCone, &t0, &t1);
+            float t0 = a, t1 = b;
+            const bool hit = coneInterval(o, d, Cone{apex, axis, cosCone}, &t0, &t1);
             if (lo > hi) {
                 // A miss, or a graze thinner than the scan's step.
                 if (hit) EXPECT_LT(t1 - t0, 2 * (b - a) / 2000.f);
@@ -95,8 +95,8 @@ TEST(Equiangular, ConeIntervalMatchesAScanOfTheCone) {
         }
     }
     // A half-angle beyond 90° is the whole segment.
-    float t0, t1;
-    ASSERT_TRUE(coneInterval(Vec3(0.f), Vec3(1, 0, 0), 0.f, 3.f, apex, axis, -0.5f, &t0, &t1));
+    float t0 = 0.f, t1 = 3.f;
+    ASSERT_TRUE(coneInterval(Vec3(0.f), Vec3(1, 0, 0), Cone{apex, axis, -0.5f}, &t0, &t1));
     EXPECT_EQ(t0, 0.f);
     EXPECT_EQ(t1, 3.f);
 }

@@ -26,7 +26,8 @@ auto ball = [](int i, int j, int k) {
 
 // A ball of grey smoke glowing at 1500 K throughout, or (graded) at 1800 K in its centre
 // cooling to 600 K at its edge; no light. The temperature grid reaches two voxels past the
-// density's, so that its trilinear value is 1500 K wherever the smoke is.
+// density's, so that its trilinear value is 1500 K wherever the smoke is: its indices start at 0
+// and its origin two voxels back, as test::makeGrid takes no negative index.
 RenderScene glowingBall(bool graded = true) {
     ShaderDesc s = test::greyShader(2.f, 6.f);
     EmissionSpec e;
@@ -37,9 +38,10 @@ RenderScene glowingBall(bool graded = true) {
         grids.push_back(slot == "temperature"
                             ? test::makeGrid(
                                   [graded](int i, int j, int k) {
-                                      return graded ? 600.f + 1200.f * ball(i, j, k) : 1500.f;
+                                      return graded ? 600.f + 1200.f * ball(i - 2, j - 2, k - 2)
+                                                    : 1500.f;
                                   },
-                                  -2, 25, 1.0 / 24, Vec3d(0.0), "temperature")
+                                  0, 27, 1.0 / 24, Vec3d(-2.0 / 24), "temperature")
                             : test::makeGrid(ball, 0, 23, 1.0 / 24));
     RenderScene scene;
     scene.media.push_back(std::make_unique<Medium>(s, std::move(grids), Transform(), 1.f, 16));
@@ -48,7 +50,6 @@ RenderScene glowingBall(bool graded = true) {
     scene.camera.fovDeg = 24.f;
     return scene;
 }
-
 
 Vec3d pixelMean(const Film::Pixel& p) {
     return Vec3d(p.xyz[0], p.xyz[1], p.xyz[2]) / double(std::max<uint64_t>(p.samples, 1));

@@ -4,6 +4,7 @@
 
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
+#include <openvdb/tools/Dense.h>
 #include <openvdb/tools/Prune.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -13,11 +14,13 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/rng.h"
 #include "core/text.h"
+#include "tools/dense_vdb.h"
 #include "tools/vdb_writer.h"
 #include "volume/vdb_format.h"
 
@@ -140,7 +143,7 @@ std::function<Vec3(const Vec3&)> plumeFlow(float yBase, float rBase, float rTop,
         const float t = clamp((p.y - yBase) / (2.f - yBase), 0.f, 1.f);
         const float radius = rBase + (rTop - rBase) * t;
         const float spread = (rTop - rBase) / (2.f - yBase) * vy / radius;  // 1/s
-        const float omega = swirl / radius;                                // rad/s
+        const float omega = swirl / radius;                                 // rad/s
         return Vec3(spread * p.x - omega * p.z, vy, spread * p.z + omega * p.x);
     };
 }
@@ -308,8 +311,8 @@ AssetField oceanField(uint64_t seed) {
         const float shape = plume->profile(p, &r2);
         if (shape <= 0.f) return;
         const float n = (*patches)(p * 3.f);
-        const float chl = 10.f * shape * clamp(0.55f + 1.2f * n, 0.f, 1.f) *
-                          (1.f - smoothstep(1.6f, 1.98f, p.y));
+        const float chl =
+            10.f * shape * clamp(0.55f + 1.2f * n, 0.f, 1.f) * (1.f - smoothstep(1.6f, 1.98f, p.y));
         out[0] = chl >= 0.01f ? chl : 0.f;
     };
     return a;
@@ -465,6 +468,81 @@ void writeProceduralAsset(const std::string& kind, const std::string& path, int 
     openvdb::GridPtrVec out(grids.begin(), grids.end());
     if (vel) out.push_back(vel);
     writeVdbFile(path, out, meta, "blosc");
+}
+
+// ---- Dense arrays (dense_vdb.h) ------------------------------------------------------------
+
+namespace {
+
+std::string numberText(double v) {
+    std::ostringstream text;
+    text << v;
+    return text.str();
+}
+
+// The grid's shape and values, checked before OpenVDB sees them: the message names the grid.
+void checkDenseGrid(const DenseGrid& g, const std::string& path) {
+    const std::string what = "grid '" + g.name + "'";
+    if (g.name.empty()) fail(path, "a dense grid has no name");
+    if (!(g.voxelSize > 0.0) || !std::isfinite(g.voxelSize))
+        fail(path, what + ": voxel size " + numberText(g.voxelSize) +
+                       " is not a positive finite number of metres");
+    if (g.components != 1 && g.components != 3)
+        fail(path, what + ": " + std::to_string(g.components) +
+                       " values per voxel; a grid holds 1 (a scalar) or 3 (a vector)");
+    for (int a = 0; a < 3; ++a)
+        if (g.dims[size_t(a)] < 1 ||
+            int64_t(g.offset[size_t(a)]) + g.dims[size_t(a)] - 1 > int64_t(INT32_MAX))
+            fail(path, what + ": its voxels along axis " + std::to_string(a) + " (" +
+                           std::to_string(g.dims[size_t(a)]) + " from index " +
+                           std::to_string(g.offset[size_t(a)]) +
+                           ") are empty or leave OpenVDB's 32-bit index range");
+    const int64_t n = g.dims[0] * g.dims[1] * g.dims[2] * g.components;
+    for (int64_t i = 0; i < n; ++i)
+        if (!std::isfinite(g.values[i])) {
+            const int64_t voxel = i / g.components, z = voxel % g.dims[2],
+                          y = voxel / g.dims[2] % g.dims[1], x = voxel / g.dims[2] / g.dims[1];
+            fail(path, what + ": value " + numberText(double(g.values[i])) + " at [" +
+                           std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) +
+                           "] of the array is not finite");
+        }
+}
+
+// The OpenVDB grid of one dense array: Dense's default layout (LayoutZYX) is z fastest, the
+// array's C order; copyFromDense activates only the voxels that differ from the background 0.
+template <typename GridT>
+typename GridT::Ptr gridFromDense(const DenseGrid& g) {
+    using Value = typename GridT::ValueType;
+    const openvdb::Coord lo(g.offset[0], g.offset[1], g.offset[2]);
+    const openvdb::Coord hi =
+        lo + openvdb::Coord(int32_t(g.dims[0] - 1), int32_t(g.dims[1] - 1), int32_t(g.dims[2] - 1));
+    // Dense reads through a non-const pointer but copyFromDense only reads.
+    openvdb::tools::Dense<Value> dense(openvdb::CoordBBox(lo, hi),
+                                       reinterpret_cast<Value*>(const_cast<float*>(g.values)));
+    auto grid = GridT::create(openvdb::zeroVal<Value>());
+    openvdb::tools::copyFromDense(dense, *grid, openvdb::zeroVal<Value>());
+    grid->setName(g.name);
+    grid->setTransform(linearVdbTransform(g.voxelSize, g.origin));
+    if (g.components == 1)
+        grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+    else
+        grid->setVectorType(openvdb::VEC_CONTRAVARIANT_RELATIVE);
+    return grid;
+}
+
+}  // namespace
+
+void writeDenseVdbFile(const std::string& path, const std::vector<DenseGrid>& grids) {
+    initOpenVdb();
+    openvdb::GridPtrVec out;
+    for (const DenseGrid& g : grids) {
+        checkDenseGrid(g, path);
+        if (g.components == 1)
+            out.push_back(gridFromDense<openvdb::FloatGrid>(g));
+        else
+            out.push_back(gridFromDense<openvdb::Vec3SGrid>(g));
+    }
+    writeVdbFile(path, out, openvdb::MetaMap(), "blosc");
 }
 
 }  // namespace mirage

@@ -7,6 +7,7 @@
 #include "core/grid_name.h"
 #include "scene/geometry_loader.h"
 #include "scene/scene.h"
+#include "volume/grid_cache.h"
 #include "volume/vdb_file.h"
 
 namespace mirage {
@@ -29,9 +30,10 @@ std::string resolveName(const std::vector<std::string>& names, const std::string
 }
 
 VectorGrid load(const std::string& file, const std::vector<std::string>& names,
-                const std::string& grid) {
-    return contains(names, grid) ? loadVectorGrid(file, grid)
-                                 : loadVectorGridFromScalars(file, grid);
+                const std::string& grid, GridCache* cache) {
+    const bool fromScalars = !contains(names, grid);
+    if (cache) return cache->loadVectorGrid(file, grid, fromScalars);
+    return fromScalars ? loadVectorGridFromScalars(file, grid) : loadVectorGrid(file, grid);
 }
 
 }  // namespace
@@ -39,7 +41,7 @@ VectorGrid load(const std::string& file, const std::vector<std::string>& names,
 VectorGrid loadVelocityGrid(const std::string& file, const std::string& grid) {
     std::vector<std::string> names;
     for (const GridInfo& g : inspectVdbFile(file).grids) names.push_back(g.name);
-    return load(file, names, grid);
+    return load(file, names, grid, nullptr);
 }
 
 ShutterFrames readShutter(const TableReader& camera) {
@@ -59,7 +61,7 @@ ShutterFrames readShutter(const TableReader& camera) {
 }
 
 VelocityRecord findVelocity(const std::string& file, const std::vector<std::string>& grids,
-                            bool load_) {
+                            bool load_, GridCache* cache) {
     VelocityRecord r;
     for (const char* n : {"vel", "v", "velocity"}) {
         r.grid = resolveName(grids, n);
@@ -70,15 +72,15 @@ VelocityRecord findVelocity(const std::string& file, const std::vector<std::stri
         return r;
     }
     r.why = "found by its name";
-    if (load_) r.velocity = load(file, grids, r.grid);
+    if (load_) r.velocity = load(file, grids, r.grid, cache);
     return r;
 }
 
 VelocityRecord readVelocity(const TableReader& volume, const std::string& file,
-                            const std::vector<std::string>& grids, bool load_) {
+                            const std::vector<std::string>& grids, bool load_, GridCache* cache) {
     const float scale = float(volume.getNumber("velocity_scale", 1.0, -1e6, 1e6));
     if (!volume.has("velocity")) {
-        VelocityRecord r = findVelocity(file, grids, load_);
+        VelocityRecord r = findVelocity(file, grids, load_, cache);
         r.scale = scale;
         return r;
     }
@@ -100,7 +102,7 @@ VelocityRecord readVelocity(const TableReader& volume, const std::string& file,
     r.why = "named by 'velocity'";
     if (load_) {
         try {
-            r.velocity = load(file, grids, r.grid);
+            r.velocity = load(file, grids, r.grid, cache);
         } catch (const MirageError& e) {
             volume.fail("velocity", e.what());
         }

@@ -16,6 +16,8 @@
 
 namespace mirage {
 
+class GridCache;
+
 // The shutter in frames relative to the frame, as written: Houdini's centred [-0.25, 0.25] is
 // a 180° shutter. open == close: no motion blur.
 struct ShutterFrames {
@@ -41,12 +43,14 @@ struct VelocityRecord {
 // Reads `velocity` and `velocity_scale` of a [[volume]] and resolves the grid in `file`
 // (grids: the file's grid names in order). Without the key, a grid named vel, v or velocity
 // (a vector grid, or three scalar grids NAME.x/.y/.z) is taken; velocity = "" switches blur off.
-// The grid is loaded when `load` (the shutter is open). Errors name the key's line.
+// The grid is loaded when `load` (the shutter is open), through `cache` when there is one.
+// Errors name the key's line.
 VelocityRecord readVelocity(const TableReader& volume, const std::string& file,
-                            const std::vector<std::string>& grids, bool load);
+                            const std::vector<std::string>& grids, bool load,
+                            GridCache* cache = nullptr);
 // The same for a bare VDB: the default names only.
 VelocityRecord findVelocity(const std::string& file, const std::vector<std::string>& grids,
-                            bool load);
+                            bool load, GridCache* cache = nullptr);
 
 // Loads `grid` of `file` as a velocity: one vector grid of that name, else the three scalar
 // grids grid.x, grid.y, grid.z.

@@ -438,7 +438,8 @@ void readVolume(const TableReader& v, const Resolve& resolve, const std::string&
     if (boxed) box = readVolumeBox(v, shader);
     // The velocity grid is read only when the shutter opens (it is read before the volumes).
     if (!boxed)
-        rec.velocity = readVelocity(v, rec.file, fileGridNames(rec.file), scene->shutter.blurs());
+        rec.velocity = readVelocity(v, rec.file, fileGridNames(rec.file), scene->shutter.blurs(),
+                                    options.grids);
     const bool holdout = v.getBool("holdout", false);
     scene->render.cryptoObjects.volumes.push_back(
         readObjectName(v, "volume" + std::to_string(scene->render.media.size())));
@@ -566,7 +567,7 @@ Scene sceneFromVdb(const std::string& path, const LoadOptions& options, const Co
     // Its still bounds frame the camera: the blur may reach beyond them.
     float aspect = float(scene.settings.width) / float(scene.settings.height);
     scene.render.camera = frameBounds(medium->worldBounds(), 40.f, aspect);
-    rec.velocity = findVelocity(rec.file, names, scene.shutter.blurs());
+    rec.velocity = findVelocity(rec.file, names, scene.shutter.blurs(), options.grids);
     try {
         medium->setMotion(volumeMotion(scene, KeyedTransform(), &rec));
     } catch (const MirageError& e) {

@@ -7,43 +7,31 @@ namespace mirage {
 
 namespace {
 
-// What decides the grids a call returns: the file as it is on disk, then what is asked of it.
-std::string cacheKey(const std::string& path, const std::vector<std::string>& gridNames,
-                     const std::vector<GridExpression>& expressions) {
+// The file as it is on disk: its path, size and modification time, one line each of the two.
+std::string fileStamp(const std::string& path) {
     namespace fs = std::filesystem;
     std::error_code ec;
     const auto size = fs::file_size(path, ec);
     const auto time = fs::last_write_time(path, ec).time_since_epoch().count();
-    std::string key = fs::absolute(path, ec).lexically_normal().string() + '\n' +
-                      std::to_string(size) + ' ' + std::to_string(time) + '\n';
-    for (const std::string& g : gridNames) key += "grid " + g + '\n';
-    for (const GridExpression& e : expressions) {
-        key += "expression " + e.code + '\n';
-        for (const auto& [name, grid] : e.bindings) key += "  " + name + "=" + grid + '\n';
-    }
-    return key;
+    return fs::absolute(path, ec).lexically_normal().string() + '\n' + std::to_string(size) + ' ' +
+           std::to_string(time) + '\n';
 }
 
 }  // namespace
 
-std::vector<FloatGrid> GridCache::loadFloatGrids(const std::string& path,
-                                                 const std::vector<std::string>& gridNames,
-                                                 const std::vector<GridExpression>& expressions,
-                                                 std::vector<double>* expressionSeconds) {
-    const std::string key = cacheKey(path, gridNames, expressions);
+GridCache::Entry GridCache::lookup(const std::string& key,
+                                   const std::function<void(Entry*)>& read) {
     {
         std::lock_guard<std::mutex> lock(mMutex);
         for (const Entry& e : mEntries)
             if (e.key == key) {
                 ++mHits;
-                if (expressionSeconds) *expressionSeconds = e.seconds;
-                return e.grids;
+                return e;
             }
     }
     // Read outside the lock: another scene's grids may load meanwhile.
-    Entry entry{key, {}, {}};
-    entry.grids = mirage::loadFloatGrids(path, gridNames, expressions, &entry.seconds);
-    if (expressionSeconds) *expressionSeconds = entry.seconds;
+    Entry entry{key, {}, {}, {}};
+    read(&entry);
     std::lock_guard<std::mutex> lock(mMutex);
     ++mReads;
     // Entries of an older version of the file are dropped: its grids are gone from the disk.
@@ -56,7 +44,36 @@ std::vector<FloatGrid> GridCache::loadFloatGrids(const std::string& path,
     }
     kept.push_back(entry);
     mEntries = std::move(kept);
+    return entry;
+}
+
+std::vector<FloatGrid> GridCache::loadFloatGrids(const std::string& path,
+                                                 const std::vector<std::string>& gridNames,
+                                                 const std::vector<GridExpression>& expressions,
+                                                 std::vector<double>* expressionSeconds) {
+    std::string key = fileStamp(path);
+    for (const std::string& g : gridNames) key += "grid " + g + '\n';
+    for (const GridExpression& e : expressions) {
+        key += "expression " + e.code + '\n';
+        for (const auto& [name, grid] : e.bindings) key += "  " + name + "=" + grid + '\n';
+    }
+    Entry entry = lookup(key, [&](Entry* e) {
+        e->grids = mirage::loadFloatGrids(path, gridNames, expressions, &e->seconds);
+    });
+    if (expressionSeconds) *expressionSeconds = entry.seconds;
     return entry.grids;
+}
+
+VectorGrid GridCache::loadVectorGrid(const std::string& path, const std::string& gridName,
+                                     bool fromScalars) {
+    const std::string key =
+        fileStamp(path) + (fromScalars ? "vector from scalars " : "vector ") + gridName + '\n';
+    return lookup(key,
+                  [&](Entry* e) {
+                      e->vector = fromScalars ? loadVectorGridFromScalars(path, gridName)
+                                              : mirage::loadVectorGrid(path, gridName);
+                  })
+        .vector;
 }
 
 size_t GridCache::reads() const {

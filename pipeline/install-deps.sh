@@ -16,7 +16,7 @@ PACKAGES=(
   libopenexr-dev libimath-dev openexr
   libtbb-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
-  python3 python3-dev pybind11-dev python3-numpy python3-pytest
+  python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-openvdb
 )
 if [ "${1:-}" = "fuzz" ]; then
   PACKAGES+=(clang clang-14 libclang-rt-14-dev llvm)

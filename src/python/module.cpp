@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "film/image_io.h"
+#include "python/py_grids.h"
 #include "python/py_render.h"
 #include "python/py_scene.h"
 #include "python/py_session.h"
@@ -16,6 +17,26 @@ using namespace mirage;
 using namespace mirage::python;
 
 namespace {
+
+void bindGrid(py::module_& m) {
+    py::class_<PyGrid>(m, "Grid")
+        .def(py::init<const py::array&, double, std::array<int32_t, 3>, std::array<double, 3>>(),
+             py::arg("values"), py::arg("voxel_size"),
+             py::arg("offset") = std::array<int32_t, 3>{0, 0, 0},
+             py::arg("origin") = std::array<double, 3>{0.0, 0.0, 0.0},
+             "A grid in memory: values[x][y][z] (or [x][y][z][3], a vector), values[0][0][0] at "
+             "index `offset`, world position origin + voxel_size * index (metres)")
+        .def_readonly("values", &PyGrid::values)
+        .def_readonly("voxel_size", &PyGrid::voxelSize)
+        .def_readonly("offset", &PyGrid::offset)
+        .def_readonly("origin", &PyGrid::origin)
+        .def("__repr__", [](const PyGrid& g) {
+            std::string shape;
+            for (py::ssize_t a = 0; a < g.values.ndim(); ++a)
+                shape += (a ? "x" : "") + std::to_string(g.values.shape(a));
+            return "<mirage.Grid " + shape + " voxel_size " + std::to_string(g.voxelSize) + ">";
+        });
+}
 
 void bindScene(py::module_& m) {
     py::class_<PyScene, std::shared_ptr<PyScene>>(m, "Scene")
@@ -92,6 +113,7 @@ PYBIND11_MODULE(_mirage, m) {
     m.doc() = "Mirage, a spectral volume renderer: scenes, renders and progressive sessions";
     m.attr("__version__") = MIRAGE_VERSION;
     py::register_exception<MirageError>(m, "Error");
+    bindGrid(m);
     bindScene(m);
     bindImage(m);
     bindSession(m);

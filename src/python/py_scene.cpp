@@ -19,8 +19,9 @@ std::shared_ptr<const LoadedFrame> loadShared(const FrameRequest& request,
     return std::make_shared<const LoadedFrame>(std::move(*frame));
 }
 
-PyScene::PyScene(FrameRequest request, const std::string& ocioConfig)
-    : mRequest(std::move(request)) {
+PyScene::PyScene(FrameRequest request, const std::string& ocioConfig,
+                 std::shared_ptr<MemoryGrids> memoryGrids)
+    : mMemoryGrids(std::move(memoryGrids)), mRequest(std::move(request)) {
     mRequest.quiet = true;  // a program prints what it wants; the library nothing
     py::gil_scoped_release release;
     mColor = std::make_shared<const ColorPipeline>(ocioConfig);
@@ -41,10 +42,12 @@ std::shared_ptr<PyScene> PyScene::fromDict(const py::dict& scene, const py::dict
     FrameRequest r;
     // The name messages give the scene; its folder is where relative paths resolve from.
     r.input = baseDir.empty() ? "<dict>" : (std::filesystem::path(baseDir) / "<dict>").string();
-    r.sceneText = sceneToml(scene);
+    auto memoryGrids = std::make_shared<MemoryGrids>();
+    r.sceneText = sceneToml(memoryGrids->resolve(scene));
     r.frame = frame;
     r.overrides = overrideAssignments(set);
-    return std::make_shared<PyScene>(std::move(r), ocio);
+    return std::make_shared<PyScene>(std::move(r), ocio,
+                                     memoryGrids->empty() ? nullptr : memoryGrids);
 }
 
 py::dict PyScene::info() const {

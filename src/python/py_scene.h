@@ -12,6 +12,7 @@
 
 #include "film/color.h"
 #include "frame/frame_load.h"
+#include "python/py_grids.h"
 #include "volume/grid_cache.h"
 
 namespace mirage::python {
@@ -20,10 +21,13 @@ class PyScene {
 public:
     // `request` names the scene (input, or sceneText with input its name), its overrides and
     // frame. Loads it (the GIL released); throws MirageError as `mirage render` would.
-    PyScene(FrameRequest request, const std::string& ocioConfig);
+    // `memoryGrids`: the files of the request's in-memory grids, kept as long as the scene.
+    PyScene(FrameRequest request, const std::string& ocioConfig,
+            std::shared_ptr<MemoryGrids> memoryGrids = nullptr);
 
     // mirage.load(path, set=, frame=, ocio=) and mirage.Scene.from_dict(dict, set=, frame=,
-    // base_dir=, ocio=): the dict's relative paths resolve from base_dir.
+    // base_dir=, ocio=): the dict's relative paths resolve from base_dir; its volumes may hold
+    // their grids in memory (py_grids.h), written to files this scene keeps while it lives.
     static std::shared_ptr<PyScene> load(const std::string& path, const pybind11::dict& set,
                                          int frame, const std::string& ocio);
     static std::shared_ptr<PyScene> fromDict(const pybind11::dict& scene, const pybind11::dict& set,
@@ -42,6 +46,7 @@ public:
                                                 const std::string& key);
 
 private:
+    std::shared_ptr<MemoryGrids> mMemoryGrids;  // first: its files outlive every load
     FrameRequest mRequest;
     std::shared_ptr<const ColorPipeline> mColor;
     GridCache mGrids;

@@ -6,6 +6,6 @@
     img.beauty            # numpy float32, H x W x 4, the working space
     img.write("out.exr")  # the EXR `mirage render` writes
 """
-from ._mirage import Error, Image, Scene, Session, __version__, load, read, render
+from ._mirage import Error, Grid, Image, Scene, Session, __version__, load, read, render
 
-__all__ = ["Error", "Image", "Scene", "Session", "load", "read", "render", "__version__"]
+__all__ = ["Error", "Grid", "Image", "Scene", "Session", "load", "read", "render", "__version__"]

@@ -9,6 +9,22 @@ __version__: str
 class Error(Exception):
     """A bad scene, grid file or setting: the message `mirage render` prints."""
 
+class Grid:
+    """A grid in memory, for a volume's `file` in Scene.from_dict: values[x][y][z] (or
+    [x][y][z][3], a vector such as a velocity in m/s), values[0][0][0] at index `offset`, a
+    voxel's world position origin + voxel_size * index (metres)."""
+    def __init__(self, values: npt.ArrayLike, voxel_size: float,
+                 offset: Sequence[int] = (0, 0, 0),
+                 origin: Sequence[float] = (0.0, 0.0, 0.0)) -> None: ...
+    @property
+    def values(self) -> npt.NDArray[np.float32]: ...
+    @property
+    def voxel_size(self) -> float: ...
+    @property
+    def offset(self) -> tuple[int, int, int]: ...
+    @property
+    def origin(self) -> tuple[float, float, float]: ...
+
 class Scene:
     @staticmethod
     def from_dict(scene: Mapping[str, Any], set: Mapping[str, Any] = ..., frame: int = 1,

@@ -8,6 +8,8 @@ cycles:   Cycles renders the same .blend; per colour channel the mean over the v
           check of the transform, Z-up and the light units (docs/blender.md, "Units").
 reports:  a missing cache file is an error report and no image; a node Mirage cannot
           translate is one warning, and an image.
+install:  pipeline/install-blender-addon.sh into a temporary Blender user folder, then a farm
+          node's `blender -b FILE.blend -E MIRAGE -f 1` writes the frame.
 
 Environment: MIRAGE_BINARY (the mirage command), PYTHONPATH (the built module), BLENDER
 (default: blender on PATH). Exits 77 (ctest's skip) with a message when Blender is missing.
@@ -122,8 +124,26 @@ def check_reports(exe, folder):
     print(f"reports: ok ({errors[0]!r}; {warnings[0]!r})")
 
 
+def check_install(exe, folder):
+    blend = make_blend(exe, folder)
+    env = dict(os.environ, BLENDER_USER_SCRIPTS=os.path.join(folder, "user", "scripts"),
+               BLENDER_USER_CONFIG=os.path.join(folder, "user", "config"))
+    build = os.path.dirname(os.environ["PYTHONPATH"].split(os.pathsep)[0])
+    script = os.path.join(HERE, "..", "..", "pipeline", "install-blender-addon.sh")
+    p = subprocess.run([script, build], capture_output=True, text=True, env=env)
+    assert p.returncode == 0, p.stdout + p.stderr
+    frame = os.path.join(folder, "farm_0001.exr")
+    p = subprocess.run([exe, "-b", blend, "-E", "MIRAGE", "-o", os.path.join(folder, "farm_####"),
+                        "-F", "OPEN_EXR", "-f", "1"], capture_output=True, text=True, env=env)
+    assert p.returncode == 0 and os.path.isfile(frame), p.stdout + p.stderr
+    alpha = mirage.read(frame).beauty[..., 3].max()
+    assert alpha > 0.5, "the farm frame is empty"
+    print(f"install: ok (the installed add-on rendered {os.path.basename(frame)}, alpha max {alpha:.3f})")
+
+
 def main():
-    checks = {"identity": check_identity, "cycles": check_cycles, "reports": check_reports}
+    checks = {"identity": check_identity, "cycles": check_cycles, "reports": check_reports,
+              "install": check_install}
     if len(sys.argv) != 2 or sys.argv[1] not in checks:
         sys.exit(__doc__)
     exe = blender()

@@ -48,6 +48,10 @@ class MirageRenderEngine(bpy.types.RenderEngine):
     bl_label = "Mirage"
     bl_use_preview = False
     bl_use_postprocess = True
+    # Blender's own shader nodes (the Principled Volume the export reads), and Eevee for the
+    # Material Preview viewport: the add-on has no viewport render of its own yet.
+    bl_use_shading_nodes_custom = False
+    bl_use_eevee_viewport = True
 
     def _report(self, kind, message):
         """A report to Blender, kept in REPORTS too (RNA's own `report` cannot be overridden:

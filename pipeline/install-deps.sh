@@ -3,7 +3,9 @@
 # Usage: pipeline/install-deps.sh [fuzz | blender]   "fuzz" adds clang 14 with its libFuzzer, ASan, UBSan
 # and TSan runtimes (libclang-rt-14-dev) and llvm (llvm-symbolizer for readable sanitizer
 # reports), which pipeline/fuzz.sh and pipeline/sanitize.sh need; the default build is g++.
-# "blender" adds Blender (Cycles, the peer pipeline/race.sh races against); never in CI.
+# "blender" adds Blender: the Mirage add-on's host (pipeline/install-blender-addon.sh calls this
+# when Blender is missing; the add-on's tests, label blender, skip without it) and Cycles, the
+# peer pipeline/race.sh races against.
 set -euo pipefail
 
 PACKAGES=(

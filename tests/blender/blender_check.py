@@ -1,0 +1,155 @@
+#!/usr/bin/env python3
+"""The Blender add-on's checks (ctest label "blender"), each a headless Blender run with the
+add-on loaded from src/blender. Usage: blender_check.py identity | cycles | reports
+
+identity: the add-on's F12 image equals, bit for bit, `mirage render` of the scene it exports.
+cycles:   Cycles renders the same .blend; per colour channel the mean over the volume's pixels
+          agrees within 5 %, and the silhouettes (alpha > 0.5) overlap with IoU >= 0.95: the
+          check of the transform, Z-up and the light units (docs/blender.md, "Units").
+reports:  a missing cache file is an error report and no image; a node Mirage cannot
+          translate is one warning, and an image.
+install:  pipeline/install-blender-addon.sh into a temporary Blender user folder, then a farm
+          node's `blender -b FILE.blend -E MIRAGE -f 1` writes the frame.
+
+Environment: MIRAGE_BINARY (the mirage command), PYTHONPATH (the built module), BLENDER
+(default: blender on PATH). Exits 77 (ctest's skip) with a message when Blender is missing.
+"""
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+import mirage
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+OCIO = os.path.join(HERE, "..", "..", "src", "blender", "mirage_blender", "ocio", "config.ocio")
+MIRAGE = os.environ.get("MIRAGE_BINARY", "mirage")
+SAMPLES = 32          # both renderers; single scattering (Cycles: 0 volume bounces)
+MEAN_TOLERANCE = 0.05
+IOU_MIN = 0.95
+
+
+def blender():
+    exe = os.environ.get("BLENDER") or shutil.which("blender")
+    if not exe:
+        print("skipped: Blender is not installed (pipeline/install-deps.sh blender)")
+        sys.exit(77)
+    return exe
+
+
+def run_blender(exe, script, *args, fails=False):
+    """Blender, headless, on factory settings (not the user's add-ons or preferences). With
+    `fails`, the run must exit non-zero: a render's error report makes --python-exit-code's
+    Blender exit 1, as a farm node needs."""
+    cmd = [exe, "-b", "--factory-startup", "--python-exit-code", "1", "--python",
+           os.path.join(HERE, script), "--", *args]
+    p = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ,
+                       MIRAGE_PYTHON_DIR=os.environ.get("PYTHONPATH", "").split(os.pathsep)[0]))
+    if (p.returncode != 0) != fails:
+        sys.exit(f"{' '.join(cmd)} failed ({p.returncode}):\n{p.stdout}\n{p.stderr}")
+    return p.stdout
+
+
+def lines(out, tag):
+    return [l[len(tag) + 1:] for l in out.splitlines() if l.startswith(tag + " ")]
+
+
+def make_blend(exe, folder, *flags):
+    """The test scene: make-asset's fog sphere at 96 voxels per 2 m (fine enough that the half
+    voxel by which Cycles places grids apart from OpenVDB's voxel centres stays a fifth of a
+    pixel), as make_scene.py arranges it."""
+    vdb = os.path.join(folder, "fog.vdb")
+    if not os.path.exists(vdb):
+        subprocess.run([MIRAGE, "make-asset", "fog-sphere", "--resolution", "96", "-o", vdb],
+                       check=True, capture_output=True)
+    blend = os.path.join(folder, "scene" + "".join(f.replace("--", "_") for f in flags) + ".blend")
+    run_blender(exe, "make_scene.py", vdb, blend, *flags)
+    return blend
+
+
+def check_identity(exe, folder):
+    blend = make_blend(exe, folder)
+    addon_exr, toml = os.path.join(folder, "addon.exr"), os.path.join(folder, "export", "scene.toml")
+    out = run_blender(exe, "render_blend.py", blend, addon_exr, "mirage", "8", "--export", toml)
+    assert lines(out, "RESULT") == ["FINISHED written"], out
+    cli_exr = os.path.join(folder, "cli.exr")
+    subprocess.run([MIRAGE, "render", toml, "--ocio", OCIO, "-o", cli_exr, "--quiet"],
+                   check=True, capture_output=True)
+    a, b = mirage.read(addon_exr).beauty, mirage.read(cli_exr).beauty
+    assert a.shape == b.shape == (64, 48, 4), (a.shape, b.shape)
+    assert a[..., 3].max() > 0.5, "the volume is not in the frame"
+    differ = int(np.count_nonzero(a != b))
+    assert differ == 0, f"{differ} values differ; largest difference {np.abs(a - b).max()}"
+    print(f"identity: ok (64x48 RGBA, bit for bit; alpha mean {a[..., 3].mean():.4f})")
+
+
+def check_cycles(exe, folder):
+    blend = make_blend(exe, folder)
+    exrs = {}
+    for engine in ("mirage", "cycles"):
+        exrs[engine] = os.path.join(folder, engine + ".exr")
+        out = run_blender(exe, "render_blend.py", blend, exrs[engine], engine, str(SAMPLES),
+                          "--integrator", "single")
+        assert lines(out, "RESULT") == ["FINISHED written"], out
+    m, c = (mirage.read(exrs[e]).beauty.astype(np.float64) for e in ("mirage", "cycles"))
+    sm, sc = m[..., 3] > 0.5, c[..., 3] > 0.5
+    iou = np.count_nonzero(sm & sc) / max(np.count_nonzero(sm | sc), 1)
+    smoke = (m[..., 3] > 0.02) | (c[..., 3] > 0.02)
+    ratio = m[smoke, :3].mean(axis=0) / c[smoke, :3].mean(axis=0)
+    print(f"cycles: silhouette IoU {iou:.4f} ({np.count_nonzero(sm)} / {np.count_nonzero(sc)} "
+          f"pixels), mean RGB Mirage / Cycles {np.round(ratio, 4).tolist()}, alpha means "
+          f"{m[..., 3].mean():.4f} / {c[..., 3].mean():.4f}")
+    assert iou >= IOU_MIN, f"silhouette IoU {iou:.4f} below {IOU_MIN}"
+    assert np.all(np.abs(ratio - 1.0) <= MEAN_TOLERANCE), f"channel means differ: {ratio}"
+    print("cycles: ok")
+
+
+def check_reports(exe, folder):
+    missing = make_blend(exe, folder, "--missing-cache")
+    exr = os.path.join(folder, "missing.exr")
+    out = run_blender(exe, "render_blend.py", missing, exr, "mirage", "4", fails=True)
+    errors = [r for r in lines(out, "REPORT") if r.startswith("ERROR")]
+    assert len(errors) == 1 and "does not exist" in errors[0] and "Smoke" in errors[0], out
+    assert not os.path.exists(exr) and lines(out, "RESULT")[0].endswith("no-file"), out
+    node = make_blend(exe, folder, "--node-extra")
+    exr = os.path.join(folder, "node.exr")
+    out = run_blender(exe, "render_blend.py", node, exr, "mirage", "4")
+    warnings = [r for r in lines(out, "REPORT") if "material nodes left out" in r]
+    assert len(warnings) == 1 and "Density Boost" in warnings[0], out
+    assert lines(out, "RESULT") == ["FINISHED written"], out
+    assert mirage.read(exr).beauty[..., 3].max() > 0.5, "the warned render is empty"
+    print(f"reports: ok ({errors[0]!r}; {warnings[0]!r})")
+
+
+def check_install(exe, folder):
+    blend = make_blend(exe, folder)
+    env = dict(os.environ, BLENDER_USER_SCRIPTS=os.path.join(folder, "user", "scripts"),
+               BLENDER_USER_CONFIG=os.path.join(folder, "user", "config"))
+    build = os.path.dirname(os.environ["PYTHONPATH"].split(os.pathsep)[0])
+    script = os.path.join(HERE, "..", "..", "pipeline", "install-blender-addon.sh")
+    p = subprocess.run([script, build], capture_output=True, text=True, env=env)
+    assert p.returncode == 0, p.stdout + p.stderr
+    frame = os.path.join(folder, "farm_0001.exr")
+    p = subprocess.run([exe, "-b", blend, "-E", "MIRAGE", "-o", os.path.join(folder, "farm_####"),
+                        "-F", "OPEN_EXR", "-f", "1"], capture_output=True, text=True, env=env)
+    assert p.returncode == 0 and os.path.isfile(frame), p.stdout + p.stderr
+    alpha = mirage.read(frame).beauty[..., 3].max()
+    assert alpha > 0.5, "the farm frame is empty"
+    print(f"install: ok (the installed add-on rendered {os.path.basename(frame)}, alpha max {alpha:.3f})")
+
+
+def main():
+    checks = {"identity": check_identity, "cycles": check_cycles, "reports": check_reports,
+              "install": check_install}
+    if len(sys.argv) != 2 or sys.argv[1] not in checks:
+        sys.exit(__doc__)
+    exe = blender()
+    with tempfile.TemporaryDirectory(prefix="mirage-blender-test-") as folder:
+        checks[sys.argv[1]](exe, folder)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,65 @@
+"""Renders a .blend inside Blender for the add-on tests, with the add-on loaded from the
+repository (src/blender), not from the user's configuration. Usage:
+    blender -b --factory-startup --python-exit-code 1 --python render_blend.py -- \
+        FILE.blend OUT.exr mirage|cycles SAMPLES [--export SCENE.toml]
+mirage: the add-on renders (SAMPLES per pixel, the path tracer, seed 0); --export also writes
+the scene it renders as TOML (with its shader files beside it). cycles: Cycles on the CPU,
+SAMPLES per pixel, 64 volume bounces, no denoising, no clamping, a 1-pixel box filter.
+Prints `REPORT <type> <message>` for each report of the render, `RESULT <status>` after it, and
+`SECONDS <s>` (the render alone)."""
+import os
+import sys
+import time
+
+import bpy
+
+argv = sys.argv[sys.argv.index("--") + 1:]
+blend, out, engine, samples = argv[0], argv[1], argv[2], int(argv[3])
+export_path = argv[argv.index("--export") + 1] if "--export" in argv else None
+integrator = argv[argv.index("--integrator") + 1] if "--integrator" in argv else "volpath"
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "..", "src", "blender"))
+if os.environ.get("MIRAGE_PYTHON_DIR"):
+    sys.path.insert(0, os.environ["MIRAGE_PYTHON_DIR"])
+import mirage_blender  # noqa: E402
+
+bpy.ops.wm.open_mainfile(filepath=blend)
+mirage_blender.register()
+scene = bpy.context.scene
+scene.render.filepath = out
+scene.render.use_file_extension = False
+
+if engine == "mirage":
+    scene.render.engine = "MIRAGE"
+    scene.mirage.samples = samples
+    scene.mirage.integrator = integrator
+    scene.mirage.seed = 0
+    if export_path:
+        folder = os.path.dirname(os.path.abspath(export_path))
+        ex = mirage_blender.export.export(bpy.context.evaluated_depsgraph_get(), scene.mirage,
+                                          folder)
+        ex.write_scene(export_path)
+else:
+    scene.render.engine = "CYCLES"
+    c = scene.cycles
+    c.device, c.samples, c.use_adaptive_sampling, c.use_denoising = "CPU", samples, False, False
+    c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
+    bounces = 0 if integrator == "single" else 64
+    c.volume_bounces, c.max_bounces, c.transparent_max_bounces = bounces, bounces, 1024
+    c.pixel_filter_type, c.filter_width = "BOX", 1.0
+    c.seed = 0
+
+if os.path.exists(out):
+    os.remove(out)
+t0 = time.perf_counter()
+try:
+    status = bpy.ops.render.render(write_still=True)
+except RuntimeError as e:
+    status = {"RAISED: " + str(e).replace("\n", " ")}
+seconds = time.perf_counter() - t0
+for kind, message in mirage_blender.engine.REPORTS:
+    print("REPORT", kind, message.replace("\n", " "), flush=True)
+print("RESULT", ",".join(sorted(status)), "written" if os.path.isfile(out) else "no-file",
+      flush=True)
+print(f"SECONDS {seconds:.4f}", flush=True)

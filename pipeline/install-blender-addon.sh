@@ -2,7 +2,7 @@
 # Installs and enables the Mirage render engine in the user's Blender (docs/blender.md).
 # Usage: pipeline/install-blender-addon.sh [BUILD_DIR]   (default build; run pipeline/build.sh
 # or pipeline/demo.sh first, which build the Python module into BUILD_DIR/python)
-# Installs Blender with pipeline/install-deps.sh blender when it is missing; copies
+# Installs Blender with pipeline/install-deps.sh when it is missing; copies
 # src/blender/mirage_blender into Blender's user add-ons folder with a file naming the
 # module's folder (re-run after pulling to update it); enables it and saves the preferences.
 # Blender's own BLENDER_USER_SCRIPTS / BLENDER_USER_CONFIG choose another user folder.
@@ -14,7 +14,7 @@ if [ ! -f "$MODULE_DIR/mirage/__init__.py" ]; then
   echo "install-blender-addon: no Python module in $BUILD_DIR/python; run pipeline/build.sh $BUILD_DIR first" >&2
   exit 1
 fi
-command -v blender >/dev/null || pipeline/install-deps.sh blender
+command -v blender >/dev/null || pipeline/install-deps.sh
 
 # Blender's user add-ons folder, as this Blender computes it.
 ADDONS=$(blender -b --factory-startup --python-expr \

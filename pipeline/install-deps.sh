@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages Mirage needs, only those missing. Root or sudo.
-# Usage: pipeline/install-deps.sh [fuzz | blender]   "fuzz" adds clang 14 with its libFuzzer, ASan, UBSan
+# Usage: pipeline/install-deps.sh [fuzz]   "fuzz" adds clang 14 with its libFuzzer, ASan, UBSan
 # and TSan runtimes (libclang-rt-14-dev) and llvm (llvm-symbolizer for readable sanitizer
 # reports), which pipeline/fuzz.sh and pipeline/sanitize.sh need; the default build is g++.
-# "blender" adds Blender: the Mirage add-on's host (pipeline/install-blender-addon.sh calls this
-# when Blender is missing; the add-on's tests, label blender, skip without it) and Cycles, the
-# peer pipeline/race.sh races against.
+# Blender is in the default set: it hosts the Mirage add-on (src/blender), whose tests (label
+# blender) pipeline/test.sh runs, and its Cycles is the peer pipeline/race.sh races against
+# (a 50 MB download; the argument "blender" of earlier versions is still accepted).
 set -euo pipefail
 
 PACKAGES=(
@@ -19,12 +19,10 @@ PACKAGES=(
   libtbb-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-openvdb
+  blender
 )
 if [ "${1:-}" = "fuzz" ]; then
   PACKAGES+=(clang clang-14 libclang-rt-14-dev llvm)
-fi
-if [ "${1:-}" = "blender" ]; then
-  PACKAGES+=(blender)
 fi
 
 missing=()

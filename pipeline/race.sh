@@ -47,7 +47,7 @@
 # (100000: photons per pass), PASS_SPP (4: samples per pixel per pass), TIME_LIMITS (seconds of
 # the timed rows: the scene's race.times, else "0.03 0.1 0.3 1 3"; "" for none), CHECK_SPP
 # (64), MEAN_SECONDS (10), MIRAGE_SHARED_DATA.
-# Installs Blender when missing (pipeline/install-deps.sh blender). Prints one table per race
+# Installs Blender when missing (pipeline/install-deps.sh). Prints one table per race
 # (also its CSV) and the equal-error time ratios.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -78,7 +78,7 @@ if [ "$MODE" = check ] && [ ! -f "$CYCLES_PY" -o ! -d "$DATA/vdb" ]; then
   exit 77  # ctest's SKIP_RETURN_CODE
 fi
 [ -f "$CYCLES_PY" ] || no_data "$CYCLES_PY"
-[ "$MODE" = check ] || command -v blender >/dev/null || pipeline/install-deps.sh blender >/dev/null
+[ "$MODE" = check ] || command -v blender >/dev/null || pipeline/install-deps.sh >/dev/null
 [ -x "$MIRAGE" ] || pipeline/build.sh build >/dev/null
 mkdir -p "$OUT"
 

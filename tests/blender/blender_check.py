@@ -35,7 +35,7 @@ IOU_MIN = 0.95
 def blender():
     exe = os.environ.get("BLENDER") or shutil.which("blender")
     if not exe:
-        print("skipped: Blender is not installed (pipeline/install-deps.sh blender)")
+        print("skipped: Blender is not installed (pipeline/install-deps.sh)")
         sys.exit(77)
     return exe
 

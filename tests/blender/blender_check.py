@@ -10,6 +10,10 @@ reports:  a missing cache file is an error report and no image; a node Mirage ca
           translate is one warning, and an image.
 install:  pipeline/install-blender-addon.sh into a temporary Blender user folder, then a farm
           node's `blender -b FILE.blend -E MIRAGE -f 1` writes the frame.
+viewport: Blender with a window under Xvfb (xvfb-run, Mesa's software OpenGL), the 3D viewport
+          in Rendered shading: the screenshot is the session's image through the view transform
+          and shows the smoke; a light's edit restarts the session (an update, passes from 1),
+          a light added makes a new session.
 
 Environment: MIRAGE_BINARY (the mirage command), PYTHONPATH (the built module), BLENDER
 (default: blender on PATH). Exits 77 (ctest's skip) with a message when Blender is missing.
@@ -30,6 +34,9 @@ MIRAGE = os.environ.get("MIRAGE_BINARY", "mirage")
 SAMPLES = 32          # both renderers; single scattering (Cycles: 0 volume bounces)
 MEAN_TOLERANCE = 0.05
 IOU_MIN = 0.95
+# The viewport's pixels against the render's through the sRGB encoding: the texture's half
+# floats, the OCIO shader and the screenshot's 8 bits (3/255).
+DRAWN_TOLERANCE = 3.0 / 255.0
 
 
 def blender():
@@ -141,9 +148,36 @@ def check_install(exe, folder):
     print(f"install: ok (the installed add-on rendered {os.path.basename(frame)}, alpha max {alpha:.3f})")
 
 
+def check_viewport(exe, folder):
+    xvfb = shutil.which("xvfb-run")
+    if not xvfb:
+        print("skipped: xvfb-run is not installed (pipeline/install-deps.sh: xvfb)")
+        sys.exit(77)
+    blend = make_blend(exe, folder)
+    # Blender's smallest window; viewport_blend.py renders a quarter of its 3D viewport.
+    cmd = [xvfb, "-a", "-s", "-screen 0 640x480x24", exe, blend, "--factory-startup",
+           "--python", os.path.join(HERE, "viewport_blend.py"), "--",
+           os.path.join(folder, "viewport.png")]
+    p = subprocess.run(cmd, capture_output=True, text=True, timeout=240, env=dict(
+        os.environ, MIRAGE_PYTHON_DIR=os.environ.get("PYTHONPATH", "").split(os.pathsep)[0]))
+    record = dict(l.split(" ", 1) for l in lines(p.stdout, "VIEWPORT"))
+    assert record.get("done") == "ok", f"{' '.join(cmd)}:\n{p.stdout}\n{p.stderr}"
+    assert record["error"] == "none", record
+    shot, drawn = record["shape"].split()
+    assert shot == drawn, f"the screenshot ({shot}) is not the render's size ({drawn})"
+    assert float(record["drawn_error_p95"]) < DRAWN_TOLERANCE, record
+    assert int(record["smoke_pixels"]) > 100, record
+    assert float(record["smoke_contrast"]) > 0.05, record
+    assert int(record["restarts_after_edit"]) == int(record["restarts_before_edit"]) + 1, record
+    assert record["update_kind"] == "update", record
+    assert int(record["passes_after_edit"]) < int(record["passes_before_edit"]), record
+    assert record["added_light_kind"] == "new", record
+    print("viewport: ok (" + ", ".join(f"{k} {v}" for k, v in record.items()) + ")")
+
+
 def main():
     checks = {"identity": check_identity, "cycles": check_cycles, "reports": check_reports,
-              "install": check_install}
+              "install": check_install, "viewport": check_viewport}
     if len(sys.argv) != 2 or sys.argv[1] not in checks:
         sys.exit(__doc__)
     exe = blender()

@@ -14,12 +14,14 @@ bl_info = {
 
 if "bpy" in locals():
     import importlib
-    for _m in (units, toml_text, shading, export, module_path, properties, engine, ui):  # noqa
+    for _m in (units, toml_text, shading, export, viewport, module_path, properties, engine,
+               ui):  # noqa
         importlib.reload(_m)
 
 import bpy
 
-from . import engine, export, module_path, properties, shading, toml_text, ui, units  # noqa
+from . import (engine, export, module_path, properties, shading, toml_text, ui,  # noqa
+               units, viewport)
 
 
 class MiragePreferences(bpy.types.AddonPreferences):

@@ -3,6 +3,7 @@ exactly the scene file's keys (docs/scene-file.md), and the shader files its vol
 One function per kind: film, camera, lights, world, volumes (docs/blender.md, "What is
 translated"). Everything that cannot be translated is named, once, in the export's notes.
 """
+import hashlib
 import math
 import os
 import re
@@ -68,10 +69,6 @@ def camera(scene, ex):
     if cam_obj is None:
         raise ExportError("the scene has no active camera")
     cam = cam_obj.data
-    m = cam_obj.matrix_world
-    pos = m.translation
-    forward = (m.to_3x3() @ Vector((0.0, 0.0, -1.0))).normalized()
-    up = (m.to_3x3() @ Vector((0.0, 1.0, 0.0))).normalized()
     w, h = resolution(scene)
     aspect = (w * scene.render.pixel_aspect_x) / (h * scene.render.pixel_aspect_y)
     fit = cam.sensor_fit
@@ -89,6 +86,15 @@ def camera(scene, ex):
         ex.left_out.append(f"camera '{cam_obj.name}': lens shift")
     if cam.dof.use_dof:
         ex.left_out.append(f"camera '{cam_obj.name}': depth of field")
+    return camera_from_matrix(cam_obj.matrix_world, tan_half)
+
+
+def camera_from_matrix(m, tan_half):
+    """Mirage's [camera] for a camera-to-world matrix (looking along its local -Z, +Y up, as
+    Blender's cameras and viewports do) whose vertical half-angle has tangent `tan_half`."""
+    pos = m.translation
+    forward = (m.to_3x3() @ Vector((0.0, 0.0, -1.0))).normalized()
+    up = (m.to_3x3() @ Vector((0.0, 1.0, 0.0))).normalized()
     return {"position": units.to_mirage(pos), "look_at": units.to_mirage(pos + forward),
             "up": units.to_mirage(up), "fov": math.degrees(2.0 * math.atan(tan_half))}
 
@@ -266,7 +272,10 @@ def volume(obj, frame, ex):
     mat = obj.active_material
     shader = shading.translate(mat, grids, _safe_name(mat.name if mat else "default"))
     ex.left_out_nodes += [f"{mat.name if mat else obj.name}: {n}" for n in shader.left_out]
-    file_name = f"shader_{_safe_name(obj.name)}.toml"
+    # Named by its content too: an edited material is another file, which a running viewport
+    # session takes by an update of the volume's `shader` key (viewport.py).
+    digest = hashlib.sha1(toml_text.dumps(shader.document).encode()).hexdigest()[:10]
+    file_name = f"shader_{_safe_name(obj.name)}_{digest}.toml"
     ex.shaders[file_name] = shader.document
     return {"file": os.path.abspath(path), "name": _safe_name(obj.name),
             "shader": os.path.join(ex.folder, file_name),
@@ -280,14 +289,16 @@ def _objects(depsgraph):
         yield inst.instance_object if inst.is_instance else inst.object
 
 
-def export(depsgraph, settings, folder):
-    """The Export of the depsgraph's scene at its current frame, its files to go in `folder`."""
+def export(depsgraph, settings, folder, scene_camera=True):
+    """The Export of the depsgraph's scene at its current frame, its files to go in `folder`.
+    Without `scene_camera` it has no [film] and [camera]: the viewport gives its own."""
     scene = depsgraph.scene
     ex = Export(folder)
     doc = ex.scene
-    doc["film"] = film(scene, settings)
+    if scene_camera:
+        doc["film"] = film(scene, settings)
+        doc["camera"] = camera(scene, ex)
     doc["render"] = {"integrator": settings.integrator}
-    doc["camera"] = camera(scene, ex)
     volumes, lights, skipped = [], [], []
     for obj in _objects(depsgraph):
         if obj.type == "VOLUME":

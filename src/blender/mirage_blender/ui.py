@@ -19,6 +19,7 @@ class MIRAGE_PT_render(bpy.types.Panel):
         layout.use_property_split = True
         layout.prop(s, "integrator")
         layout.prop(s, "samples")
+        layout.prop(s, "preview_samples")
         layout.prop(s, "seed")
         col = layout.column(heading="Stop")
         col.prop(s, "time_limit")

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The Blender add-on's checks (ctest label "blender"), each a headless Blender run with the
-add-on loaded from src/blender. Usage: blender_check.py identity | cycles | reports
+add-on loaded from src/blender. Usage: blender_check.py CHECK, one of:
 
 identity: the add-on's F12 image equals, bit for bit, `mirage render` of the scene it exports.
 cycles:   Cycles renders the same .blend; per colour channel the mean over the volume's pixels
@@ -10,6 +10,8 @@ reports:  a missing cache file is an error report and no image; a node Mirage ca
           translate is one warning, and an image.
 install:  pipeline/install-blender-addon.sh into a temporary Blender user folder, then a farm
           node's `blender -b FILE.blend -E MIRAGE -f 1` writes the frame.
+passes:   a render with every pass Mirage fills, written by Blender as a multilayer EXR: the
+          passes are there, the light passes (Emit, VolumeDir, VolumeInd) sum to Combined.
 viewport: Blender with a window under Xvfb (xvfb-run, Mesa's software OpenGL), the 3D viewport
           in Rendered shading: the screenshot is the session's image through the view transform
           and shows the smoke; a light's edit restarts the session (an update, passes from 1),
@@ -148,6 +150,29 @@ def check_install(exe, folder):
     print(f"install: ok (the installed add-on rendered {os.path.basename(frame)}, alpha max {alpha:.3f})")
 
 
+def check_passes(exe, folder):
+    blend = make_blend(exe, folder)
+    exr = os.path.join(folder, "passes.exr")
+    out = run_blender(exe, "render_blend.py", blend, exr, "mirage", "8", "--passes")
+    assert lines(out, "RESULT") == ["FINISHED written"], out
+    layers = {k.split(".", 1)[1]: v for k, v in mirage.read(exr).aovs.items()}
+    expected = {"Combined", "Depth", "Emit", "VolumeDir", "VolumeInd", "Albedo", "Transmittance"}
+    assert set(layers) == expected, sorted(layers)
+    combined = layers["Combined"][..., :3].astype(np.float64)
+    light = sum(layers[n].astype(np.float64) for n in ("Emit", "VolumeDir", "VolumeInd"))
+    error = np.abs(light - combined).max()
+    # Float rounding: three float32 passes summed against their float32 total.
+    assert error <= 1e-6 * max(1.0, combined.max()), f"light passes sum off by {error}"
+    assert layers["VolumeDir"].max() > 0.1 and layers["VolumeInd"].max() > 0.01, "empty passes"
+    depth, alpha = layers["Depth"][..., 0], layers["Combined"][..., 3]
+    assert np.all(np.isfinite(depth)) and depth[alpha > 0.9].max() < 10.0, "depth of the smoke"
+    # The background (a few fringe pixels hold a depth from the depth pass's own walk).
+    background = depth[alpha == 0.0]
+    assert np.mean(background == np.float32(1.0e10)) > 0.9, "the background's depth is not 1e10"
+    print(f"passes: ok ({', '.join(sorted(layers))}; light passes sum to Combined within "
+          f"{error:.2e})")
+
+
 def check_viewport(exe, folder):
     xvfb = shutil.which("xvfb-run")
     if not xvfb:
@@ -177,7 +202,7 @@ def check_viewport(exe, folder):
 
 def main():
     checks = {"identity": check_identity, "cycles": check_cycles, "reports": check_reports,
-              "install": check_install, "viewport": check_viewport}
+              "install": check_install, "passes": check_passes, "viewport": check_viewport}
     if len(sys.argv) != 2 or sys.argv[1] not in checks:
         sys.exit(__doc__)
     exe = blender()

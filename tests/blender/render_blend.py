@@ -1,9 +1,10 @@
 """Renders a .blend inside Blender for the add-on tests, with the add-on loaded from the
 repository (src/blender), not from the user's configuration. Usage:
     blender -b --factory-startup --python-exit-code 1 --python render_blend.py -- \
-        FILE.blend OUT.exr mirage|cycles SAMPLES [--export SCENE.toml]
+        FILE.blend OUT.exr mirage|cycles SAMPLES [--export SCENE.toml] [--passes]
 mirage: the add-on renders (SAMPLES per pixel, the path tracer, seed 0); --export also writes
-the scene it renders as TOML (with its shader files beside it). cycles: Cycles on the CPU,
+the scene it renders as TOML (with its shader files beside it); --passes turns on every render
+pass Mirage fills and writes a multilayer EXR. cycles: Cycles on the CPU,
 SAMPLES per pixel, 64 volume bounces, no denoising, no clamping, a 1-pixel box filter.
 Prints `REPORT <type> <message>` for each report of the render, `RESULT <status>` after it, and
 `SECONDS <s>` (the render alone)."""
@@ -35,6 +36,12 @@ if engine == "mirage":
     scene.mirage.samples = samples
     scene.mirage.integrator = integrator
     scene.mirage.seed = 0
+    if "--passes" in argv:
+        view_layer = bpy.context.view_layer
+        view_layer.use_pass_z = view_layer.use_pass_emit = True
+        for name in ("volume_direct", "volume_indirect", "albedo", "transmittance"):
+            setattr(view_layer.mirage, "use_pass_" + name, True)
+        scene.render.image_settings.file_format = "OPEN_EXR_MULTILAYER"
     if export_path:
         folder = os.path.dirname(os.path.abspath(export_path))
         ex = mirage_blender.export.export(bpy.context.evaluated_depsgraph_get(), scene.mirage,

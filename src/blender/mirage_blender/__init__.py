@@ -14,14 +14,14 @@ bl_info = {
 
 if "bpy" in locals():
     import importlib
-    for _m in (units, toml_text, shading, export, viewport, module_path, properties, engine,
-               ui):  # noqa
+    for _m in (units, toml_text, shading, export, viewport, passes, module_path, properties,
+               engine, ui):  # noqa
         importlib.reload(_m)
 
 import bpy
 
-from . import (engine, export, module_path, properties, shading, toml_text, ui,  # noqa
-               units, viewport)
+from . import (engine, export, module_path, passes, properties, shading, toml_text,  # noqa
+               ui, units, viewport)
 
 
 class MiragePreferences(bpy.types.AddonPreferences):
@@ -36,18 +36,21 @@ class MiragePreferences(bpy.types.AddonPreferences):
         self.layout.prop(self, "python_dir")
 
 
-_CLASSES = (MiragePreferences, properties.MirageRenderSettings, engine.MirageRenderEngine)
+_CLASSES = (MiragePreferences, properties.MirageRenderSettings, passes.MirageViewLayerSettings,
+            engine.MirageRenderEngine)
 
 
 def register():
     for cls in _CLASSES:
         bpy.utils.register_class(cls)
     bpy.types.Scene.mirage = bpy.props.PointerProperty(type=properties.MirageRenderSettings)
+    bpy.types.ViewLayer.mirage = bpy.props.PointerProperty(type=passes.MirageViewLayerSettings)
     ui.register()
 
 
 def unregister():
     ui.unregister()
+    del bpy.types.ViewLayer.mirage
     del bpy.types.Scene.mirage
     for cls in reversed(_CLASSES):
         bpy.utils.unregister_class(cls)

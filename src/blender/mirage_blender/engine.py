@@ -13,7 +13,7 @@ import gpu
 import numpy as np
 from gpu_extras.presets import draw_texture_2d
 
-from . import export, module_path, viewport
+from . import export, module_path, passes, viewport
 
 # What the last render reported, (type, message) pairs: Blender shows them in its status bar
 # and prints them in the background; tests read them here.
@@ -89,7 +89,8 @@ class MirageRenderEngine(bpy.types.RenderEngine):
                 m_scene = mirage.Scene.from_dict(ex.scene, base_dir=folder,
                                                  ocio=export.OCIO_CONFIG,
                                                  frame=scene.frame_current)
-                self._render(mirage, m_scene, settings, scene)
+                self._render(mirage, m_scene, settings, scene,
+                             passes.enabled(depsgraph.view_layer))
             except (ImportError, export.ExportError) as e:
                 self._report("ERROR", f"Mirage: {e}")
             except Exception as e:  # a mirage.Error names the scene key, file and grid
@@ -105,12 +106,19 @@ class MirageRenderEngine(bpy.types.RenderEngine):
         if ex.left_out:
             self._report("WARNING", "Mirage: not translated: " + "; ".join(ex.left_out))
 
-    def _render(self, mirage, m_scene, settings, scene):
-        """The render in passes: each pass into the result as it comes, the last one kept."""
+    def update_render_passes(self, scene=None, renderlayer=None):
+        passes.register_passes(self, scene, renderlayer)
+
+    def _render(self, mirage, m_scene, settings, scene, chosen):
+        """The render in passes: each pass into the result as it comes, the last one kept,
+        with the view layer's render passes."""
         w, h = export.resolution(scene)
         opaque = not scene.render.film_transparent
         last = None
-        with mirage.Session(m_scene, **settings.render_arguments()) as session:
+        arguments = settings.render_arguments()
+        if chosen:
+            arguments["aovs"] = [p.aov for p in chosen]
+        with mirage.Session(m_scene, **arguments) as session:
             with _BreakWatch(self, session):
                 for image in session:
                     last = image
@@ -120,9 +128,9 @@ class MirageRenderEngine(bpy.types.RenderEngine):
                 return
             final = session.result or last
         if final is not None:
-            self._show(final, w, h, opaque, final=True)
+            self._show(final, w, h, opaque, final=True, chosen=chosen)
 
-    def _show(self, image, w, h, opaque, final):
+    def _show(self, image, w, h, opaque, final, chosen=()):
         """Pixels into the render result: Blender's rows run bottom to top, Mirage's top to
         bottom; an opaque film (not Film › Transparent) has alpha 1, as Cycles gives it."""
         pixels = np.ascontiguousarray(np.flipud(image.beauty), dtype=np.float32).reshape(-1, 4)
@@ -131,6 +139,7 @@ class MirageRenderEngine(bpy.types.RenderEngine):
         result = self.begin_result(0, 0, w, h)
         try:
             result.layers[0].passes["Combined"].rect = pixels
+            passes.write(result.layers[0], image, chosen)
             if not final:
                 self.update_result(result)
         finally:

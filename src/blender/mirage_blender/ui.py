@@ -1,17 +1,22 @@
-"""Mirage's panels in the Render Properties, shown when Mirage is the render engine."""
+"""Mirage's panels: its render settings (Render Properties) and its passes (View Layer), shown
+when Mirage is the render engine."""
 import bpy
 
 
-class MIRAGE_PT_render(bpy.types.Panel):
-    bl_label = "Mirage"
+class _MiragePanel:
+    """A Properties editor panel shown when Mirage is the render engine."""
     bl_space_type = "PROPERTIES"
     bl_region_type = "WINDOW"
-    bl_context = "render"
     COMPAT_ENGINES = {"MIRAGE"}
 
     @classmethod
     def poll(cls, context):
         return context.engine in cls.COMPAT_ENGINES
+
+
+class MIRAGE_PT_render(_MiragePanel, bpy.types.Panel):
+    bl_label = "Mirage"
+    bl_context = "render"
 
     def draw(self, context):
         s = context.scene.mirage
@@ -28,6 +33,29 @@ class MIRAGE_PT_render(bpy.types.Panel):
         layout.prop(s, "threads")
 
 
+class MIRAGE_PT_passes(_MiragePanel, bpy.types.Panel):
+    """View Layer properties: the render passes Mirage fills from its AOVs (passes.py)."""
+    bl_label = "Mirage Passes"
+    bl_context = "view_layer"
+
+    def draw(self, context):
+        view_layer = context.view_layer
+        layout = self.layout
+        layout.use_property_split = True
+        col = layout.column(heading="Data")
+        col.prop(view_layer, "use_pass_combined")
+        col.prop(view_layer, "use_pass_z")
+        col.prop(view_layer.mirage, "use_pass_albedo")
+        col.prop(view_layer.mirage, "use_pass_transmittance")
+        col = layout.column(heading="Light")
+        col.prop(view_layer, "use_pass_emit", text="Emission")
+        col.prop(view_layer.mirage, "use_pass_volume_direct")
+        col.prop(view_layer.mirage, "use_pass_volume_indirect")
+
+
+_PANELS = (MIRAGE_PT_render, MIRAGE_PT_passes)
+
+
 def _compatible_panels():
     """Blender's own panels that apply to any engine (dimensions, output, colour management)."""
     keep = ("RENDER_PT_format", "RENDER_PT_frame_range", "RENDER_PT_output",
@@ -38,7 +66,8 @@ def _compatible_panels():
 
 
 def register():
-    bpy.utils.register_class(MIRAGE_PT_render)
+    for panel in _PANELS:
+        bpy.utils.register_class(panel)
     for panel in _compatible_panels():
         panel.COMPAT_ENGINES.add("MIRAGE")
 
@@ -46,4 +75,5 @@ def register():
 def unregister():
     for panel in _compatible_panels():
         panel.COMPAT_ENGINES.discard("MIRAGE")
-    bpy.utils.unregister_class(MIRAGE_PT_render)
+    for panel in reversed(_PANELS):
+        bpy.utils.unregister_class(panel)

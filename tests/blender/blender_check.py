@@ -12,6 +12,10 @@ install:  pipeline/install-blender-addon.sh into a temporary Blender user folder
           node's `blender -b FILE.blend -E MIRAGE -f 1` writes the frame.
 passes:   a render with every pass Mirage fills, written by Blender as a multilayer EXR: the
           passes are there, the light passes (Emit, VolumeDir, VolumeInd) sum to Combined.
+animation: a Mantaflow smoke domain baked for frames 1-6 (16 cells, OpenVDB data cache),
+          rendered by a farm node's `-a` (frames 3 and 6): each frame's EXR names its own cache
+          file in its metadata and the smoke has grown; frame 6 against Cycles (which reads the
+          same cache through the Fluid modifier), as `cycles` does: the domain's placement.
 viewport: Blender with a window under Xvfb (xvfb-run, Mesa's software OpenGL), the 3D viewport
           in Rendered shading: the screenshot is the session's image through the view transform
           and shows the smoke; a light's edit restarts the session (an update, passes from 1),
@@ -36,6 +40,7 @@ MIRAGE = os.environ.get("MIRAGE_BINARY", "mirage")
 SAMPLES = 32          # both renderers; single scattering (Cycles: 0 volume bounces)
 MEAN_TOLERANCE = 0.05
 IOU_MIN = 0.95
+SMOKE_IOU_MIN = 0.9   # the baked smoke: 16 cells across, its edge a few pixels of the frame
 # The viewport's pixels against the render's through the sRGB encoding: the texture's half
 # floats, the OCIO shader and the screenshot's 8 bits (3/255).
 DRAWN_TOLERANCE = 3.0 / 255.0
@@ -103,17 +108,7 @@ def check_cycles(exe, folder):
         out = run_blender(exe, "render_blend.py", blend, exrs[engine], engine, str(SAMPLES),
                           "--integrator", "single")
         assert lines(out, "RESULT") == ["FINISHED written"], out
-    m, c = (mirage.read(exrs[e]).beauty.astype(np.float64) for e in ("mirage", "cycles"))
-    sm, sc = m[..., 3] > 0.5, c[..., 3] > 0.5
-    iou = np.count_nonzero(sm & sc) / max(np.count_nonzero(sm | sc), 1)
-    smoke = (m[..., 3] > 0.02) | (c[..., 3] > 0.02)
-    ratio = m[smoke, :3].mean(axis=0) / c[smoke, :3].mean(axis=0)
-    print(f"cycles: silhouette IoU {iou:.4f} ({np.count_nonzero(sm)} / {np.count_nonzero(sc)} "
-          f"pixels), mean RGB Mirage / Cycles {np.round(ratio, 4).tolist()}, alpha means "
-          f"{m[..., 3].mean():.4f} / {c[..., 3].mean():.4f}")
-    assert iou >= IOU_MIN, f"silhouette IoU {iou:.4f} below {IOU_MIN}"
-    assert np.all(np.abs(ratio - 1.0) <= MEAN_TOLERANCE), f"channel means differ: {ratio}"
-    print("cycles: ok")
+    print("cycles: ok (" + compare_with_cycles(exrs["mirage"], exrs["cycles"], IOU_MIN) + ")")
 
 
 def check_reports(exe, folder):
@@ -173,6 +168,51 @@ def check_passes(exe, folder):
           f"{error:.2e})")
 
 
+def compare_with_cycles(mirage_exr, cycles_exr, iou_min):
+    """The silhouettes' (alpha > 0.5) IoU and the ratio of the channel means over the smoke."""
+    m, c = (mirage.read(f).beauty.astype(np.float64) for f in (mirage_exr, cycles_exr))
+    sm, sc = m[..., 3] > 0.5, c[..., 3] > 0.5
+    iou = np.count_nonzero(sm & sc) / max(np.count_nonzero(sm | sc), 1)
+    smoke = (m[..., 3] > 0.02) | (c[..., 3] > 0.02)
+    ratio = m[smoke, :3].mean(axis=0) / c[smoke, :3].mean(axis=0)
+    report = (f"silhouette IoU {iou:.4f} ({np.count_nonzero(sm)} / {np.count_nonzero(sc)} "
+              f"pixels), mean RGB Mirage / Cycles {np.round(ratio, 4).tolist()}")
+    assert iou >= iou_min, f"silhouette IoU {iou:.4f} below {iou_min}: {report}"
+    assert np.all(np.abs(ratio - 1.0) <= MEAN_TOLERANCE), f"channel means differ: {report}"
+    return report
+
+
+def check_animation(exe, folder):
+    blend = os.path.join(folder, "smoke.blend")
+    run_blender(exe, "make_smoke.py", os.path.join(folder, "cache"), blend)
+    single = ("import bpy; s = bpy.context.scene; s.mirage.integrator = 'single'; "
+              f"s.mirage.samples = {SAMPLES}")
+    p = subprocess.run([exe, "-b", blend, "--factory-startup", "--python",
+                        os.path.join(HERE, "addon_from_source.py"), "--python-expr", single,
+                        "-E", "MIRAGE", "-o", os.path.join(folder, "anim_####"),
+                        "-F", "OPEN_EXR", "-a"],
+                       capture_output=True, text=True, env=dict(os.environ, MIRAGE_PYTHON_DIR=(
+                           os.environ.get("PYTHONPATH", "").split(os.pathsep)[0])))
+    frames = {f: os.path.join(folder, f"anim_{f:04d}.exr") for f in (3, 6)}
+    assert p.returncode == 0 and all(map(os.path.isfile, frames.values())), p.stdout + p.stderr
+    images = {}
+    for f, exr in frames.items():
+        image = mirage.read(exr)
+        files = image.metadata.get("mirage:volume_files", "")
+        assert os.path.basename(files) == f"fluid_data_{f:04d}.vdb", (f, files)
+        images[f] = image.beauty
+    covered = {f: np.count_nonzero(image[..., 3] > 0.5) for f, image in images.items()}
+    assert covered[6] > 1.15 * covered[3], f"the smoke did not grow from frame 3 to 6: {covered}"
+    cycles = os.path.join(folder, "cycles.exr")
+    out = run_blender(exe, "render_blend.py", blend, cycles, "cycles", str(SAMPLES),
+                      "--integrator", "single", "--frame", "6")
+    assert lines(out, "RESULT") == ["FINISHED written"], out
+    report = compare_with_cycles(frames[6], cycles, SMOKE_IOU_MIN)
+    print(f"animation: ok (frames 3 and 6 read fluid_data_0003.vdb and fluid_data_0006.vdb; "
+          f"alpha > 0.5 on {covered[3]} and {covered[6]} pixels; frame 6 against Cycles: "
+          f"{report})")
+
+
 def check_viewport(exe, folder):
     xvfb = shutil.which("xvfb-run")
     if not xvfb:
@@ -202,7 +242,8 @@ def check_viewport(exe, folder):
 
 def main():
     checks = {"identity": check_identity, "cycles": check_cycles, "reports": check_reports,
-              "install": check_install, "passes": check_passes, "viewport": check_viewport}
+              "install": check_install, "passes": check_passes, "animation": check_animation,
+              "viewport": check_viewport}
     if len(sys.argv) != 2 or sys.argv[1] not in checks:
         sys.exit(__doc__)
     exe = blender()

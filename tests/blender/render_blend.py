@@ -1,7 +1,7 @@
 """Renders a .blend inside Blender for the add-on tests, with the add-on loaded from the
 repository (src/blender), not from the user's configuration. Usage:
     blender -b --factory-startup --python-exit-code 1 --python render_blend.py -- \
-        FILE.blend OUT.exr mirage|cycles SAMPLES [--export SCENE.toml] [--passes]
+        FILE.blend OUT.exr mirage|cycles SAMPLES [--export SCENE.toml] [--passes] [--frame N]
 mirage: the add-on renders (SAMPLES per pixel, the path tracer, seed 0); --export also writes
 the scene it renders as TOML (with its shader files beside it); --passes turns on every render
 pass Mirage fills and writes a multilayer EXR. cycles: Cycles on the CPU,
@@ -19,15 +19,14 @@ blend, out, engine, samples = argv[0], argv[1], argv[2], int(argv[3])
 export_path = argv[argv.index("--export") + 1] if "--export" in argv else None
 integrator = argv[argv.index("--integrator") + 1] if "--integrator" in argv else "volpath"
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "src", "blender"))
-if os.environ.get("MIRAGE_PYTHON_DIR"):
-    sys.path.insert(0, os.environ["MIRAGE_PYTHON_DIR"])
-import mirage_blender  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import addon_from_source  # noqa: E402
 
 bpy.ops.wm.open_mainfile(filepath=blend)
-mirage_blender.register()
+mirage_blender = addon_from_source.load()
 scene = bpy.context.scene
+if "--frame" in argv:
+    scene.frame_set(int(argv[argv.index("--frame") + 1]))
 scene.render.filepath = out
 scene.render.use_file_extension = False
 

@@ -14,15 +14,12 @@ import bpy
 import numpy as np
 
 shot_path = sys.argv[sys.argv.index("--") + 1]
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.join(HERE, "..", "..", "src", "blender"))
-if os.environ.get("MIRAGE_PYTHON_DIR"):
-    sys.path.insert(0, os.environ["MIRAGE_PYTHON_DIR"])
-import mirage_blender  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import addon_from_source  # noqa: E402
 
 TIMEOUT = 60.0
 MARGIN = 4  # pixels of the viewport's edge: Blender's area outline
-mirage_blender.register()
+mirage_blender = addon_from_source.load()
 RECORD = mirage_blender.viewport.RECORD
 
 

@@ -14,14 +14,14 @@ bl_info = {
 
 if "bpy" in locals():
     import importlib
-    for _m in (units, toml_text, shading, export, viewport, passes, module_path, properties,
-               engine, ui):  # noqa
+    for _m in (units, toml_text, shading, mantaflow, export, viewport, passes,  # noqa
+               module_path, properties, engine, ui):
         importlib.reload(_m)
 
 import bpy
 
-from . import (engine, export, module_path, passes, properties, shading, toml_text,  # noqa
-               ui, units, viewport)
+from . import (engine, export, mantaflow, module_path, passes, properties, shading,  # noqa
+               toml_text, ui, units, viewport)
 
 
 class MiragePreferences(bpy.types.AddonPreferences):

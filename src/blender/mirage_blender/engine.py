@@ -60,6 +60,7 @@ class MirageRenderEngine(bpy.types.RenderEngine):
     bl_use_eevee_viewport = True
 
     def __init__(self):
+        self.stamp = {}          # metadata of F12's frame beside the image's own
         self.viewport = None     # the viewport's ViewportRender, made by the first view_update
         self.scene_doc = None    # the exported scene without camera and film
         self.texture = None
@@ -89,6 +90,8 @@ class MirageRenderEngine(bpy.types.RenderEngine):
                 m_scene = mirage.Scene.from_dict(ex.scene, base_dir=folder,
                                                  ocio=export.OCIO_CONFIG,
                                                  frame=scene.frame_current)
+                self.stamp = {"mirage:volume_files": ";".join(
+                    v["file"] for v in ex.scene.get("volume", []))}
                 self._render(mirage, m_scene, settings, scene,
                              passes.enabled(depsgraph.view_layer))
             except (ImportError, export.ExportError) as e:
@@ -140,11 +143,25 @@ class MirageRenderEngine(bpy.types.RenderEngine):
         try:
             result.layers[0].passes["Combined"].rect = pixels
             passes.write(result.layers[0], image, chosen)
+            if final:
+                self._stamp(image)
             if not final:
                 self.update_result(result)
         finally:
             # A pass shown is not the frame: cancel=True keeps it out of the saved image.
             self.end_result(result, cancel=not final)
+
+    def _stamp(self, image):
+        """Mirage's record of the frame in Blender's metadata (an EXR's header): the files
+        its volumes read, the integrator, samples and seed it rendered with. On the frame's
+        whole result: a result from begin_result gives Blender its pixels, not its stamp."""
+        result = self.get_result()
+        fields = dict(self.stamp)
+        for key in ("mirage:integrator", "mirage:spp", "mirage:seed", "mirage:version"):
+            if key in image.metadata:
+                fields[key] = image.metadata[key]
+        for key, value in fields.items():
+            result.stamp_data_add_field(key, value)
 
     # The viewport (Rendered shading). view_update follows every edit of the scene, view_draw
     # every redraw, a view rotated or zoomed included; both on Blender's main thread, which

@@ -11,7 +11,7 @@ import re
 import bpy
 from mathutils import Vector
 
-from . import shading, toml_text, units
+from . import mantaflow, shading, toml_text, units
 
 # The add-on's OCIO config: Mirage's working space is Blender's scene-linear (units.py).
 OCIO_CONFIG = os.path.join(os.path.dirname(__file__), "ocio", "config.ocio")
@@ -235,11 +235,11 @@ def volume_frame_path(vol, frame):
     return os.path.join(head, tail[:last.start()] + digits + tail[last.end():])
 
 
-def _object_transform(obj):
-    """The object's world matrix M as Mirage's scale, rotate, translate (S, then R, then T).
-    Mirage reads the file's coordinates as its own, so its transform must be C·M, C the Z-up
-    to Y-up rotation (units.py): C·M·p = C·t + (C·R)·S·p, a rotation C·R, not C·R·C⁻¹."""
-    loc, rot, scale = obj.matrix_world.decompose()
+def transform(matrix):
+    """A file-to-Blender-world matrix M as Mirage's scale, rotate, translate (S, then R, then
+    T). Mirage reads the file's coordinates as its own, so its transform must be C·M, C the
+    Z-up to Y-up rotation (units.py): C·M·p = C·t + (C·R)·S·p, a rotation C·R, not C·R·C⁻¹."""
+    loc, rot, scale = matrix.decompose()
     axis, angle = (units.AXES @ rot.to_matrix()).to_quaternion().to_axis_angle()
     return {"scale": [float(s) for s in scale],
             "rotate": [math.degrees(angle)] + [float(a) for a in axis],
@@ -257,18 +257,30 @@ def _object_space_density(obj):
     return 1.0 / diagonal.length if diagonal.length > 0.0 else 1.0
 
 
+def require_file(obj, path, frame):
+    if not os.path.isfile(path):
+        raise ExportError(f"volume '{obj.name}': cache file {os.path.abspath(path)} does not exist "
+                          f"(frame {frame})")
+
+
 def volume(obj, frame, ex):
     """A Volume object: its frame's OpenVDB file, its transform, its material's shader."""
     vol = obj.data
     path = volume_frame_path(vol, frame)
     if path is None:
         return None
-    if not os.path.isfile(path):
-        raise ExportError(f"volume '{obj.name}': cache file {os.path.abspath(path)} does not exist "
-                          f"(frame {frame})")
+    require_file(obj, path, frame)
     grids = set()
     if vol.grids.load():
         grids = {g.name for g in vol.grids}
+    return volume_table(obj, path, grids, {}, transform(obj.matrix_world),
+                        _object_space_density(obj), ex)
+
+
+def volume_table(obj, path, grids, renames, file_transform, density_factor, ex):
+    """The [[volume]] of an object reading `path`: its material's shader (written into the
+    export), the shader's attributes bound to the file's grids (`renames`: an attribute the
+    file stores under another name), the transform and the density's factor."""
     mat = obj.active_material
     shader = shading.translate(mat, grids, _safe_name(mat.name if mat else "default"))
     ex.left_out_nodes += [f"{mat.name if mat else obj.name}: {n}" for n in shader.left_out]
@@ -279,8 +291,21 @@ def volume(obj, frame, ex):
     ex.shaders[file_name] = shader.document
     return {"file": os.path.abspath(path), "name": _safe_name(obj.name),
             "shader": os.path.join(ex.folder, file_name),
-            "density_scale": shader.density_scale * _object_space_density(obj),
-            "bind": dict(shader.bind), "transform": _object_transform(obj)}
+            "density_scale": shader.density_scale * density_factor,
+            "bind": {slot: renames.get(a, a) for slot, a in shader.bind.items()},
+            "transform": file_transform}
+
+
+def _domain(obj, frame, ex):
+    """A Mantaflow gas domain: its OpenVDB data cache's file of the frame, placed in the
+    domain as Blender places the simulation (mantaflow.py); density per metre of the world,
+    as Cycles takes a domain's."""
+    path = mantaflow.cache_file(obj, frame, ex.left_out)
+    if path is None:
+        return None
+    require_file(obj, path, frame)
+    return volume_table(obj, path, mantaflow.GRIDS, mantaflow.ATTRIBUTE_GRIDS,
+                        transform(mantaflow.file_matrix(obj)), 1.0, ex)
 
 
 def _objects(depsgraph):
@@ -303,6 +328,10 @@ def export(depsgraph, settings, folder, scene_camera=True):
     for obj in _objects(depsgraph):
         if obj.type == "VOLUME":
             v = volume(obj, scene.frame_current, ex)
+            if v is not None:
+                volumes.append(v)
+        elif obj.type == "MESH" and mantaflow.gas_domain(obj) is not None:
+            v = _domain(obj, scene.frame_current, ex)
             if v is not None:
                 volumes.append(v)
         elif obj.type == "LIGHT":

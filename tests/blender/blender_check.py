@@ -10,6 +10,9 @@ reports:  a missing cache file is an error report and no image; a node Mirage ca
           translate is one warning, and an image.
 install:  pipeline/install-blender-addon.sh into a temporary Blender user folder, then a farm
           node's `blender -b FILE.blend -E MIRAGE -f 1` writes the frame.
+physics:  every Mirage-only physics of the material panel on (chlorophyll with its
+          fluorescence, CDOM from it, the medium's fluorescence, the index from temperature):
+          the exported shader and [refraction] hold them, and the image is `mirage render`'s.
 passes:   a render with every pass Mirage fills, written by Blender as a multilayer EXR: the
           passes are there, the light passes (Emit, VolumeDir, VolumeInd) sum to Combined.
 animation: a Mantaflow smoke domain baked for frames 1-6 (16 cells, OpenVDB data cache),
@@ -24,11 +27,13 @@ viewport: Blender with a window under Xvfb (xvfb-run, Mesa's software OpenGL), t
 Environment: MIRAGE_BINARY (the mirage command), PYTHONPATH (the built module), BLENDER
 (default: blender on PATH). Exits 77 (ctest's skip) with a message when Blender is missing.
 """
+import functools
 import os
 import shutil
 import subprocess
 import sys
 import tempfile
+import tomllib
 
 import numpy as np
 
@@ -84,10 +89,14 @@ def make_blend(exe, folder, *flags):
     return blend
 
 
-def check_identity(exe, folder):
+def render_as_exported(exe, folder, *flags):
+    """The add-on's image of the test scene, and the scene it exported (TOML, parsed): the
+    image must equal `mirage render` of that scene bit for bit."""
     blend = make_blend(exe, folder)
-    addon_exr, toml = os.path.join(folder, "addon.exr"), os.path.join(folder, "export", "scene.toml")
-    out = run_blender(exe, "render_blend.py", blend, addon_exr, "mirage", "8", "--export", toml)
+    addon_exr = os.path.join(folder, "addon.exr")
+    toml = os.path.join(folder, "export", "scene.toml")
+    out = run_blender(exe, "render_blend.py", blend, addon_exr, "mirage", "8", "--export", toml,
+                      *flags)
     assert lines(out, "RESULT") == ["FINISHED written"], out
     cli_exr = os.path.join(folder, "cli.exr")
     subprocess.run([MIRAGE, "render", toml, "--ocio", OCIO, "-o", cli_exr, "--quiet"],
@@ -97,7 +106,35 @@ def check_identity(exe, folder):
     assert a[..., 3].max() > 0.5, "the volume is not in the frame"
     differ = int(np.count_nonzero(a != b))
     assert differ == 0, f"{differ} values differ; largest difference {np.abs(a - b).max()}"
+    with open(toml, "rb") as f:
+        return a, tomllib.load(f)
+
+
+def check_identity(exe, folder):
+    a, _ = render_as_exported(exe, folder)
     print(f"identity: ok (64x48 RGBA, bit for bit; alpha mean {a[..., 3].mean():.4f})")
+
+
+def check_physics(exe, folder):
+    a, scene = render_as_exported(exe, folder, "--physics")
+    volume = scene["volume"][0]
+    with open(volume["shader"], "rb") as f:
+        components = tomllib.load(f)["component"]
+    density = volume["density_scale"]
+    kinds = {c.get("kind", "linear"): c for c in components}
+    assert set(kinds) == {"linear", "chlorophyll", "cdom"}, components
+    close = functools.partial(np.isclose, rtol=1e-6)  # Blender's float properties are float32
+    assert close(kinds["linear"]["quantum_efficiency"], 0.3), components
+    assert close(kinds["linear"]["emission_peak_nm"], 520.0), components
+    # 4 mg/m³ where the density attribute is 1, through Mirage's density_scale multiplier.
+    assert close(kinds["chlorophyll"]["concentration"] * density, 4.0), (components, density)
+    assert close(kinds["chlorophyll"]["quantum_efficiency"], 0.02), components
+    assert kinds["cdom"]["covaries_with"] == "chlorophyll", components
+    refraction = scene["refraction"]
+    assert refraction["profile"] == "grid" and refraction["volume"] == 0, refraction
+    assert close(refraction["ambient"], 288.15), refraction
+    print(f"physics: ok (components {sorted(kinds)}, [refraction] {refraction}; "
+          f"bit for bit as exported, alpha mean {a[..., 3].mean():.4f})")
 
 
 def check_cycles(exe, folder):
@@ -243,7 +280,7 @@ def check_viewport(exe, folder):
 def main():
     checks = {"identity": check_identity, "cycles": check_cycles, "reports": check_reports,
               "install": check_install, "passes": check_passes, "animation": check_animation,
-              "viewport": check_viewport}
+              "physics": check_physics, "viewport": check_viewport}
     if len(sys.argv) != 2 or sys.argv[1] not in checks:
         sys.exit(__doc__)
     exe = blender()

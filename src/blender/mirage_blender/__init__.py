@@ -14,14 +14,14 @@ bl_info = {
 
 if "bpy" in locals():
     import importlib
-    for _m in (units, toml_text, shading, mantaflow, export, viewport, passes,  # noqa
-               module_path, properties, engine, ui):
+    for _m in (units, toml_text, shading, physics, mantaflow, export, viewport,  # noqa
+               passes, module_path, properties, engine, ui):
         importlib.reload(_m)
 
 import bpy
 
-from . import (engine, export, mantaflow, module_path, passes, properties, shading,  # noqa
-               toml_text, ui, units, viewport)
+from . import (engine, export, mantaflow, module_path, passes, physics,  # noqa
+               properties, shading, toml_text, ui, units, viewport)
 
 
 class MiragePreferences(bpy.types.AddonPreferences):
@@ -37,7 +37,7 @@ class MiragePreferences(bpy.types.AddonPreferences):
 
 
 _CLASSES = (MiragePreferences, properties.MirageRenderSettings, passes.MirageViewLayerSettings,
-            engine.MirageRenderEngine)
+            physics.MirageMaterialSettings, engine.MirageRenderEngine)
 
 
 def register():
@@ -45,11 +45,13 @@ def register():
         bpy.utils.register_class(cls)
     bpy.types.Scene.mirage = bpy.props.PointerProperty(type=properties.MirageRenderSettings)
     bpy.types.ViewLayer.mirage = bpy.props.PointerProperty(type=passes.MirageViewLayerSettings)
+    bpy.types.Material.mirage = bpy.props.PointerProperty(type=physics.MirageMaterialSettings)
     ui.register()
 
 
 def unregister():
     ui.unregister()
+    del bpy.types.Material.mirage
     del bpy.types.ViewLayer.mirage
     del bpy.types.Scene.mirage
     for cls in reversed(_CLASSES):

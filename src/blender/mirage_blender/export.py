@@ -11,7 +11,7 @@ import re
 import bpy
 from mathutils import Vector
 
-from . import mantaflow, shading, toml_text, units
+from . import mantaflow, physics, shading, toml_text, units
 
 # The add-on's OCIO config: Mirage's working space is Blender's scene-linear (units.py).
 OCIO_CONFIG = os.path.join(os.path.dirname(__file__), "ocio", "config.ocio")
@@ -30,6 +30,7 @@ class Export:
         self.shaders = {}          # file name -> shader document
         self.left_out_nodes = []   # "Material: node" entries, for the one material warning
         self.left_out = []         # other settings that Mirage does not take
+        self.materials = []        # (material, shader, table) of each [[volume]], in order
 
     def write_shaders(self):
         """Writes each shader file into the export's folder (the scene names them by path)."""
@@ -283,17 +284,20 @@ def volume_table(obj, path, grids, renames, file_transform, density_factor, ex):
     file stores under another name), the transform and the density's factor."""
     mat = obj.active_material
     shader = shading.translate(mat, grids, _safe_name(mat.name if mat else "default"))
+    physics.add_to_shader(mat, shader, density_factor)
     ex.left_out_nodes += [f"{mat.name if mat else obj.name}: {n}" for n in shader.left_out]
     # Named by its content too: an edited material is another file, which a running viewport
     # session takes by an update of the volume's `shader` key (viewport.py).
     digest = hashlib.sha1(toml_text.dumps(shader.document).encode()).hexdigest()[:10]
     file_name = f"shader_{_safe_name(obj.name)}_{digest}.toml"
     ex.shaders[file_name] = shader.document
-    return {"file": os.path.abspath(path), "name": _safe_name(obj.name),
-            "shader": os.path.join(ex.folder, file_name),
-            "density_scale": shader.density_scale * density_factor,
-            "bind": {slot: renames.get(a, a) for slot, a in shader.bind.items()},
-            "transform": file_transform}
+    table = {"file": os.path.abspath(path), "name": _safe_name(obj.name),
+             "shader": os.path.join(ex.folder, file_name),
+             "density_scale": shader.density_scale * density_factor,
+             "bind": {slot: renames.get(a, a) for slot, a in shader.bind.items()},
+             "transform": file_transform}
+    ex.materials.append((mat, shader, table))
+    return table
 
 
 def _domain(obj, frame, ex):
@@ -306,6 +310,20 @@ def _domain(obj, frame, ex):
     require_file(obj, path, frame)
     return volume_table(obj, path, mantaflow.GRIDS, mantaflow.ATTRIBUTE_GRIDS,
                         transform(mantaflow.file_matrix(obj)), 1.0, ex)
+
+
+def _refraction(ex):
+    """The scene's one [refraction]: the first volume whose material asks for an index from
+    its temperature (physics.py); any other that asks is named."""
+    for index, (mat, shader, volume_table) in enumerate(ex.materials):
+        table = physics.refraction(mat, shader, volume_table, index, ex.left_out)
+        if table is None:
+            continue
+        if "refraction" in ex.scene:
+            ex.left_out.append(f"material '{mat.name}': Index from Temperature (one volume "
+                               "bends light in Mirage: the first)")
+        else:
+            ex.scene["refraction"] = table
 
 
 def _objects(depsgraph):
@@ -347,6 +365,7 @@ def export(depsgraph, settings, folder, scene_camera=True):
         lights.append(dome)
     if volumes:
         doc["volume"] = volumes
+    _refraction(ex)
     if lights:
         doc["light"] = lights
     doc["output"] = {"path": os.path.join(folder, "render.exr"), "half": False}

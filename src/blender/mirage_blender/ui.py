@@ -1,5 +1,5 @@
-"""Mirage's panels: its render settings (Render Properties) and its passes (View Layer), shown
-when Mirage is the render engine."""
+"""Mirage's panels: its render settings (Render Properties), its passes (View Layer) and a
+material's Mirage-only physics (Material), shown when Mirage is the render engine."""
 import bpy
 
 
@@ -53,7 +53,45 @@ class MIRAGE_PT_passes(_MiragePanel, bpy.types.Panel):
         col.prop(view_layer.mirage, "use_pass_volume_indirect")
 
 
-_PANELS = (MIRAGE_PT_render, MIRAGE_PT_passes)
+class MIRAGE_PT_material_physics(_MiragePanel, bpy.types.Panel):
+    """Material properties: the Mirage-only physics beside the Principled Volume (physics.py)."""
+    bl_label = "Mirage Physics"
+    bl_context = "material"
+
+    @classmethod
+    def poll(cls, context):
+        return super().poll(context) and context.material is not None
+
+    def draw(self, context):
+        s = context.material.mirage
+        layout = self.layout
+        layout.use_property_split = True
+        col = layout.column(heading="Sea Water")
+        col.prop(s, "use_chlorophyll")
+        sub = col.column()
+        sub.active = s.use_chlorophyll
+        sub.prop(s, "chlorophyll")
+        sub.prop(s, "chlorophyll_fluorescence")
+        col.prop(s, "use_cdom")
+        sub = col.column()
+        sub.active = s.use_cdom
+        sub.prop(s, "cdom_covaries")
+        sub.prop(s, "cdom_absorption")
+        sub.prop(s, "cdom_slope")
+        col = layout.column(heading="Medium")
+        col.prop(s, "fluorescence")
+        sub = col.column()
+        sub.active = s.fluorescence > 0.0
+        sub.prop(s, "fluorescence_peak")
+        sub.prop(s, "fluorescence_width")
+        col = layout.column(heading="Curved Light")
+        col.prop(s, "use_index_from_temperature")
+        sub = col.column()
+        sub.active = s.use_index_from_temperature
+        sub.prop(s, "ambient_temperature")
+
+
+_PANELS = (MIRAGE_PT_render, MIRAGE_PT_passes, MIRAGE_PT_material_physics)
 
 
 def _compatible_panels():

@@ -27,7 +27,9 @@ viewport: Blender with a window under Xvfb (xvfb-run, Mesa's software OpenGL), t
 Environment: MIRAGE_BINARY (the mirage command), PYTHONPATH (the built module), BLENDER
 (default: blender on PATH). Exits 77 (ctest's skip) with a message when Blender is missing.
 """
+import fcntl
 import functools
+import hashlib
 import os
 import shutil
 import subprocess
@@ -79,12 +81,34 @@ def lines(out, tag):
 def make_blend(exe, folder, *flags):
     """The test scene: make-asset's fog sphere at 96 voxels per 2 m (fine enough that the half
     voxel by which Cycles places grids apart from OpenVDB's voxel centres stays a fifth of a
-    pixel), as make_scene.py arranges it."""
+    pixel), as make_scene.py arranges it. Made once for every check that runs with the same
+    scene scripts and mirage binary, in MIRAGE_BLENDER_SCENES (the build's folder; else in
+    `folder`), under a lock: ctest may run the checks at once."""
+    shared = os.environ.get("MIRAGE_BLENDER_SCENES")
+    if not shared:
+        return build_blend(exe, folder, flags)
+    key = hashlib.sha1(repr(flags).encode())
+    for path in (os.path.join(HERE, "make_scene.py"), os.path.join(HERE, "stage.py")):
+        with open(path, "rb") as f:
+            key.update(f.read())
+    binary = os.stat(shutil.which(MIRAGE) or MIRAGE)
+    key.update(f"{binary.st_size} {binary.st_mtime_ns}".encode())
+    scenes = os.path.join(shared, key.hexdigest()[:16])
+    os.makedirs(scenes, exist_ok=True)
+    with open(os.path.join(scenes, "lock"), "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        return build_blend(exe, scenes, flags)
+
+
+def build_blend(exe, folder, flags):
+    """make_blend's scene in `folder`, unless it is there already."""
+    blend = os.path.join(folder, "scene" + "".join(f.replace("--", "_") for f in flags) + ".blend")
+    if os.path.exists(blend):
+        return blend
     vdb = os.path.join(folder, "fog.vdb")
     if not os.path.exists(vdb):
         subprocess.run([MIRAGE, "make-asset", "fog-sphere", "--resolution", "96", "-o", vdb],
                        check=True, capture_output=True)
-    blend = os.path.join(folder, "scene" + "".join(f.replace("--", "_") for f in flags) + ".blend")
     run_blender(exe, "make_scene.py", vdb, blend, *flags)
     return blend
 

@@ -22,7 +22,8 @@ animation: a Mantaflow smoke domain baked for frames 1-6 (16 cells, OpenVDB data
 viewport: Blender with a window under Xvfb (xvfb-run, Mesa's software OpenGL), the 3D viewport
           in Rendered shading: the screenshot is the session's image through the view transform
           and shows the smoke; a light's edit restarts the session (an update, passes from 1),
-          a light added makes a new session.
+          so do edits of the material, its Mirage physics and the camera; a light added makes a
+          new session.
 
 Environment: MIRAGE_BINARY (the mirage command), PYTHONPATH (the built module), BLENDER
 (default: blender on PATH). Exits 77 (ctest's skip) with a message when Blender is missing.
@@ -297,6 +298,8 @@ def check_viewport(exe, folder):
     assert int(record["restarts_after_edit"]) == int(record["restarts_before_edit"]) + 1, record
     assert record["update_kind"] == "update", record
     assert int(record["passes_after_edit"]) < int(record["passes_before_edit"]), record
+    for what in ("material", "physics", "camera"):
+        assert record[f"{what}_edit"].split()[0] == "update", record
     assert record["added_light_kind"] == "new", record
     print("viewport: ok (" + ", ".join(f"{k} {v}" for k, v in record.items()) + ")")
 

@@ -3,7 +3,8 @@ add-on loaded from the repository. Usage:
     blender FILE.blend --factory-startup --python viewport_blend.py -- SHOT.png
 It sets the 3D viewport to Rendered shading with Mirage, seen through the scene's camera, waits
 for two passes, takes a screenshot of the viewport, then makes the sun three times as strong
-and waits for the next image, then adds a point light and waits again. Prints
+and waits for the next image; then edits the material's colour, its Mirage physics, moves the
+camera (the view through it), and adds a point light, waiting for the image after each. Prints
 `VIEWPORT <key> <value>` lines (blender_check.py checks them), then quits; `VIEWPORT failed
 <why>` when a wait runs out."""
 import os
@@ -134,6 +135,15 @@ def steps():
     say("restarts_after_edit", RECORD["restarts"])
     say("passes_after_edit", RECORD["passes"])
     say("update_kind", RECORD["last_restart"])
+    for what, edit in EDITS:
+        restarts, images = RECORD["restarts"], RECORD["images"]
+        edited = time.perf_counter()
+        edit()
+        while RECORD["restarts"] == restarts or RECORD["images"] == images:
+            if time.perf_counter() - edited > TIMEOUT:
+                return say("failed", f"no image after the edit of the {what}")
+            yield
+        say(f"{what}_edit", f"{RECORD['last_restart']} {time.perf_counter() - edited:.3f}")
     restarts = RECORD["restarts"]
     added = time.perf_counter()
     lamp = bpy.data.lights.new("Added", type="POINT")
@@ -145,6 +155,24 @@ def steps():
     say("added_light_to_image_seconds", f"{time.perf_counter() - added:.3f}")
     say("added_light_kind", RECORD["last_restart"])
     say("done", "ok")
+
+
+def _edit_material():
+    mat = bpy.data.materials["SmokeMaterial"]
+    pv = next(n for n in mat.node_tree.nodes if n.bl_idname == "ShaderNodeVolumePrincipled")
+    pv.inputs["Color"].default_value = (0.9, 0.5, 0.3, 1.0)
+
+
+def _edit_physics():
+    bpy.data.materials["SmokeMaterial"].mirage.fluorescence = 0.5
+
+
+def _move_camera():
+    bpy.context.scene.camera.location.x += 0.2
+
+
+# Edits that keep the scene's keys: each an update of the running session.
+EDITS = (("material", _edit_material), ("physics", _edit_physics), ("camera", _move_camera))
 
 
 def viewport_pixels():

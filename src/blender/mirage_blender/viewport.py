@@ -32,6 +32,24 @@ def view_camera(region, region_data, pixel_size):
     return export.camera_from_matrix(m, tan_half), (w, h)
 
 
+# A restart's first image is a coarse one, a quarter of the resolution each way at one sample
+# per pixel (a sixteenth of a pass's cost), where the viewport has more pixels than this; the
+# session then goes on at full resolution. Blender stretches the coarse image over the region.
+COARSE_ABOVE_PIXELS = 128 * 128
+COARSE_DIVISOR = 4
+
+
+def coarse_and_full(film):
+    """The `--set` keys of a restart's coarse image (None where the viewport is small) and of
+    the full render after it."""
+    w, h = film["resolution"]
+    full = {"film.resolution": [w, h], "film.spp": film["spp"]}
+    if w * h <= COARSE_ABOVE_PIXELS:
+        return None, full
+    coarse = [-(-w // COARSE_DIVISOR), -(-h // COARSE_DIVISOR)]
+    return {"film.resolution": coarse, "film.spp": 1}, full
+
+
 def flatten(doc, prefix=""):
     """The document's leaves as the dotted keys `--set` takes: tables by name, arrays of tables
     (`volume`, `light`) by index, other arrays (a position) as one value."""
@@ -71,6 +89,7 @@ class ViewportRender:
         self.pending = None         # ("new", doc, kwargs, frame) or ("update", {key: value})
         self.submitted_at = 0.0
         self.session = None
+        self.refine = None          # the full render's keys while the coarse image renders
         self.session_lock = threading.Lock()  # held by the worker while it changes the session
         self.pending_lock = threading.Lock()
         self.wake = threading.Event()
@@ -142,26 +161,42 @@ class ViewportRender:
                 continue
             self._publish(image, started)
             started = None
+            if self.refine is not None and self.pending is None:
+                with self.session_lock:
+                    self._refine()
 
     def _apply(self, command):
         """A command from submit() on the session, on the worker (grid files load here)."""
         RECORD["error"] = ""
+        self.refine = None
         try:
-            if command[0] == "update" and self.session is not None:
-                self.session.update(command[1])
-            elif command[0] == "error":
+            if command[0] == "error":
                 self.session = None
                 RECORD["error"] = command[1]
                 return
+            coarse, full = coarse_and_full(self.doc["film"])
+            if command[0] == "update" and self.session is not None:
+                self.session.update({**command[1], **(coarse or full)})
             else:
                 self.session = None
                 _, doc, kwargs, frame = command
-                scene = self.mirage.Scene.from_dict(doc, base_dir=self.folder.name,
+                scene = self.mirage.Scene.from_dict(doc, set=coarse or {},
+                                                    base_dir=self.folder.name,
                                                     ocio=export.OCIO_CONFIG, frame=frame)
                 self.session = self.mirage.Session(scene, **kwargs)
+            self.refine = full if coarse else None
             RECORD["restarts"] += 1
             RECORD["last_restart"] = command[0]
             RECORD["passes"] = 0
+        except self.mirage.Error as e:
+            self.session = None
+            RECORD["error"] = f"Mirage: {e}"
+
+    def _refine(self):
+        """After the coarse image: the full resolution and samples, the grids kept."""
+        keys, self.refine = self.refine, None
+        try:
+            self.session.update(keys)
         except self.mirage.Error as e:
             self.session = None
             RECORD["error"] = f"Mirage: {e}"

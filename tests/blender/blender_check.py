@@ -13,8 +13,9 @@ install:  pipeline/install-blender-addon.sh into a temporary Blender user folder
 physics:  every Mirage-only physics of the material panel on (chlorophyll with its
           fluorescence, CDOM from it, the medium's fluorescence, the index from temperature):
           the exported shader and [refraction] hold them, and the image is `mirage render`'s.
-passes:   a render with every pass Mirage fills, written by Blender as a multilayer EXR: the
-          passes are there, the light passes (Emit, VolumeDir, VolumeInd) sum to Combined.
+passes:   a render with every pass Mirage fills and three light groups, written by Blender as a
+          multilayer EXR: the passes are there, the light passes (Emit, VolumeDir, VolumeInd)
+          sum to Combined, so do the light groups, and the group without lights is black.
 animation: a Mantaflow smoke domain baked for frames 1-6 (16 cells, OpenVDB data cache),
           rendered by a farm node's `-a` (frames 3 and 6): each frame's EXR names its own cache
           file in its metadata and the smoke has grown; frame 6 against Cycles (which reads the
@@ -213,21 +214,27 @@ def check_passes(exe, folder):
     out = run_blender(exe, "render_blend.py", blend, exr, "mirage", "8", "--passes")
     assert lines(out, "RESULT") == ["FINISHED written"], out
     layers = {k.split(".", 1)[1]: v for k, v in mirage.read(exr).aovs.items()}
-    expected = {"Combined", "Depth", "Emit", "VolumeDir", "VolumeInd", "Albedo", "Transmittance"}
+    expected = {"Combined", "Depth", "Emit", "VolumeDir", "VolumeInd", "Albedo", "Transmittance",
+                "Combined_key", "Combined_sky", "Combined_rim"}
     assert set(layers) == expected, sorted(layers)
     combined = layers["Combined"][..., :3].astype(np.float64)
-    light = sum(layers[n].astype(np.float64) for n in ("Emit", "VolumeDir", "VolumeInd"))
-    error = np.abs(light - combined).max()
-    # Float rounding: three float32 passes summed against their float32 total.
-    assert error <= 1e-6 * max(1.0, combined.max()), f"light passes sum off by {error}"
+    errors = []
+    # The light paths, and the light groups (every light is in one; nothing emits).
+    for parts in (("Emit", "VolumeDir", "VolumeInd"), ("Combined_key", "Combined_sky")):
+        total = sum(layers[n].astype(np.float64) for n in parts)
+        errors.append(np.abs(total - combined).max())
+        # Float rounding: float32 passes summed against their float32 total.
+        assert errors[-1] <= 1e-6 * max(1.0, combined.max()), f"{parts} sum off by {errors}"
+    assert layers["Combined_key"].max() > 0.1 and layers["Combined_sky"].max() > 0.01, "empty"
+    assert not layers["Combined_rim"].any(), "a light group without lights is not black"
     assert layers["VolumeDir"].max() > 0.1 and layers["VolumeInd"].max() > 0.01, "empty passes"
     depth, alpha = layers["Depth"][..., 0], layers["Combined"][..., 3]
     assert np.all(np.isfinite(depth)) and depth[alpha > 0.9].max() < 10.0, "depth of the smoke"
     # The background (a few fringe pixels hold a depth from the depth pass's own walk).
     background = depth[alpha == 0.0]
     assert np.mean(background == np.float32(1.0e10)) > 0.9, "the background's depth is not 1e10"
-    print(f"passes: ok ({', '.join(sorted(layers))}; light passes sum to Combined within "
-          f"{error:.2e})")
+    print(f"passes: ok ({', '.join(sorted(layers))}; light paths and light groups sum to "
+          f"Combined within {errors[0]:.2e} and {errors[1]:.2e})")
 
 
 def compare_with_cycles(mirage_exr, cycles_exr, iou_min):

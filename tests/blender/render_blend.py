@@ -5,7 +5,8 @@ repository (src/blender), not from the user's configuration. Usage:
         [--physics]
 mirage: the add-on renders (SAMPLES per pixel, the path tracer, seed 0); --export also writes
 the scene it renders as TOML (with its shader files beside it); --passes turns on every render
-pass Mirage fills and writes a multilayer EXR; --physics turns on every Mirage-only physics of
+pass Mirage fills, three light groups (the sun's, the world's, one empty), and writes a
+multilayer EXR; --physics turns on every Mirage-only physics of
 the material SmokeMaterial (make_scene.py's), a blackbody on its density for the heat haze, and
 stands the smoke up unturned and unsquashed (Mirage's heat haze needs that). --frame N renders
 frame N. cycles: Cycles on the CPU, SAMPLES per pixel, 64 volume bounces, no denoising, no clamping, a 1-pixel box filter.
@@ -44,6 +45,11 @@ if engine == "mirage":
         view_layer.use_pass_z = view_layer.use_pass_emit = True
         for name in ("volume_direct", "volume_indirect", "albedo", "transmittance"):
             setattr(view_layer.mirage, "use_pass_" + name, True)
+        # Light groups: the sun in "key", the world in "sky", and "rim" with no light.
+        for group in ("key", "sky", "rim"):
+            view_layer.lightgroups.add(name=group)
+        bpy.data.objects["Sun"].lightgroup = "key"
+        scene.world.lightgroup = "sky"
         scene.render.image_settings.file_format = "OPEN_EXR_MULTILAYER"
     if "--physics" in argv:
         mat = bpy.data.materials["SmokeMaterial"]

@@ -92,8 +92,9 @@ class MirageRenderEngine(bpy.types.RenderEngine):
                                                  frame=scene.frame_current)
                 self.stamp = {"mirage:volume_files": ";".join(
                     v["file"] for v in ex.scene.get("volume", []))}
+                groups = {lt.get("group") for lt in ex.scene.get("light", [])}
                 self._render(mirage, m_scene, settings, scene,
-                             passes.enabled(depsgraph.view_layer))
+                             passes.lit(passes.enabled(depsgraph.view_layer), groups))
             except (ImportError, export.ExportError) as e:
                 self._report("ERROR", f"Mirage: {e}")
             except Exception as e:  # a mirage.Error names the scene key, file and grid

@@ -312,6 +312,14 @@ def _domain(obj, frame, ex):
                         transform(mantaflow.file_matrix(obj)), 1.0, ex)
 
 
+def _grouped(table, lightgroup):
+    """A light in the Light Group Blender gives its object or world (Object › Shading › Light
+    Group): Mirage's `group`, whose lightgroup_<name> pass passes.py delivers."""
+    if lightgroup:
+        table["group"] = lightgroup
+    return table
+
+
 def _refraction(ex):
     """The scene's one [refraction]: the first volume whose material asks for an index from
     its temperature (physics.py); any other that asks is named."""
@@ -355,14 +363,14 @@ def export(depsgraph, settings, folder, scene_camera=True):
         elif obj.type == "LIGHT":
             lt = light(obj, ex)
             if lt is not None:
-                lights.append(lt)
+                lights.append(_grouped(lt, obj.lightgroup))
         elif obj.type not in ("CAMERA", "EMPTY"):
             skipped.append(obj.name)
     if skipped:
         ex.left_out.append("objects (Mirage renders volumes and lights): " + ", ".join(skipped))
     dome = world(scene, ex)
     if dome is not None:
-        lights.append(dome)
+        lights.append(_grouped(dome, scene.world.lightgroup))
     if volumes:
         doc["volume"] = volumes
     _refraction(ex)

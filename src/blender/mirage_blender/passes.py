@@ -1,7 +1,7 @@
 """The view layer's passes as Blender render passes from Mirage's AOVs (docs/aovs.md): which
 passes a view layer asks for, the Mirage pass that fills each, and its pixels in the render
-result. Blender's own switches where Blender has one (View Layer › Passes: Z, Emission), the
-add-on's for the passes only Mirage has (view_layer.mirage)."""
+result. Blender's own switches where Blender has one (View Layer › Passes: Z, Emission; Light
+Groups), the add-on's for the passes only Mirage has (view_layer.mirage)."""
 from dataclasses import dataclass
 
 import bpy
@@ -50,8 +50,18 @@ def _switched_on(view_layer, switch):
 
 
 def enabled(view_layer):
-    """The passes the view layer asks for, in PASSES' order."""
-    return [p for p in PASSES if _switched_on(view_layer, p.switch)]
+    """The passes the view layer asks for, in PASSES' order, then its Light Groups: Cycles'
+    Combined_<name>, Mirage's lightgroup_<name> (the beauty lit by that group's lights)."""
+    chosen = [p for p in PASSES if _switched_on(view_layer, p.switch)]
+    return chosen + [Pass(f"Combined_{g.name}", "RGB", "COLOR", f"lightgroup_{g.name}", "")
+                     for g in view_layer.lightgroups]
+
+
+def lit(chosen, groups):
+    """The passes Mirage can give: a light group no light belongs to is an error in Mirage,
+    and an empty pass in Blender (write() leaves it black)."""
+    return [p for p in chosen if not p.aov.startswith("lightgroup_") or
+            p.aov[len("lightgroup_"):] in groups]
 
 
 def register_passes(engine, scene, view_layer):

@@ -19,7 +19,8 @@ passes:   a render with every pass Mirage fills and three light groups, written 
 animation: a Mantaflow smoke domain baked for frames 1-6 (16 cells, OpenVDB data cache),
           rendered by a farm node's `-a` (frames 3 and 6): each frame's EXR names its own cache
           file in its metadata and the smoke has grown; frame 6 against Cycles (which reads the
-          same cache through the Fluid modifier), as `cycles` does: the domain's placement.
+          same cache through the Fluid modifier), as `cycles` does: the domain's placement;
+          frame 6 without its cache file: one error report naming it, no image.
 viewport: Blender with a window under Xvfb (xvfb-run, Mesa's software OpenGL), the 3D viewport
           in Rendered shading: the screenshot is the session's image through the view transform
           and shows the smoke; a light's edit restarts the session (an update, passes from 1),
@@ -277,9 +278,17 @@ def check_animation(exe, folder):
                       "--integrator", "single", "--frame", "6")
     assert lines(out, "RESULT") == ["FINISHED written"], out
     report = compare_with_cycles(frames[6], cycles, SMOKE_IOU_MIN)
+    # A frame whose cache file is gone: one error report naming the domain and the file.
+    os.remove(os.path.join(folder, "cache", "data", "fluid_data_0006.vdb"))
+    missing = os.path.join(folder, "missing.exr")
+    out = run_blender(exe, "render_blend.py", blend, missing, "mirage", "4", "--frame", "6",
+                      fails=True)
+    errors = [r for r in lines(out, "REPORT") if r.startswith("ERROR")]
+    assert len(errors) == 1 and "Smoke Domain" in errors[0] and \
+        "fluid_data_0006.vdb" in errors[0] and not os.path.exists(missing), out
     print(f"animation: ok (frames 3 and 6 read fluid_data_0003.vdb and fluid_data_0006.vdb; "
           f"alpha > 0.5 on {covered[3]} and {covered[6]} pixels; frame 6 against Cycles: "
-          f"{report})")
+          f"{report}; without its file: {errors[0]!r})")
 
 
 def check_viewport(exe, folder):

@@ -5,7 +5,8 @@
 # reports), which pipeline/fuzz.sh and pipeline/sanitize.sh need; the default build is g++.
 # Blender is in the default set: it hosts the Mirage add-on (src/blender), whose tests (label
 # blender) pipeline/test.sh runs, and its Cycles is the peer pipeline/race.sh races against
-# (a 50 MB download; the argument "blender" of earlier versions is still accepted).
+# (a 50 MB download; the argument "blender" of earlier versions is still accepted). xvfb and
+# Mesa's software OpenGL (libgl1-mesa-dri) run its viewport test with a window, headless.
 set -euo pipefail
 
 PACKAGES=(
@@ -19,7 +20,7 @@ PACKAGES=(
   libtbb-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libbenchmark-dev
   python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-openvdb
-  blender
+  blender xvfb libgl1-mesa-dri
 )
 if [ "${1:-}" = "fuzz" ]; then
   PACKAGES+=(clang clang-14 libclang-rt-14-dev llvm)

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The Blender add-on's checks (ctest label "blender"), each a headless Blender run with the
-add-on loaded from src/blender. Usage: blender_check.py identity | cycles | reports
+add-on loaded from src/blender. Usage: blender_check.py CHECK, one of:
 
 identity: the add-on's F12 image equals, bit for bit, `mirage render` of the scene it exports.
 cycles:   Cycles renders the same .blend; per colour channel the mean over the volume's pixels
@@ -10,15 +10,35 @@ reports:  a missing cache file is an error report and no image; a node Mirage ca
           translate is one warning, and an image.
 install:  pipeline/install-blender-addon.sh into a temporary Blender user folder, then a farm
           node's `blender -b FILE.blend -E MIRAGE -f 1` writes the frame.
+physics:  every Mirage-only physics of the material panel on (chlorophyll with its
+          fluorescence, CDOM from it, the medium's fluorescence, the index from temperature):
+          the exported shader and [refraction] hold them, and the image is `mirage render`'s.
+passes:   a render with every pass Mirage fills and three light groups, written by Blender as a
+          multilayer EXR: the passes are there, the light passes (Emit, VolumeDir, VolumeInd)
+          sum to Combined, so do the light groups, and the group without lights is black.
+animation: a Mantaflow smoke domain baked for frames 1-6 (16 cells, OpenVDB data cache),
+          rendered by a farm node's `-a` (frames 3 and 6): each frame's EXR names its own cache
+          file in its metadata and the smoke has grown; frame 6 against Cycles (which reads the
+          same cache through the Fluid modifier), as `cycles` does: the domain's placement;
+          frame 6 without its cache file: one error report naming it, no image.
+viewport: Blender with a window under Xvfb (xvfb-run, Mesa's software OpenGL), the 3D viewport
+          in Rendered shading: the screenshot is the session's image through the view transform
+          and shows the smoke; a light's edit restarts the session (an update, passes from 1),
+          so do edits of the material, its Mirage physics and the camera; a light added makes a
+          new session.
 
 Environment: MIRAGE_BINARY (the mirage command), PYTHONPATH (the built module), BLENDER
 (default: blender on PATH). Exits 77 (ctest's skip) with a message when Blender is missing.
 """
+import fcntl
+import functools
+import hashlib
 import os
 import shutil
 import subprocess
 import sys
 import tempfile
+import tomllib
 
 import numpy as np
 
@@ -30,6 +50,10 @@ MIRAGE = os.environ.get("MIRAGE_BINARY", "mirage")
 SAMPLES = 32          # both renderers; single scattering (Cycles: 0 volume bounces)
 MEAN_TOLERANCE = 0.05
 IOU_MIN = 0.95
+SMOKE_IOU_MIN = 0.9   # the baked smoke: 16 cells across, its edge a few pixels of the frame
+# The viewport's pixels against the render's through the sRGB encoding: the texture's half
+# floats, the OCIO shader and the screenshot's 8 bits (3/255).
+DRAWN_TOLERANCE = 3.0 / 255.0
 
 
 def blender():
@@ -60,20 +84,46 @@ def lines(out, tag):
 def make_blend(exe, folder, *flags):
     """The test scene: make-asset's fog sphere at 96 voxels per 2 m (fine enough that the half
     voxel by which Cycles places grids apart from OpenVDB's voxel centres stays a fifth of a
-    pixel), as make_scene.py arranges it."""
+    pixel), as make_scene.py arranges it. Made once for every check that runs with the same
+    scene scripts and mirage binary, in MIRAGE_BLENDER_SCENES (the build's folder; else in
+    `folder`), under a lock: ctest may run the checks at once."""
+    shared = os.environ.get("MIRAGE_BLENDER_SCENES")
+    if not shared:
+        return build_blend(exe, folder, flags)
+    key = hashlib.sha1(repr(flags).encode())
+    for path in (os.path.join(HERE, "make_scene.py"), os.path.join(HERE, "stage.py")):
+        with open(path, "rb") as f:
+            key.update(f.read())
+    binary = os.stat(shutil.which(MIRAGE) or MIRAGE)
+    key.update(f"{binary.st_size} {binary.st_mtime_ns}".encode())
+    scenes = os.path.join(shared, key.hexdigest()[:16])
+    os.makedirs(scenes, exist_ok=True)
+    with open(os.path.join(scenes, "lock"), "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        return build_blend(exe, scenes, flags)
+
+
+def build_blend(exe, folder, flags):
+    """make_blend's scene in `folder`, unless it is there already."""
+    blend = os.path.join(folder, "scene" + "".join(f.replace("--", "_") for f in flags) + ".blend")
+    if os.path.exists(blend):
+        return blend
     vdb = os.path.join(folder, "fog.vdb")
     if not os.path.exists(vdb):
         subprocess.run([MIRAGE, "make-asset", "fog-sphere", "--resolution", "96", "-o", vdb],
                        check=True, capture_output=True)
-    blend = os.path.join(folder, "scene" + "".join(f.replace("--", "_") for f in flags) + ".blend")
     run_blender(exe, "make_scene.py", vdb, blend, *flags)
     return blend
 
 
-def check_identity(exe, folder):
+def render_as_exported(exe, folder, *flags):
+    """The add-on's image of the test scene, and the scene it exported (TOML, parsed): the
+    image must equal `mirage render` of that scene bit for bit."""
     blend = make_blend(exe, folder)
-    addon_exr, toml = os.path.join(folder, "addon.exr"), os.path.join(folder, "export", "scene.toml")
-    out = run_blender(exe, "render_blend.py", blend, addon_exr, "mirage", "8", "--export", toml)
+    addon_exr = os.path.join(folder, "addon.exr")
+    toml = os.path.join(folder, "export", "scene.toml")
+    out = run_blender(exe, "render_blend.py", blend, addon_exr, "mirage", "8", "--export", toml,
+                      *flags)
     assert lines(out, "RESULT") == ["FINISHED written"], out
     cli_exr = os.path.join(folder, "cli.exr")
     subprocess.run([MIRAGE, "render", toml, "--ocio", OCIO, "-o", cli_exr, "--quiet"],
@@ -83,7 +133,35 @@ def check_identity(exe, folder):
     assert a[..., 3].max() > 0.5, "the volume is not in the frame"
     differ = int(np.count_nonzero(a != b))
     assert differ == 0, f"{differ} values differ; largest difference {np.abs(a - b).max()}"
+    with open(toml, "rb") as f:
+        return a, tomllib.load(f)
+
+
+def check_identity(exe, folder):
+    a, _ = render_as_exported(exe, folder)
     print(f"identity: ok (64x48 RGBA, bit for bit; alpha mean {a[..., 3].mean():.4f})")
+
+
+def check_physics(exe, folder):
+    a, scene = render_as_exported(exe, folder, "--physics")
+    volume = scene["volume"][0]
+    with open(volume["shader"], "rb") as f:
+        components = tomllib.load(f)["component"]
+    density = volume["density_scale"]
+    kinds = {c.get("kind", "linear"): c for c in components}
+    assert set(kinds) == {"linear", "chlorophyll", "cdom"}, components
+    close = functools.partial(np.isclose, rtol=1e-6)  # Blender's float properties are float32
+    assert close(kinds["linear"]["quantum_efficiency"], 0.3), components
+    assert close(kinds["linear"]["emission_peak_nm"], 520.0), components
+    # 4 mg/m³ where the density attribute is 1, through Mirage's density_scale multiplier.
+    assert close(kinds["chlorophyll"]["concentration"] * density, 4.0), (components, density)
+    assert close(kinds["chlorophyll"]["quantum_efficiency"], 0.02), components
+    assert kinds["cdom"]["covaries_with"] == "chlorophyll", components
+    refraction = scene["refraction"]
+    assert refraction["profile"] == "grid" and refraction["volume"] == 0, refraction
+    assert close(refraction["ambient"], 288.15), refraction
+    print(f"physics: ok (components {sorted(kinds)}, [refraction] {refraction}; "
+          f"bit for bit as exported, alpha mean {a[..., 3].mean():.4f})")
 
 
 def check_cycles(exe, folder):
@@ -94,17 +172,7 @@ def check_cycles(exe, folder):
         out = run_blender(exe, "render_blend.py", blend, exrs[engine], engine, str(SAMPLES),
                           "--integrator", "single")
         assert lines(out, "RESULT") == ["FINISHED written"], out
-    m, c = (mirage.read(exrs[e]).beauty.astype(np.float64) for e in ("mirage", "cycles"))
-    sm, sc = m[..., 3] > 0.5, c[..., 3] > 0.5
-    iou = np.count_nonzero(sm & sc) / max(np.count_nonzero(sm | sc), 1)
-    smoke = (m[..., 3] > 0.02) | (c[..., 3] > 0.02)
-    ratio = m[smoke, :3].mean(axis=0) / c[smoke, :3].mean(axis=0)
-    print(f"cycles: silhouette IoU {iou:.4f} ({np.count_nonzero(sm)} / {np.count_nonzero(sc)} "
-          f"pixels), mean RGB Mirage / Cycles {np.round(ratio, 4).tolist()}, alpha means "
-          f"{m[..., 3].mean():.4f} / {c[..., 3].mean():.4f}")
-    assert iou >= IOU_MIN, f"silhouette IoU {iou:.4f} below {IOU_MIN}"
-    assert np.all(np.abs(ratio - 1.0) <= MEAN_TOLERANCE), f"channel means differ: {ratio}"
-    print("cycles: ok")
+    print("cycles: ok (" + compare_with_cycles(exrs["mirage"], exrs["cycles"], IOU_MIN) + ")")
 
 
 def check_reports(exe, folder):
@@ -141,9 +209,121 @@ def check_install(exe, folder):
     print(f"install: ok (the installed add-on rendered {os.path.basename(frame)}, alpha max {alpha:.3f})")
 
 
+def check_passes(exe, folder):
+    blend = make_blend(exe, folder)
+    exr = os.path.join(folder, "passes.exr")
+    out = run_blender(exe, "render_blend.py", blend, exr, "mirage", "8", "--passes")
+    assert lines(out, "RESULT") == ["FINISHED written"], out
+    layers = {k.split(".", 1)[1]: v for k, v in mirage.read(exr).aovs.items()}
+    expected = {"Combined", "Depth", "Emit", "VolumeDir", "VolumeInd", "Albedo", "Transmittance",
+                "Combined_key", "Combined_sky", "Combined_rim"}
+    assert set(layers) == expected, sorted(layers)
+    combined = layers["Combined"][..., :3].astype(np.float64)
+    errors = []
+    # The light paths, and the light groups (every light is in one; nothing emits).
+    for parts in (("Emit", "VolumeDir", "VolumeInd"), ("Combined_key", "Combined_sky")):
+        total = sum(layers[n].astype(np.float64) for n in parts)
+        errors.append(np.abs(total - combined).max())
+        # Float rounding: float32 passes summed against their float32 total.
+        assert errors[-1] <= 1e-6 * max(1.0, combined.max()), f"{parts} sum off by {errors}"
+    assert layers["Combined_key"].max() > 0.1 and layers["Combined_sky"].max() > 0.01, "empty"
+    assert not layers["Combined_rim"].any(), "a light group without lights is not black"
+    assert layers["VolumeDir"].max() > 0.1 and layers["VolumeInd"].max() > 0.01, "empty passes"
+    depth, alpha = layers["Depth"][..., 0], layers["Combined"][..., 3]
+    assert np.all(np.isfinite(depth)) and depth[alpha > 0.9].max() < 10.0, "depth of the smoke"
+    # The background (a few fringe pixels hold a depth from the depth pass's own walk).
+    background = depth[alpha == 0.0]
+    assert np.mean(background == np.float32(1.0e10)) > 0.9, "the background's depth is not 1e10"
+    print(f"passes: ok ({', '.join(sorted(layers))}; light paths and light groups sum to "
+          f"Combined within {errors[0]:.2e} and {errors[1]:.2e})")
+
+
+def compare_with_cycles(mirage_exr, cycles_exr, iou_min):
+    """The silhouettes' (alpha > 0.5) IoU and the ratio of the channel means over the smoke."""
+    m, c = (mirage.read(f).beauty.astype(np.float64) for f in (mirage_exr, cycles_exr))
+    sm, sc = m[..., 3] > 0.5, c[..., 3] > 0.5
+    iou = np.count_nonzero(sm & sc) / max(np.count_nonzero(sm | sc), 1)
+    smoke = (m[..., 3] > 0.02) | (c[..., 3] > 0.02)
+    ratio = m[smoke, :3].mean(axis=0) / c[smoke, :3].mean(axis=0)
+    report = (f"silhouette IoU {iou:.4f} ({np.count_nonzero(sm)} / {np.count_nonzero(sc)} "
+              f"pixels), mean RGB Mirage / Cycles {np.round(ratio, 4).tolist()}")
+    assert iou >= iou_min, f"silhouette IoU {iou:.4f} below {iou_min}: {report}"
+    assert np.all(np.abs(ratio - 1.0) <= MEAN_TOLERANCE), f"channel means differ: {report}"
+    return report
+
+
+def check_animation(exe, folder):
+    blend = os.path.join(folder, "smoke.blend")
+    run_blender(exe, "make_smoke.py", os.path.join(folder, "cache"), blend)
+    single = ("import bpy; s = bpy.context.scene; s.mirage.integrator = 'single'; "
+              f"s.mirage.samples = {SAMPLES}")
+    p = subprocess.run([exe, "-b", blend, "--factory-startup", "--python",
+                        os.path.join(HERE, "addon_from_source.py"), "--python-expr", single,
+                        "-E", "MIRAGE", "-o", os.path.join(folder, "anim_####"),
+                        "-F", "OPEN_EXR", "-a"],
+                       capture_output=True, text=True, env=dict(os.environ, MIRAGE_PYTHON_DIR=(
+                           os.environ.get("PYTHONPATH", "").split(os.pathsep)[0])))
+    frames = {f: os.path.join(folder, f"anim_{f:04d}.exr") for f in (3, 6)}
+    assert p.returncode == 0 and all(map(os.path.isfile, frames.values())), p.stdout + p.stderr
+    images = {}
+    for f, exr in frames.items():
+        image = mirage.read(exr)
+        files = image.metadata.get("mirage:volume_files", "")
+        assert os.path.basename(files) == f"fluid_data_{f:04d}.vdb", (f, files)
+        images[f] = image.beauty
+    covered = {f: np.count_nonzero(image[..., 3] > 0.5) for f, image in images.items()}
+    assert covered[6] > 1.15 * covered[3], f"the smoke did not grow from frame 3 to 6: {covered}"
+    cycles = os.path.join(folder, "cycles.exr")
+    out = run_blender(exe, "render_blend.py", blend, cycles, "cycles", str(SAMPLES),
+                      "--integrator", "single", "--frame", "6")
+    assert lines(out, "RESULT") == ["FINISHED written"], out
+    report = compare_with_cycles(frames[6], cycles, SMOKE_IOU_MIN)
+    # A frame whose cache file is gone: one error report naming the domain and the file.
+    os.remove(os.path.join(folder, "cache", "data", "fluid_data_0006.vdb"))
+    missing = os.path.join(folder, "missing.exr")
+    out = run_blender(exe, "render_blend.py", blend, missing, "mirage", "4", "--frame", "6",
+                      fails=True)
+    errors = [r for r in lines(out, "REPORT") if r.startswith("ERROR")]
+    assert len(errors) == 1 and "Smoke Domain" in errors[0] and \
+        "fluid_data_0006.vdb" in errors[0] and not os.path.exists(missing), out
+    print(f"animation: ok (frames 3 and 6 read fluid_data_0003.vdb and fluid_data_0006.vdb; "
+          f"alpha > 0.5 on {covered[3]} and {covered[6]} pixels; frame 6 against Cycles: "
+          f"{report}; without its file: {errors[0]!r})")
+
+
+def check_viewport(exe, folder):
+    xvfb = shutil.which("xvfb-run")
+    if not xvfb:
+        print("skipped: xvfb-run is not installed (pipeline/install-deps.sh: xvfb)")
+        sys.exit(77)
+    blend = make_blend(exe, folder)
+    # Blender's smallest window; viewport_blend.py renders a quarter of its 3D viewport.
+    cmd = [xvfb, "-a", "-s", "-screen 0 640x480x24", exe, blend, "--factory-startup",
+           "--python", os.path.join(HERE, "viewport_blend.py"), "--",
+           os.path.join(folder, "viewport.png")]
+    p = subprocess.run(cmd, capture_output=True, text=True, timeout=240, env=dict(
+        os.environ, MIRAGE_PYTHON_DIR=os.environ.get("PYTHONPATH", "").split(os.pathsep)[0]))
+    record = dict(l.split(" ", 1) for l in lines(p.stdout, "VIEWPORT"))
+    assert record.get("done") == "ok", f"{' '.join(cmd)}:\n{p.stdout}\n{p.stderr}"
+    assert record["error"] == "none", record
+    shot, drawn = record["shape"].split()
+    assert shot == drawn, f"the screenshot ({shot}) is not the render's size ({drawn})"
+    assert float(record["drawn_error_p95"]) < DRAWN_TOLERANCE, record
+    assert int(record["smoke_pixels"]) > 100, record
+    assert float(record["smoke_contrast"]) > 0.05, record
+    assert int(record["restarts_after_edit"]) == int(record["restarts_before_edit"]) + 1, record
+    assert record["update_kind"] == "update", record
+    assert int(record["passes_after_edit"]) < int(record["passes_before_edit"]), record
+    for what in ("material", "physics", "camera"):
+        assert record[f"{what}_edit"].split()[0] == "update", record
+    assert record["added_light_kind"] == "new", record
+    print("viewport: ok (" + ", ".join(f"{k} {v}" for k, v in record.items()) + ")")
+
+
 def main():
     checks = {"identity": check_identity, "cycles": check_cycles, "reports": check_reports,
-              "install": check_install}
+              "install": check_install, "passes": check_passes, "animation": check_animation,
+              "physics": check_physics, "viewport": check_viewport}
     if len(sys.argv) != 2 or sys.argv[1] not in checks:
         sys.exit(__doc__)
     exe = blender()

@@ -6,10 +6,14 @@ constant world, at a small size. Usage:
 --node-extra puts a Math node on the density (a node Mirage cannot translate); --missing-cache
 points the volume at a file that does not exist."""
 import math
+import os
 import sys
 
 import bpy
 from mathutils import Vector
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import stage  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:]
 cache, out = argv[0], argv[1]
@@ -49,41 +53,10 @@ if "--node-extra" in argv:
     nt.links.new(math_node.outputs[0], pv.inputs["Density"])
 vol.materials.append(mat)
 
-cam = bpy.data.cameras.new("Camera")
-cam.lens = 40.0
-cam.sensor_fit = "AUTO"
-cam.clip_end = 1000.0
-cam_obj = bpy.data.objects.new("Camera", cam)
-cam_obj.location = (1.7, -2.9, 1.6)
-# Aimed at the plume's middle: a camera looks along its local -Z with +Y up.
-aim = Vector((0.3, -0.2, 1.0)) - cam_obj.location
-cam_obj.rotation_euler = aim.to_track_quat("-Z", "Y").to_euler()
-scene.collection.objects.link(cam_obj)
-scene.camera = cam_obj
-
-sun = bpy.data.lights.new("Sun", type="SUN")
-sun.energy = 3.0
-sun.angle = 0.0
-sun.color = (1.0, 0.95, 0.9)
-sun_obj = bpy.data.objects.new("Sun", sun)
-sun_obj.rotation_euler = (math.radians(40.0), math.radians(10.0), math.radians(-60.0))
-scene.collection.objects.link(sun_obj)
-
-world = bpy.data.worlds.new("World")
-world.use_nodes = True
-bg = world.node_tree.nodes["Background"]
-bg.inputs["Color"].default_value = (0.2, 0.25, 0.35, 1.0)
-bg.inputs["Strength"].default_value = 0.5
-scene.world = world
-
-r = scene.render
-r.resolution_x, r.resolution_y, r.resolution_percentage = 48, 64, 100
-r.film_transparent = True
-r.use_compositing = r.use_sequencer = False
-r.image_settings.file_format = "OPEN_EXR"
-r.image_settings.color_depth = "32"
-r.image_settings.color_mode = "RGBA"
-scene.view_settings.view_transform = "Standard"
+# Aimed at the plume's middle.
+stage.camera(scene, Vector((1.7, -2.9, 1.6)), Vector((0.3, -0.2, 1.0)), 40.0)
+stage.sun_and_world(scene)
+stage.small_output(scene)
 scene.frame_set(1)
 bpy.ops.wm.save_as_mainfile(filepath=out)
 print("MAKE_SCENE wrote", out)

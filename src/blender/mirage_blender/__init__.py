@@ -14,12 +14,14 @@ bl_info = {
 
 if "bpy" in locals():
     import importlib
-    for _m in (units, toml_text, shading, export, module_path, properties, engine, ui):  # noqa
+    for _m in (units, toml_text, shading, physics, mantaflow, export, viewport,  # noqa
+               passes, module_path, properties, engine, ui):
         importlib.reload(_m)
 
 import bpy
 
-from . import engine, export, module_path, properties, shading, toml_text, ui, units  # noqa
+from . import (engine, export, mantaflow, module_path, passes, physics,  # noqa
+               properties, shading, toml_text, ui, units, viewport)
 
 
 class MiragePreferences(bpy.types.AddonPreferences):
@@ -34,18 +36,23 @@ class MiragePreferences(bpy.types.AddonPreferences):
         self.layout.prop(self, "python_dir")
 
 
-_CLASSES = (MiragePreferences, properties.MirageRenderSettings, engine.MirageRenderEngine)
+_CLASSES = (MiragePreferences, properties.MirageRenderSettings, passes.MirageViewLayerSettings,
+            physics.MirageMaterialSettings, engine.MirageRenderEngine)
 
 
 def register():
     for cls in _CLASSES:
         bpy.utils.register_class(cls)
     bpy.types.Scene.mirage = bpy.props.PointerProperty(type=properties.MirageRenderSettings)
+    bpy.types.ViewLayer.mirage = bpy.props.PointerProperty(type=passes.MirageViewLayerSettings)
+    bpy.types.Material.mirage = bpy.props.PointerProperty(type=physics.MirageMaterialSettings)
     ui.register()
 
 
 def unregister():
     ui.unregister()
+    del bpy.types.Material.mirage
+    del bpy.types.ViewLayer.mirage
     del bpy.types.Scene.mirage
     for cls in reversed(_CLASSES):
         bpy.utils.unregister_class(cls)

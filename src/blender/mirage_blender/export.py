@@ -3,6 +3,7 @@ exactly the scene file's keys (docs/scene-file.md), and the shader files its vol
 One function per kind: film, camera, lights, world, volumes (docs/blender.md, "What is
 translated"). Everything that cannot be translated is named, once, in the export's notes.
 """
+import hashlib
 import math
 import os
 import re
@@ -10,7 +11,7 @@ import re
 import bpy
 from mathutils import Vector
 
-from . import shading, toml_text, units
+from . import mantaflow, physics, shading, toml_text, units
 
 # The add-on's OCIO config: Mirage's working space is Blender's scene-linear (units.py).
 OCIO_CONFIG = os.path.join(os.path.dirname(__file__), "ocio", "config.ocio")
@@ -29,6 +30,7 @@ class Export:
         self.shaders = {}          # file name -> shader document
         self.left_out_nodes = []   # "Material: node" entries, for the one material warning
         self.left_out = []         # other settings that Mirage does not take
+        self.materials = []        # (material, shader, table) of each [[volume]], in order
 
     def write_shaders(self):
         """Writes each shader file into the export's folder (the scene names them by path)."""
@@ -68,10 +70,6 @@ def camera(scene, ex):
     if cam_obj is None:
         raise ExportError("the scene has no active camera")
     cam = cam_obj.data
-    m = cam_obj.matrix_world
-    pos = m.translation
-    forward = (m.to_3x3() @ Vector((0.0, 0.0, -1.0))).normalized()
-    up = (m.to_3x3() @ Vector((0.0, 1.0, 0.0))).normalized()
     w, h = resolution(scene)
     aspect = (w * scene.render.pixel_aspect_x) / (h * scene.render.pixel_aspect_y)
     fit = cam.sensor_fit
@@ -89,6 +87,15 @@ def camera(scene, ex):
         ex.left_out.append(f"camera '{cam_obj.name}': lens shift")
     if cam.dof.use_dof:
         ex.left_out.append(f"camera '{cam_obj.name}': depth of field")
+    return camera_from_matrix(cam_obj.matrix_world, tan_half)
+
+
+def camera_from_matrix(m, tan_half):
+    """Mirage's [camera] for a camera-to-world matrix (looking along its local -Z, +Y up, as
+    Blender's cameras and viewports do) whose vertical half-angle has tangent `tan_half`."""
+    pos = m.translation
+    forward = (m.to_3x3() @ Vector((0.0, 0.0, -1.0))).normalized()
+    up = (m.to_3x3() @ Vector((0.0, 1.0, 0.0))).normalized()
     return {"position": units.to_mirage(pos), "look_at": units.to_mirage(pos + forward),
             "up": units.to_mirage(up), "fov": math.degrees(2.0 * math.atan(tan_half))}
 
@@ -229,11 +236,11 @@ def volume_frame_path(vol, frame):
     return os.path.join(head, tail[:last.start()] + digits + tail[last.end():])
 
 
-def _object_transform(obj):
-    """The object's world matrix M as Mirage's scale, rotate, translate (S, then R, then T).
-    Mirage reads the file's coordinates as its own, so its transform must be C·M, C the Z-up
-    to Y-up rotation (units.py): C·M·p = C·t + (C·R)·S·p, a rotation C·R, not C·R·C⁻¹."""
-    loc, rot, scale = obj.matrix_world.decompose()
+def transform(matrix):
+    """A file-to-Blender-world matrix M as Mirage's scale, rotate, translate (S, then R, then
+    T). Mirage reads the file's coordinates as its own, so its transform must be C·M, C the
+    Z-up to Y-up rotation (units.py): C·M·p = C·t + (C·R)·S·p, a rotation C·R, not C·R·C⁻¹."""
+    loc, rot, scale = matrix.decompose()
     axis, angle = (units.AXES @ rot.to_matrix()).to_quaternion().to_axis_angle()
     return {"scale": [float(s) for s in scale],
             "rotate": [math.degrees(angle)] + [float(a) for a in axis],
@@ -251,27 +258,80 @@ def _object_space_density(obj):
     return 1.0 / diagonal.length if diagonal.length > 0.0 else 1.0
 
 
+def require_file(obj, path, frame):
+    if not os.path.isfile(path):
+        raise ExportError(f"volume '{obj.name}': cache file {os.path.abspath(path)} does not exist "
+                          f"(frame {frame})")
+
+
 def volume(obj, frame, ex):
     """A Volume object: its frame's OpenVDB file, its transform, its material's shader."""
     vol = obj.data
     path = volume_frame_path(vol, frame)
     if path is None:
         return None
-    if not os.path.isfile(path):
-        raise ExportError(f"volume '{obj.name}': cache file {os.path.abspath(path)} does not exist "
-                          f"(frame {frame})")
+    require_file(obj, path, frame)
     grids = set()
     if vol.grids.load():
         grids = {g.name for g in vol.grids}
+    return volume_table(obj, path, grids, {}, transform(obj.matrix_world),
+                        _object_space_density(obj), ex)
+
+
+def volume_table(obj, path, grids, renames, file_transform, density_factor, ex):
+    """The [[volume]] of an object reading `path`: its material's shader (written into the
+    export), the shader's attributes bound to the file's grids (`renames`: an attribute the
+    file stores under another name), the transform and the density's factor."""
     mat = obj.active_material
     shader = shading.translate(mat, grids, _safe_name(mat.name if mat else "default"))
+    physics.add_to_shader(mat, shader, density_factor)
     ex.left_out_nodes += [f"{mat.name if mat else obj.name}: {n}" for n in shader.left_out]
-    file_name = f"shader_{_safe_name(obj.name)}.toml"
+    # Named by its content too: an edited material is another file, which a running viewport
+    # session takes by an update of the volume's `shader` key (viewport.py).
+    digest = hashlib.sha1(toml_text.dumps(shader.document).encode()).hexdigest()[:10]
+    file_name = f"shader_{_safe_name(obj.name)}_{digest}.toml"
     ex.shaders[file_name] = shader.document
-    return {"file": os.path.abspath(path), "name": _safe_name(obj.name),
-            "shader": os.path.join(ex.folder, file_name),
-            "density_scale": shader.density_scale * _object_space_density(obj),
-            "bind": dict(shader.bind), "transform": _object_transform(obj)}
+    table = {"file": os.path.abspath(path), "name": _safe_name(obj.name),
+             "shader": os.path.join(ex.folder, file_name),
+             "density_scale": shader.density_scale * density_factor,
+             "bind": {slot: renames.get(a, a) for slot, a in shader.bind.items()},
+             "transform": file_transform}
+    ex.materials.append((mat, shader, table))
+    return table
+
+
+def _domain(obj, frame, ex):
+    """A Mantaflow gas domain: its OpenVDB data cache's file of the frame, placed in the
+    domain as Blender places the simulation (mantaflow.py); density per metre of the world,
+    as Cycles takes a domain's."""
+    path = mantaflow.cache_file(obj, frame, ex.left_out)
+    if path is None:
+        return None
+    require_file(obj, path, frame)
+    return volume_table(obj, path, mantaflow.GRIDS, mantaflow.ATTRIBUTE_GRIDS,
+                        transform(mantaflow.file_matrix(obj)), 1.0, ex)
+
+
+def _grouped(table, lightgroup):
+    """A light in the Light Group Blender gives its object or world (Object › Shading › Light
+    Group): Mirage's `group`, whose lightgroup_<name> pass passes.py delivers."""
+    if lightgroup:
+        table["group"] = lightgroup
+    return table
+
+
+def _refraction(ex):
+    """The scene's one [refraction]: the first volume whose material asks for an index from
+    its temperature (physics.py); any other that asks is named."""
+    for index, (mat, shader, volume_table) in enumerate(ex.materials):
+        table = physics.refraction(mat, shader, volume_table, index, ex.left_out)
+        if table is None:
+            continue
+        if "refraction" in ex.scene:
+            ex.left_out.append(f"material '{mat.name}': Index from Temperature (one volume "
+                               "bends light in Mirage: the first)")
+        else:
+            ex.scene["refraction"] = table
 
 
 def _objects(depsgraph):
@@ -280,33 +340,40 @@ def _objects(depsgraph):
         yield inst.instance_object if inst.is_instance else inst.object
 
 
-def export(depsgraph, settings, folder):
-    """The Export of the depsgraph's scene at its current frame, its files to go in `folder`."""
+def export(depsgraph, settings, folder, scene_camera=True):
+    """The Export of the depsgraph's scene at its current frame, its files to go in `folder`.
+    Without `scene_camera` it has no [film] and [camera]: the viewport gives its own."""
     scene = depsgraph.scene
     ex = Export(folder)
     doc = ex.scene
-    doc["film"] = film(scene, settings)
+    if scene_camera:
+        doc["film"] = film(scene, settings)
+        doc["camera"] = camera(scene, ex)
     doc["render"] = {"integrator": settings.integrator}
-    doc["camera"] = camera(scene, ex)
     volumes, lights, skipped = [], [], []
     for obj in _objects(depsgraph):
         if obj.type == "VOLUME":
             v = volume(obj, scene.frame_current, ex)
             if v is not None:
                 volumes.append(v)
+        elif obj.type == "MESH" and mantaflow.gas_domain(obj) is not None:
+            v = _domain(obj, scene.frame_current, ex)
+            if v is not None:
+                volumes.append(v)
         elif obj.type == "LIGHT":
             lt = light(obj, ex)
             if lt is not None:
-                lights.append(lt)
+                lights.append(_grouped(lt, obj.lightgroup))
         elif obj.type not in ("CAMERA", "EMPTY"):
             skipped.append(obj.name)
     if skipped:
         ex.left_out.append("objects (Mirage renders volumes and lights): " + ", ".join(skipped))
     dome = world(scene, ex)
     if dome is not None:
-        lights.append(dome)
+        lights.append(_grouped(dome, scene.world.lightgroup))
     if volumes:
         doc["volume"] = volumes
+    _refraction(ex)
     if lights:
         doc["light"] = lights
     doc["output"] = {"path": os.path.join(folder, "render.exr"), "half": False}

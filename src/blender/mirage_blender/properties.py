@@ -20,6 +20,9 @@ class MirageRenderSettings(bpy.types.PropertyGroup):
     integrator: bpy.props.EnumProperty(name="Integrator", items=INTEGRATORS, default="auto")
     samples: bpy.props.IntProperty(name="Samples", default=16, min=1, soft_max=4096,
                                    description="Samples per pixel (film.spp)")
+    preview_samples: bpy.props.IntProperty(
+        name="Viewport Samples", default=16, min=1, soft_max=4096,
+        description="Samples per pixel of the viewport's Rendered shading, one per pass")
     seed: bpy.props.IntProperty(name="Seed", default=0, min=0, description="film.seed")
     time_limit: bpy.props.FloatProperty(
         name="Time Limit", default=0.0, min=0.0, unit="TIME_ABSOLUTE",

@@ -1,17 +1,22 @@
-"""Mirage's panels in the Render Properties, shown when Mirage is the render engine."""
+"""Mirage's panels: its render settings (Render Properties), its passes (View Layer) and a
+material's Mirage-only physics (Material), shown when Mirage is the render engine."""
 import bpy
 
 
-class MIRAGE_PT_render(bpy.types.Panel):
-    bl_label = "Mirage"
+class _MiragePanel:
+    """A Properties editor panel shown when Mirage is the render engine."""
     bl_space_type = "PROPERTIES"
     bl_region_type = "WINDOW"
-    bl_context = "render"
     COMPAT_ENGINES = {"MIRAGE"}
 
     @classmethod
     def poll(cls, context):
         return context.engine in cls.COMPAT_ENGINES
+
+
+class MIRAGE_PT_render(_MiragePanel, bpy.types.Panel):
+    bl_label = "Mirage"
+    bl_context = "render"
 
     def draw(self, context):
         s = context.scene.mirage
@@ -19,12 +24,74 @@ class MIRAGE_PT_render(bpy.types.Panel):
         layout.use_property_split = True
         layout.prop(s, "integrator")
         layout.prop(s, "samples")
+        layout.prop(s, "preview_samples")
         layout.prop(s, "seed")
         col = layout.column(heading="Stop")
         col.prop(s, "time_limit")
         col.prop(s, "noise_threshold")
         layout.prop(s, "quality")
         layout.prop(s, "threads")
+
+
+class MIRAGE_PT_passes(_MiragePanel, bpy.types.Panel):
+    """View Layer properties: the render passes Mirage fills from its AOVs (passes.py)."""
+    bl_label = "Mirage Passes"
+    bl_context = "view_layer"
+
+    def draw(self, context):
+        view_layer = context.view_layer
+        layout = self.layout
+        layout.use_property_split = True
+        col = layout.column(heading="Data")
+        col.prop(view_layer, "use_pass_combined")
+        col.prop(view_layer, "use_pass_z")
+        col.prop(view_layer.mirage, "use_pass_albedo")
+        col.prop(view_layer.mirage, "use_pass_transmittance")
+        col = layout.column(heading="Light")
+        col.prop(view_layer, "use_pass_emit", text="Emission")
+        col.prop(view_layer.mirage, "use_pass_volume_direct")
+        col.prop(view_layer.mirage, "use_pass_volume_indirect")
+
+
+class MIRAGE_PT_material_physics(_MiragePanel, bpy.types.Panel):
+    """Material properties: the Mirage-only physics beside the Principled Volume (physics.py)."""
+    bl_label = "Mirage Physics"
+    bl_context = "material"
+
+    @classmethod
+    def poll(cls, context):
+        return super().poll(context) and context.material is not None
+
+    def draw(self, context):
+        s = context.material.mirage
+        layout = self.layout
+        layout.use_property_split = True
+        col = layout.column(heading="Sea Water")
+        col.prop(s, "use_chlorophyll")
+        sub = col.column()
+        sub.active = s.use_chlorophyll
+        sub.prop(s, "chlorophyll")
+        sub.prop(s, "chlorophyll_fluorescence")
+        col.prop(s, "use_cdom")
+        sub = col.column()
+        sub.active = s.use_cdom
+        sub.prop(s, "cdom_covaries")
+        sub.prop(s, "cdom_absorption")
+        sub.prop(s, "cdom_slope")
+        col = layout.column(heading="Medium")
+        col.prop(s, "fluorescence")
+        sub = col.column()
+        sub.active = s.fluorescence > 0.0
+        sub.prop(s, "fluorescence_peak")
+        sub.prop(s, "fluorescence_width")
+        col = layout.column(heading="Curved Light")
+        col.prop(s, "use_index_from_temperature")
+        sub = col.column()
+        sub.active = s.use_index_from_temperature
+        sub.prop(s, "ambient_temperature")
+
+
+_PANELS = (MIRAGE_PT_render, MIRAGE_PT_passes, MIRAGE_PT_material_physics)
 
 
 def _compatible_panels():
@@ -37,7 +104,8 @@ def _compatible_panels():
 
 
 def register():
-    bpy.utils.register_class(MIRAGE_PT_render)
+    for panel in _PANELS:
+        bpy.utils.register_class(panel)
     for panel in _compatible_panels():
         panel.COMPAT_ENGINES.add("MIRAGE")
 
@@ -45,4 +113,5 @@ def register():
 def unregister():
     for panel in _compatible_panels():
         panel.COMPAT_ENGINES.discard("MIRAGE")
-    bpy.utils.unregister_class(MIRAGE_PT_render)
+    for panel in reversed(_PANELS):
+        bpy.utils.unregister_class(panel)

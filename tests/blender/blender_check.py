@@ -21,6 +21,9 @@ animation: a Mantaflow smoke domain baked for frames 1-6 (16 cells, OpenVDB data
           file in its metadata and the smoke has grown; frame 6 against Cycles (which reads the
           same cache through the Fluid modifier), as `cycles` does: the domain's placement;
           frame 6 without its cache file: one error report naming it, no image.
+surfaces: make_scene.py's --surfaces (a floor under the smoke, a mirror, a glass ball, a
+          holdout): the exported materials and holdout, the image is `mirage render`'s bit for
+          bit, and the floor is lit.
 viewport: Blender with a window under Xvfb (xvfb-run, Mesa's software OpenGL), the 3D viewport
           in Rendered shading: the screenshot is the session's image through the view transform
           and shows the smoke; a light's edit restarts the session (an update, passes from 1),
@@ -116,10 +119,11 @@ def build_blend(exe, folder, flags):
     return blend
 
 
-def render_as_exported(exe, folder, *flags):
-    """The add-on's image of the test scene, and the scene it exported (TOML, parsed): the
-    image must equal `mirage render` of that scene bit for bit."""
-    blend = make_blend(exe, folder)
+def render_as_exported(exe, folder, *flags, scene_flags=()):
+    """The add-on's image of the test scene (made with make_scene.py's `scene_flags`), and the
+    scene it exported (TOML, parsed): the image must equal `mirage render` of that scene bit
+    for bit."""
+    blend = make_blend(exe, folder, *scene_flags)
     addon_exr = os.path.join(folder, "addon.exr")
     toml = os.path.join(folder, "export", "scene.toml")
     out = run_blender(exe, "render_blend.py", blend, addon_exr, "mirage", "8", "--export", toml,
@@ -162,6 +166,31 @@ def check_physics(exe, folder):
     assert close(refraction["ambient"], 288.15), refraction
     print(f"physics: ok (components {sorted(kinds)}, [refraction] {refraction}; "
           f"bit for bit as exported, alpha mean {a[..., 3].mean():.4f})")
+
+
+def check_surfaces(exe, folder):
+    a, scene = render_as_exported(exe, folder, scene_flags=("--surfaces",))
+    materials = {m["name"]: m for m in scene["material"]}
+    shapes = {s["name"]: s for s in scene["shape"]}
+    assert set(shapes) == {"Floor", "Mirror", "Glass", "Holdout"}, shapes
+    kinds = {n: materials[s["material"]]["type"] for n, s in shapes.items()}
+    assert kinds == {"Floor": "diffuse", "Mirror": "mirror", "Glass": "dielectric",
+                     "Holdout": "diffuse"}, kinds
+    close = functools.partial(np.allclose, rtol=1e-6)  # Blender's float32 properties
+    assert close(materials[shapes["Floor"]["material"]]["reflectance"], [0.6, 0.5, 0.4])
+    assert close(materials[shapes["Glass"]["material"]]["ior"], 1.45)
+    assert [n for n, s in shapes.items() if s.get("holdout")] == ["Holdout"], shapes
+    # The floor fills the frame's bottom rows (rows top to bottom): opaque and lit there,
+    # except where the holdout cube stands in front of it (black, zero alpha).
+    bottom = a[-10:]
+    floor = bottom[..., 3] > 0.999
+    assert np.count_nonzero(floor) > 0.5 * floor.size, "the floor is not in the frame"
+    assert np.all(bottom[floor][:, :3].max(axis=1) > 0.0), "unlit floor pixels"
+    held = a[..., 3] == 0.0
+    assert np.count_nonzero(held & (a[..., :3].max(axis=2) == 0.0)) > 0
+    print(f"surfaces: ok (materials {kinds}; floor mean RGB "
+          f"{np.round(bottom[floor][:, :3].mean(axis=0), 4).tolist()} on {np.count_nonzero(floor)} "
+          f"of the bottom rows' pixels; bit for bit as exported)")
 
 
 def check_cycles(exe, folder):
@@ -323,7 +352,8 @@ def check_viewport(exe, folder):
 def main():
     checks = {"identity": check_identity, "cycles": check_cycles, "reports": check_reports,
               "install": check_install, "passes": check_passes, "animation": check_animation,
-              "physics": check_physics, "viewport": check_viewport}
+              "physics": check_physics, "viewport": check_viewport,
+              "surfaces": check_surfaces}
     if len(sys.argv) != 2 or sys.argv[1] not in checks:
         sys.exit(__doc__)
     exe = blender()

@@ -1,7 +1,7 @@
 """A Blender scene as a Mirage scene document: the dict that mirage.Scene.from_dict takes, with
 exactly the scene file's keys (docs/scene-file.md), and the shader files its volumes name.
-One function per kind: film, camera, lights, world, volumes (docs/blender.md, "What is
-translated"). Everything that cannot be translated is named, once, in the export's notes.
+One function per kind: film, camera, lights, world, volumes, surfaces (surfaces.py;
+docs/blender.md, "What is translated"). Everything that cannot be translated is named, once, in the export's notes.
 """
 import hashlib
 import math
@@ -11,7 +11,7 @@ import re
 import bpy
 from mathutils import Vector
 
-from . import mantaflow, physics, shading, toml_text, units
+from . import mantaflow, physics, shading, surfaces, toml_text, units
 
 # The add-on's OCIO config: Mirage's working space is Blender's scene-linear (units.py).
 OCIO_CONFIG = os.path.join(os.path.dirname(__file__), "ocio", "config.ocio")
@@ -351,6 +351,7 @@ def export(depsgraph, settings, folder, scene_camera=True):
         doc["camera"] = camera(scene, ex)
     doc["render"] = {"integrator": settings.integrator}
     volumes, lights, skipped = [], [], []
+    shapes = surfaces.Surfaces()
     for obj in _objects(depsgraph):
         if obj.type == "VOLUME":
             v = volume(obj, scene.frame_current, ex)
@@ -360,6 +361,8 @@ def export(depsgraph, settings, folder, scene_camera=True):
             v = _domain(obj, scene.frame_current, ex)
             if v is not None:
                 volumes.append(v)
+        elif surfaces.is_geometry(obj):
+            shapes.add(obj, folder, _safe_name, ex)
         elif obj.type == "LIGHT":
             lt = light(obj, ex)
             if lt is not None:
@@ -367,13 +370,15 @@ def export(depsgraph, settings, folder, scene_camera=True):
         elif obj.type not in ("CAMERA", "EMPTY"):
             skipped.append(obj.name)
     if skipped:
-        ex.left_out.append("objects (Mirage renders volumes and lights): " + ", ".join(skipped))
+        ex.left_out.append("objects (Mirage renders volumes, meshes and lights): " +
+                           ", ".join(skipped))
     dome = world(scene, ex)
     if dome is not None:
         lights.append(_grouped(dome, scene.world.lightgroup))
     if volumes:
         doc["volume"] = volumes
     _refraction(ex)
+    shapes.into(doc)
     if lights:
         doc["light"] = lights
     doc["output"] = {"path": os.path.join(folder, "render.exr"), "half": False}

@@ -24,6 +24,9 @@ animation: a Mantaflow smoke domain baked for frames 1-6 (16 cells, OpenVDB data
 surfaces: make_scene.py's --surfaces (a floor under the smoke, a mirror, a glass ball, a
           holdout): the exported materials and holdout, the image is `mirage render`'s bit for
           bit, and the floor is lit.
+motion:   make-asset's smoke (its `vel` grid) as the test scene's volume, Velocity Grid set:
+          with Render › Motion Blur (Center, Start) the exported shutter is Blender's, the
+          velocity per second, the image differs from the still one and is `mirage render`'s.
 viewport: Blender with a window under Xvfb (xvfb-run, Mesa's software OpenGL), the 3D viewport
           in Rendered shading: the screenshot is the session's image through the view transform
           and shows the smoke; a light's edit restarts the session (an update, passes from 1),
@@ -193,6 +196,27 @@ def check_surfaces(exe, folder):
           f"of the bottom rows' pixels; bit for bit as exported)")
 
 
+def check_motion(exe, folder):
+    vdb = os.path.join(folder, "smoke.vdb")
+    subprocess.run([MIRAGE, "make-asset", "smoke", "--resolution", "32", "-o", vdb],
+                   check=True, capture_output=True)
+    still, scene = render_as_exported(exe, folder, "--velocity", vdb)
+    assert "shutter" not in scene["camera"], scene["camera"]
+    shutters, differ = {}, {}
+    for position in ("CENTER", "START"):
+        blurred, scene = render_as_exported(exe, folder, "--velocity", vdb, "--blur", position)
+        shutters[position] = scene["camera"]["shutter"]
+        volume = scene["volume"][0]
+        # 0.5 of the file's units per frame, at Blender's default 24 frames per second.
+        assert volume["velocity"] == "vel" and scene["output"]["fps"] == 24.0, scene
+        assert np.isclose(volume["velocity_scale"], 12.0), volume
+        differ[position] = float(np.abs(blurred - still).max())
+        assert differ[position] > 0.01, f"{position}: the blurred image equals the still one"
+    assert shutters == {"CENTER": [-0.25, 0.25], "START": [0.0, 0.5]}, shutters
+    print(f"motion: ok (shutters {shutters}; largest difference from the still render "
+          f"{differ}; bit for bit as exported)")
+
+
 def check_cycles(exe, folder):
     blend = make_blend(exe, folder)
     exrs = {}
@@ -353,7 +377,7 @@ def main():
     checks = {"identity": check_identity, "cycles": check_cycles, "reports": check_reports,
               "install": check_install, "passes": check_passes, "animation": check_animation,
               "physics": check_physics, "viewport": check_viewport,
-              "surfaces": check_surfaces}
+              "surfaces": check_surfaces, "motion": check_motion}
     if len(sys.argv) != 2 or sys.argv[1] not in checks:
         sys.exit(__doc__)
     exe = blender()

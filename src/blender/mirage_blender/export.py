@@ -11,7 +11,7 @@ import re
 import bpy
 from mathutils import Vector
 
-from . import mantaflow, physics, shading, surfaces, toml_text, units
+from . import mantaflow, motion, physics, shading, surfaces, toml_text, units
 
 # The add-on's OCIO config: Mirage's working space is Blender's scene-linear (units.py).
 OCIO_CONFIG = os.path.join(os.path.dirname(__file__), "ocio", "config.ocio")
@@ -334,6 +334,17 @@ def _refraction(ex):
             ex.scene["refraction"] = table
 
 
+def _blurred(obj, table, frame_rate, ex):
+    """A volume's velocity keys where the shutter is open (motion.py): a Volume object's
+    Velocity Grid; a Mantaflow domain stays still (its cache's velocity is not read)."""
+    if obj.type == "VOLUME":
+        grids = {g.name for g in obj.data.grids} if obj.data.grids.is_loaded else set()
+        table.update(motion.volume_velocity(obj, grids, frame_rate, ex.left_out))
+    else:
+        ex.left_out.append(f"domain '{obj.name}': velocity for motion blur (rendered still)")
+        table["velocity"] = ""
+
+
 def _objects(depsgraph):
     """The evaluated objects that render: instances included, each once."""
     for inst in depsgraph.object_instances:
@@ -352,14 +363,14 @@ def export(depsgraph, settings, folder, scene_camera=True):
     doc["render"] = {"integrator": settings.integrator}
     volumes, lights, skipped = [], [], []
     shapes = surfaces.Surfaces()
+    shutter = motion.shutter(scene, ex.left_out) if scene_camera else None
     for obj in _objects(depsgraph):
-        if obj.type == "VOLUME":
-            v = volume(obj, scene.frame_current, ex)
+        domain = obj.type == "MESH" and mantaflow.gas_domain(obj) is not None
+        if obj.type == "VOLUME" or domain:
+            v = (_domain if domain else volume)(obj, scene.frame_current, ex)
             if v is not None:
-                volumes.append(v)
-        elif obj.type == "MESH" and mantaflow.gas_domain(obj) is not None:
-            v = _domain(obj, scene.frame_current, ex)
-            if v is not None:
+                if shutter is not None:
+                    _blurred(obj, v, motion.fps(scene), ex)
                 volumes.append(v)
         elif surfaces.is_geometry(obj):
             shapes.add(obj, folder, _safe_name, ex)
@@ -382,6 +393,7 @@ def export(depsgraph, settings, folder, scene_camera=True):
     if lights:
         doc["light"] = lights
     doc["output"] = {"path": os.path.join(folder, "render.exr"), "half": False}
-    if scene.render.use_motion_blur:
-        ex.left_out.append("motion blur")
+    if shutter is not None:
+        doc["camera"]["shutter"] = shutter
+        doc["output"]["fps"] = motion.fps(scene)
     return ex

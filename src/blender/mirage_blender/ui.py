@@ -1,5 +1,6 @@
-"""Mirage's panels: its render settings (Render Properties), its passes (View Layer) and a
-material's Mirage-only physics (Material), shown when Mirage is the render engine."""
+"""Mirage's panels: its render settings (Render Properties), its passes (View Layer), a
+material's Mirage-only physics (Material) and a volume's velocity for motion blur (Volume
+data: Blender draws those settings for Cycles only), shown when Mirage is the render engine."""
 import bpy
 
 
@@ -91,15 +92,35 @@ class MIRAGE_PT_material_physics(_MiragePanel, bpy.types.Panel):
         sub.prop(s, "ambient_temperature")
 
 
-_PANELS = (MIRAGE_PT_render, MIRAGE_PT_passes, MIRAGE_PT_material_physics)
+class MIRAGE_PT_volume_motion(_MiragePanel, bpy.types.Panel):
+    bl_label = "Motion Blur"
+    bl_context = "data"
+
+    @classmethod
+    def poll(cls, context):
+        return super().poll(context) and context.volume is not None
+
+    def draw(self, context):
+        volume = context.volume
+        layout = self.layout
+        layout.use_property_split = True
+        layout.prop(volume, "velocity_grid")
+        layout.prop(volume, "velocity_unit")
+        layout.prop(volume, "velocity_scale")
+
+
+_PANELS = (MIRAGE_PT_render, MIRAGE_PT_passes, MIRAGE_PT_material_physics,
+           MIRAGE_PT_volume_motion)
 
 
 def _compatible_panels():
-    """Blender's own panels that apply to any engine (dimensions, output, colour management)."""
+    """Blender's own panels that apply to any engine (dimensions, output, colour management),
+    and Cycles' Motion Blur panel, whose shutter and position Mirage reads (motion.py)."""
     keep = ("RENDER_PT_format", "RENDER_PT_frame_range", "RENDER_PT_output",
             "RENDER_PT_color_management", "RENDER_PT_film", "DATA_PT_lens", "DATA_PT_camera",
             "DATA_PT_light", "DATA_PT_volume_file", "DATA_PT_volume_grids",
-            "MATERIAL_PT_preview", "EEVEE_MATERIAL_PT_volume", "WORLD_PT_context_world")
+            "MATERIAL_PT_preview", "EEVEE_MATERIAL_PT_volume", "WORLD_PT_context_world",
+            "CYCLES_RENDER_PT_motion_blur")
     return [getattr(bpy.types, n) for n in keep if hasattr(bpy.types, n)]
 
 

@@ -15,6 +15,16 @@ class _MiragePanel:
         return context.engine in cls.COMPAT_ENGINES
 
 
+class _DataPanel(_MiragePanel):
+    """A panel of one kind of data block (`context_member`: material, volume, …), shown when
+    the context holds one."""
+    context_member = ""
+
+    @classmethod
+    def poll(cls, context):
+        return super().poll(context) and getattr(context, cls.context_member, None) is not None
+
+
 class MIRAGE_PT_render(_MiragePanel, bpy.types.Panel):
     bl_label = "Mirage"
     bl_context = "render"
@@ -54,14 +64,11 @@ class MIRAGE_PT_passes(_MiragePanel, bpy.types.Panel):
         col.prop(view_layer.mirage, "use_pass_volume_indirect")
 
 
-class MIRAGE_PT_material_physics(_MiragePanel, bpy.types.Panel):
+class MIRAGE_PT_material_physics(_DataPanel, bpy.types.Panel):
     """Material properties: the Mirage-only physics beside the Principled Volume (physics.py)."""
     bl_label = "Mirage Physics"
     bl_context = "material"
-
-    @classmethod
-    def poll(cls, context):
-        return super().poll(context) and context.material is not None
+    context_member = "material"
 
     def draw(self, context):
         s = context.material.mirage
@@ -92,21 +99,16 @@ class MIRAGE_PT_material_physics(_MiragePanel, bpy.types.Panel):
         sub.prop(s, "ambient_temperature")
 
 
-class MIRAGE_PT_volume_motion(_MiragePanel, bpy.types.Panel):
+class MIRAGE_PT_volume_motion(_DataPanel, bpy.types.Panel):
+    """Volume data: the velocity grid Mirage's motion blur reads (motion.py)."""
     bl_label = "Motion Blur"
     bl_context = "data"
-
-    @classmethod
-    def poll(cls, context):
-        return super().poll(context) and context.volume is not None
+    context_member = "volume"
 
     def draw(self, context):
-        volume = context.volume
-        layout = self.layout
-        layout.use_property_split = True
-        layout.prop(volume, "velocity_grid")
-        layout.prop(volume, "velocity_unit")
-        layout.prop(volume, "velocity_scale")
+        self.layout.use_property_split = True
+        for name in ("velocity_grid", "velocity_unit", "velocity_scale"):
+            self.layout.prop(context.volume, name)
 
 
 _PANELS = (MIRAGE_PT_render, MIRAGE_PT_passes, MIRAGE_PT_material_physics,

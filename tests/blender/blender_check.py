@@ -20,7 +20,9 @@ animation: a Mantaflow smoke domain baked for frames 1-6 (16 cells, OpenVDB data
           rendered by a farm node's `-a` (frames 3 and 6): each frame's EXR names its own cache
           file in its metadata and the smoke has grown; frame 6 against Cycles (which reads the
           same cache through the Fluid modifier), as `cycles` does: the domain's placement;
-          frame 6 without its cache file: one error report naming it, no image.
+          frame 6 with Motion Blur (Center): the domain's velocity exported, the image differs
+          from the still one and is `mirage render`'s; frame 6 without its cache file: one
+          error report naming it, no image.
 surfaces: make_scene.py's --surfaces (a floor under the smoke, a mirror, a glass ball, a
           holdout): the exported materials and holdout, the image is `mirage render`'s bit for
           bit, and the floor is lit.
@@ -122,19 +124,21 @@ def build_blend(exe, folder, flags):
     return blend
 
 
-def render_as_exported(exe, folder, *flags, scene_flags=()):
-    """The add-on's image of the test scene (made with make_scene.py's `scene_flags`), and the
-    scene it exported (TOML, parsed): the image must equal `mirage render` of that scene bit
-    for bit."""
-    blend = make_blend(exe, folder, *scene_flags)
+def render_as_exported(exe, folder, *flags, scene_flags=(), blend=None):
+    """The add-on's image of `blend` (default: the test scene made with make_scene.py's
+    `scene_flags`), and the scene it exported (TOML, parsed): the image must equal
+    `mirage render` of that scene bit for bit."""
+    blend = blend or make_blend(exe, folder, *scene_flags)
     addon_exr = os.path.join(folder, "addon.exr")
     toml = os.path.join(folder, "export", "scene.toml")
     out = run_blender(exe, "render_blend.py", blend, addon_exr, "mirage", "8", "--export", toml,
                       *flags)
     assert lines(out, "RESULT") == ["FINISHED written"], out
     cli_exr = os.path.join(folder, "cli.exr")
-    subprocess.run([MIRAGE, "render", toml, "--ocio", OCIO, "-o", cli_exr, "--quiet"],
-                   check=True, capture_output=True)
+    # The frame seeds the samples: the CLI renders the frame the add-on rendered.
+    frame = flags[flags.index("--frame") + 1] if "--frame" in flags else "1"
+    subprocess.run([MIRAGE, "render", toml, "--ocio", OCIO, "-o", cli_exr, "--quiet",
+                    "--frame", frame], check=True, capture_output=True)
     a, b = mirage.read(addon_exr).beauty, mirage.read(cli_exr).beauty
     assert a.shape == b.shape == (64, 48, 4), (a.shape, b.shape)
     assert a[..., 3].max() > 0.5, "the volume is not in the frame"
@@ -331,6 +335,15 @@ def check_animation(exe, folder):
                       "--integrator", "single", "--frame", "6")
     assert lines(out, "RESULT") == ["FINISHED written"], out
     report = compare_with_cycles(frames[6], cycles, SMOKE_IOU_MIN)
+    # Motion blur: the domain's cached velocity (per second) with its Velocity Scale.
+    still, _ = render_as_exported(exe, folder, "--frame", "6", blend=blend)
+    blurred, scene = render_as_exported(exe, folder, "--frame", "6", "--blur", "CENTER",
+                                        blend=blend)
+    volume = scene["volume"][0]
+    assert (volume["velocity"], volume["velocity_scale"]) == ("velocity", 1.0), volume
+    assert scene["camera"]["shutter"] == [-0.25, 0.25], scene["camera"]
+    blur = float(np.abs(blurred - still).max())
+    assert blur > 0.01, "the blurred frame equals the still one"
     # A frame whose cache file is gone: one error report naming the domain and the file.
     os.remove(os.path.join(folder, "cache", "data", "fluid_data_0006.vdb"))
     missing = os.path.join(folder, "missing.exr")
@@ -341,7 +354,8 @@ def check_animation(exe, folder):
         "fluid_data_0006.vdb" in errors[0] and not os.path.exists(missing), out
     print(f"animation: ok (frames 3 and 6 read fluid_data_0003.vdb and fluid_data_0006.vdb; "
           f"alpha > 0.5 on {covered[3]} and {covered[6]} pixels; frame 6 against Cycles: "
-          f"{report}; without its file: {errors[0]!r})")
+          f"{report}; blurred by its velocity, largest difference {blur:.3f}, bit for bit as "
+          f"exported; without its file: {errors[0]!r})")
 
 
 def check_viewport(exe, folder):

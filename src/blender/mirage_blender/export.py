@@ -336,19 +336,22 @@ def _refraction(ex):
 
 def _blurred(obj, table, frame_rate, ex):
     """A volume's velocity keys where the shutter is open (motion.py): a Volume object's
-    Velocity Grid; a Mantaflow domain stays still (its cache's velocity is not read)."""
+    Velocity Grid, a Mantaflow domain's cached velocity."""
     if obj.type == "VOLUME":
         grids = {g.name for g in obj.data.grids} if obj.data.grids.is_loaded else set()
         table.update(motion.volume_velocity(obj, grids, frame_rate, ex.left_out))
     else:
-        ex.left_out.append(f"domain '{obj.name}': velocity for motion blur (rendered still)")
-        table["velocity"] = ""
+        table.update(motion.domain_velocity(mantaflow.gas_domain(obj)))
 
 
-def _objects(depsgraph):
-    """The evaluated objects that render: instances included, each once."""
+def _objects(depsgraph, final):
+    """The evaluated objects that render: instances included, each once. A `final` render's
+    (F12's) leaves out what Disable in Renders hides, as its own depsgraph already does,
+    whichever depsgraph the export is given (a script's is the viewport's)."""
     for inst in depsgraph.object_instances:
-        yield inst.instance_object if inst.is_instance else inst.object
+        obj = inst.instance_object if inst.is_instance else inst.object
+        if not (final and obj.hide_render):
+            yield obj
 
 
 def export(depsgraph, settings, folder, scene_camera=True):
@@ -364,7 +367,7 @@ def export(depsgraph, settings, folder, scene_camera=True):
     volumes, lights, skipped = [], [], []
     shapes = surfaces.Surfaces()
     shutter = motion.shutter(scene, ex.left_out) if scene_camera else None
-    for obj in _objects(depsgraph):
+    for obj in _objects(depsgraph, scene_camera):
         domain = obj.type == "MESH" and mantaflow.gas_domain(obj) is not None
         if obj.type == "VOLUME" or domain:
             v = (_domain if domain else volume)(obj, scene.frame_current, ex)

@@ -13,6 +13,12 @@ multiplied by Velocity Scale, in object units per frame (Velocity Unit: Frame) o
 volume in that space, so the volume's transform (with the Z-up to Y-up rotation) turns and
 scales the motion as Blender's object matrix does: only the unit converts, a per-frame velocity
 times the frame rate. A volume without a Velocity Grid does not blur (`velocity = ""`).
+
+A Mantaflow gas domain's data cache holds `velocity`, a staggered (face-centred) vector grid
+in world units per second (Cycles' fluid loader reads it so: "relative to seconds"), in the
+cache's axes, which mantaflow.py's file matrix turns into the domain's; its Velocity Scale
+(Physics › Fluid › Domain) multiplies it, as in Cycles. Measured on the animation test's
+smoke (flow velocity 2 m/s up, buoyant): |v| 0.15 to 3.1 m/s.
 """
 
 # Mirage's shutter ends are within this many frames of the frame (docs/scene-file.md).
@@ -50,3 +56,8 @@ def volume_velocity(obj, grids, frame_rate, left_out):
         return {"velocity": ""}
     per_second = vol.velocity_scale * (frame_rate if vol.velocity_unit == "FRAME" else 1.0)
     return {"velocity": name, "velocity_scale": float(per_second)}
+
+
+def domain_velocity(settings):
+    """The `velocity` and `velocity_scale` of a Mantaflow gas domain's [[volume]]."""
+    return {"velocity": "velocity", "velocity_scale": float(settings.velocity_scale)}

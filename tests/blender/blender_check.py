@@ -20,7 +20,15 @@ animation: a Mantaflow smoke domain baked for frames 1-6 (16 cells, OpenVDB data
           rendered by a farm node's `-a` (frames 3 and 6): each frame's EXR names its own cache
           file in its metadata and the smoke has grown; frame 6 against Cycles (which reads the
           same cache through the Fluid modifier), as `cycles` does: the domain's placement;
-          frame 6 without its cache file: one error report naming it, no image.
+          frame 6 with Motion Blur (Center): the domain's velocity exported, the image differs
+          from the still one and is `mirage render`'s; frame 6 without its cache file: one
+          error report naming it, no image.
+surfaces: make_scene.py's --surfaces (a floor under the smoke, a mirror, a glass ball, a
+          holdout): the exported materials and holdout, the image is `mirage render`'s bit for
+          bit, and the floor is lit.
+motion:   make-asset's smoke (its `vel` grid) as the test scene's volume, Velocity Grid set:
+          with Render › Motion Blur (Center, Start) the exported shutter is Blender's, the
+          velocity per second, the image differs from the still one and is `mirage render`'s.
 viewport: Blender with a window under Xvfb (xvfb-run, Mesa's software OpenGL), the 3D viewport
           in Rendered shading: the screenshot is the session's image through the view transform
           and shows the smoke; a light's edit restarts the session (an update, passes from 1),
@@ -116,18 +124,21 @@ def build_blend(exe, folder, flags):
     return blend
 
 
-def render_as_exported(exe, folder, *flags):
-    """The add-on's image of the test scene, and the scene it exported (TOML, parsed): the
-    image must equal `mirage render` of that scene bit for bit."""
-    blend = make_blend(exe, folder)
+def render_as_exported(exe, folder, *flags, scene_flags=(), blend=None):
+    """The add-on's image of `blend` (default: the test scene made with make_scene.py's
+    `scene_flags`), and the scene it exported (TOML, parsed): the image must equal
+    `mirage render` of that scene bit for bit."""
+    blend = blend or make_blend(exe, folder, *scene_flags)
     addon_exr = os.path.join(folder, "addon.exr")
     toml = os.path.join(folder, "export", "scene.toml")
     out = run_blender(exe, "render_blend.py", blend, addon_exr, "mirage", "8", "--export", toml,
                       *flags)
     assert lines(out, "RESULT") == ["FINISHED written"], out
     cli_exr = os.path.join(folder, "cli.exr")
-    subprocess.run([MIRAGE, "render", toml, "--ocio", OCIO, "-o", cli_exr, "--quiet"],
-                   check=True, capture_output=True)
+    # The frame seeds the samples: the CLI renders the frame the add-on rendered.
+    frame = flags[flags.index("--frame") + 1] if "--frame" in flags else "1"
+    subprocess.run([MIRAGE, "render", toml, "--ocio", OCIO, "-o", cli_exr, "--quiet",
+                    "--frame", frame], check=True, capture_output=True)
     a, b = mirage.read(addon_exr).beauty, mirage.read(cli_exr).beauty
     assert a.shape == b.shape == (64, 48, 4), (a.shape, b.shape)
     assert a[..., 3].max() > 0.5, "the volume is not in the frame"
@@ -162,6 +173,52 @@ def check_physics(exe, folder):
     assert close(refraction["ambient"], 288.15), refraction
     print(f"physics: ok (components {sorted(kinds)}, [refraction] {refraction}; "
           f"bit for bit as exported, alpha mean {a[..., 3].mean():.4f})")
+
+
+def check_surfaces(exe, folder):
+    a, scene = render_as_exported(exe, folder, scene_flags=("--surfaces",))
+    materials = {m["name"]: m for m in scene["material"]}
+    shapes = {s["name"]: s for s in scene["shape"]}
+    assert set(shapes) == {"Floor", "Mirror", "Glass", "Holdout"}, shapes
+    kinds = {n: materials[s["material"]]["type"] for n, s in shapes.items()}
+    assert kinds == {"Floor": "diffuse", "Mirror": "mirror", "Glass": "dielectric",
+                     "Holdout": "diffuse"}, kinds
+    close = functools.partial(np.allclose, rtol=1e-6)  # Blender's float32 properties
+    assert close(materials[shapes["Floor"]["material"]]["reflectance"], [0.6, 0.5, 0.4])
+    assert close(materials[shapes["Glass"]["material"]]["ior"], 1.45)
+    assert [n for n, s in shapes.items() if s.get("holdout")] == ["Holdout"], shapes
+    # The floor fills the frame's bottom rows (rows top to bottom): opaque and lit there,
+    # except where the holdout cube stands in front of it (black, zero alpha).
+    bottom = a[-10:]
+    floor = bottom[..., 3] > 0.999
+    assert np.count_nonzero(floor) > 0.5 * floor.size, "the floor is not in the frame"
+    assert np.all(bottom[floor][:, :3].max(axis=1) > 0.0), "unlit floor pixels"
+    held = a[..., 3] == 0.0
+    assert np.count_nonzero(held & (a[..., :3].max(axis=2) == 0.0)) > 0
+    print(f"surfaces: ok (materials {kinds}; floor mean RGB "
+          f"{np.round(bottom[floor][:, :3].mean(axis=0), 4).tolist()} on {np.count_nonzero(floor)} "
+          f"of the bottom rows' pixels; bit for bit as exported)")
+
+
+def check_motion(exe, folder):
+    vdb = os.path.join(folder, "smoke.vdb")
+    subprocess.run([MIRAGE, "make-asset", "smoke", "--resolution", "32", "-o", vdb],
+                   check=True, capture_output=True)
+    still, scene = render_as_exported(exe, folder, "--velocity", vdb)
+    assert "shutter" not in scene["camera"], scene["camera"]
+    shutters, differ = {}, {}
+    for position in ("CENTER", "START"):
+        blurred, scene = render_as_exported(exe, folder, "--velocity", vdb, "--blur", position)
+        shutters[position] = scene["camera"]["shutter"]
+        volume = scene["volume"][0]
+        # 0.5 of the file's units per frame, at Blender's default 24 frames per second.
+        assert volume["velocity"] == "vel" and scene["output"]["fps"] == 24.0, scene
+        assert np.isclose(volume["velocity_scale"], 12.0), volume
+        differ[position] = float(np.abs(blurred - still).max())
+        assert differ[position] > 0.01, f"{position}: the blurred image equals the still one"
+    assert shutters == {"CENTER": [-0.25, 0.25], "START": [0.0, 0.5]}, shutters
+    print(f"motion: ok (shutters {shutters}; largest difference from the still render "
+          f"{differ}; bit for bit as exported)")
 
 
 def check_cycles(exe, folder):
@@ -278,6 +335,15 @@ def check_animation(exe, folder):
                       "--integrator", "single", "--frame", "6")
     assert lines(out, "RESULT") == ["FINISHED written"], out
     report = compare_with_cycles(frames[6], cycles, SMOKE_IOU_MIN)
+    # Motion blur: the domain's cached velocity (per second) with its Velocity Scale.
+    still, _ = render_as_exported(exe, folder, "--frame", "6", blend=blend)
+    blurred, scene = render_as_exported(exe, folder, "--frame", "6", "--blur", "CENTER",
+                                        blend=blend)
+    volume = scene["volume"][0]
+    assert (volume["velocity"], volume["velocity_scale"]) == ("velocity", 1.0), volume
+    assert scene["camera"]["shutter"] == [-0.25, 0.25], scene["camera"]
+    blur = float(np.abs(blurred - still).max())
+    assert blur > 0.01, "the blurred frame equals the still one"
     # A frame whose cache file is gone: one error report naming the domain and the file.
     os.remove(os.path.join(folder, "cache", "data", "fluid_data_0006.vdb"))
     missing = os.path.join(folder, "missing.exr")
@@ -288,7 +354,8 @@ def check_animation(exe, folder):
         "fluid_data_0006.vdb" in errors[0] and not os.path.exists(missing), out
     print(f"animation: ok (frames 3 and 6 read fluid_data_0003.vdb and fluid_data_0006.vdb; "
           f"alpha > 0.5 on {covered[3]} and {covered[6]} pixels; frame 6 against Cycles: "
-          f"{report}; without its file: {errors[0]!r})")
+          f"{report}; blurred by its velocity, largest difference {blur:.3f}, bit for bit as "
+          f"exported; without its file: {errors[0]!r})")
 
 
 def check_viewport(exe, folder):
@@ -323,7 +390,8 @@ def check_viewport(exe, folder):
 def main():
     checks = {"identity": check_identity, "cycles": check_cycles, "reports": check_reports,
               "install": check_install, "passes": check_passes, "animation": check_animation,
-              "physics": check_physics, "viewport": check_viewport}
+              "physics": check_physics, "viewport": check_viewport,
+              "surfaces": check_surfaces, "motion": check_motion}
     if len(sys.argv) != 2 or sys.argv[1] not in checks:
         sys.exit(__doc__)
     exe = blender()

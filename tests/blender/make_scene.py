@@ -2,9 +2,10 @@
 file into Blender's Z-up world and turned, a Principled Volume, a camera, a sun and a dim
 constant world, at a small size. Usage:
     blender -b --factory-startup --python-exit-code 1 --python make_scene.py -- \
-        CACHE.vdb OUT.blend [--node-extra] [--missing-cache]
+        CACHE.vdb OUT.blend [--node-extra] [--missing-cache] [--surfaces]
 --node-extra puts a Math node on the density (a node Mirage cannot translate); --missing-cache
-points the volume at a file that does not exist."""
+points the volume at a file that does not exist; --surfaces adds meshes under Principled
+BSDFs (stage.py's floor, a mirror, a glass ball) and a holdout cube."""
 import math
 import os
 import sys
@@ -57,6 +58,8 @@ vol.materials.append(mat)
 stage.camera(scene, Vector((1.7, -2.9, 1.6)), Vector((0.3, -0.2, 1.0)), 40.0)
 stage.sun_and_world(scene)
 stage.small_output(scene)
+if "--surfaces" in argv:
+    stage.surfaces(scene)
 scene.frame_set(1)
 bpy.ops.wm.save_as_mainfile(filepath=out)
 print("MAKE_SCENE wrote", out)

@@ -22,7 +22,7 @@ bpy.ops.mesh.primitive_cube_add(size=0.6, location=(0.0, 0.0, 0.4))
 emitter = bpy.context.active_object
 emitter.select_set(True)
 bpy.ops.object.quick_smoke()
-emitter.hide_render = True           # Cycles would render it; Mirage leaves meshes out
+emitter.hide_render = True           # not part of the shot: neither renderer shows it
 domain = next(o for o in scene.objects if o.name.startswith("Smoke Domain"))
 domain.rotation_euler = (0.0, 0.0, math.radians(20.0))  # the cache's placement turns with it
 settings = domain.modifiers["Fluid"].domain_settings

@@ -43,3 +43,41 @@ def small_output(scene):
     r.image_settings.color_depth = "32"
     r.image_settings.color_mode = "RGBA"
     scene.view_settings.view_transform = "Standard"
+
+
+def _principled(name, **inputs):
+    """A material of one Principled BSDF with `inputs` (socket name with _ for spaces)."""
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    node = mat.node_tree.nodes["Principled BSDF"]
+    for socket, value in inputs.items():
+        node.inputs[socket.replace("_", " ")].default_value = value
+    return mat
+
+
+def _mesh(scene, name, make, location, mat):
+    make(location=location)
+    obj = bpy.context.active_object
+    obj.name = name
+    if mat is not None:
+        obj.data.materials.append(mat)
+    return obj
+
+
+def surfaces(scene):
+    """A floor under the smoke (diffuse), a mirror cube and a smooth glass ball beside it, and
+    a holdout cube (Visibility › Holdout): each of the add-on's surface translations."""
+    floor = _mesh(scene, "Floor", bpy.ops.mesh.primitive_plane_add, (0.0, 0.0, 0.0),
+                  _principled("FloorMaterial", Base_Color=(0.6, 0.5, 0.4, 1.0)))
+    floor.scale = (4.0, 4.0, 1.0)
+    mirror = _mesh(scene, "Mirror", bpy.ops.mesh.primitive_cube_add, (-0.9, 0.4, 0.4),
+                   _principled("MirrorMaterial", Metallic=1.0, Roughness=0.0))
+    mirror.scale = (0.3, 0.3, 0.4)
+    mirror.rotation_euler = (0.0, 0.0, math.radians(25.0))
+    ball = _mesh(scene, "Glass", bpy.ops.mesh.primitive_uv_sphere_add, (1.0, 0.3, 0.3),
+                 _principled("GlassMaterial", Transmission=1.0, Roughness=0.0, IOR=1.45))
+    ball.scale = (0.3, 0.3, 0.3)
+    bpy.ops.object.shade_smooth()
+    holdout = _mesh(scene, "Holdout", bpy.ops.mesh.primitive_cube_add, (0.6, -1.0, 0.15), None)
+    holdout.scale = (0.15, 0.15, 0.15)
+    holdout.is_holdout = True

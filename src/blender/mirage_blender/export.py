@@ -1,7 +1,7 @@
 """A Blender scene as a Mirage scene document: the dict that mirage.Scene.from_dict takes, with
 exactly the scene file's keys (docs/scene-file.md), and the shader files its volumes name.
-One function per kind: film, camera, lights, world, volumes (docs/blender.md, "What is
-translated"). Everything that cannot be translated is named, once, in the export's notes.
+One function per kind: film, camera, lights, world, volumes, surfaces (surfaces.py;
+docs/blender.md, "What is translated"). Everything that cannot be translated is named, once, in the export's notes.
 """
 import hashlib
 import math
@@ -11,7 +11,7 @@ import re
 import bpy
 from mathutils import Vector
 
-from . import mantaflow, physics, shading, toml_text, units
+from . import mantaflow, motion, physics, shading, surfaces, toml_text, units
 
 # The add-on's OCIO config: Mirage's working space is Blender's scene-linear (units.py).
 OCIO_CONFIG = os.path.join(os.path.dirname(__file__), "ocio", "config.ocio")
@@ -334,10 +334,24 @@ def _refraction(ex):
             ex.scene["refraction"] = table
 
 
-def _objects(depsgraph):
-    """The evaluated objects that render: instances included, each once."""
+def _blurred(obj, table, frame_rate, ex):
+    """A volume's velocity keys where the shutter is open (motion.py): a Volume object's
+    Velocity Grid, a Mantaflow domain's cached velocity."""
+    if obj.type == "VOLUME":
+        grids = {g.name for g in obj.data.grids} if obj.data.grids.is_loaded else set()
+        table.update(motion.volume_velocity(obj, grids, frame_rate, ex.left_out))
+    else:
+        table.update(motion.domain_velocity(mantaflow.gas_domain(obj)))
+
+
+def _objects(depsgraph, final):
+    """The evaluated objects that render: instances included, each once. A `final` render's
+    (F12's) leaves out what Disable in Renders hides, as its own depsgraph already does,
+    whichever depsgraph the export is given (a script's is the viewport's)."""
     for inst in depsgraph.object_instances:
-        yield inst.instance_object if inst.is_instance else inst.object
+        obj = inst.instance_object if inst.is_instance else inst.object
+        if not (final and obj.hide_render):
+            yield obj
 
 
 def export(depsgraph, settings, folder, scene_camera=True):
@@ -351,15 +365,18 @@ def export(depsgraph, settings, folder, scene_camera=True):
         doc["camera"] = camera(scene, ex)
     doc["render"] = {"integrator": settings.integrator}
     volumes, lights, skipped = [], [], []
-    for obj in _objects(depsgraph):
-        if obj.type == "VOLUME":
-            v = volume(obj, scene.frame_current, ex)
+    shapes = surfaces.Surfaces()
+    shutter = motion.shutter(scene, ex.left_out) if scene_camera else None
+    for obj in _objects(depsgraph, scene_camera):
+        domain = obj.type == "MESH" and mantaflow.gas_domain(obj) is not None
+        if obj.type == "VOLUME" or domain:
+            v = (_domain if domain else volume)(obj, scene.frame_current, ex)
             if v is not None:
+                if shutter is not None:
+                    _blurred(obj, v, motion.fps(scene), ex)
                 volumes.append(v)
-        elif obj.type == "MESH" and mantaflow.gas_domain(obj) is not None:
-            v = _domain(obj, scene.frame_current, ex)
-            if v is not None:
-                volumes.append(v)
+        elif surfaces.is_geometry(obj):
+            shapes.add(obj, folder, _safe_name, ex)
         elif obj.type == "LIGHT":
             lt = light(obj, ex)
             if lt is not None:
@@ -367,16 +384,19 @@ def export(depsgraph, settings, folder, scene_camera=True):
         elif obj.type not in ("CAMERA", "EMPTY"):
             skipped.append(obj.name)
     if skipped:
-        ex.left_out.append("objects (Mirage renders volumes and lights): " + ", ".join(skipped))
+        ex.left_out.append("objects (Mirage renders volumes, meshes and lights): " +
+                           ", ".join(skipped))
     dome = world(scene, ex)
     if dome is not None:
         lights.append(_grouped(dome, scene.world.lightgroup))
     if volumes:
         doc["volume"] = volumes
     _refraction(ex)
+    shapes.into(doc)
     if lights:
         doc["light"] = lights
     doc["output"] = {"path": os.path.join(folder, "render.exr"), "half": False}
-    if scene.render.use_motion_blur:
-        ex.left_out.append("motion blur")
+    if shutter is not None:
+        doc["camera"]["shutter"] = shutter
+        doc["output"]["fps"] = motion.fps(scene)
     return ex

@@ -38,7 +38,7 @@ class VolumeShader:
         self.left_out = []
 
 
-def _value(node, socket, left_out):
+def value(node, socket, left_out):
     """A socket's own value; a link into it is left out (named) and its value used."""
     s = node.inputs.get(socket)
     if s is None:
@@ -49,8 +49,8 @@ def _value(node, socket, left_out):
     return s.default_value
 
 
-def _rgb(value):
-    return [max(float(value[i]), 0.0) for i in range(3)]
+def rgb(color):
+    return [max(float(color[i]), 0.0) for i in range(3)]
 
 
 def _sigma(rgb):
@@ -59,12 +59,12 @@ def _sigma(rgb):
     return rgb[0] if rgb[0] == rgb[1] == rgb[2] else rgb
 
 
-def _volume_output_node(tree):
-    """The node feeding the active Material Output's Volume socket (None when unlinked)."""
+def output_node(tree, socket="Volume"):
+    """The node feeding the active Material Output's `socket` (None when unlinked)."""
     outputs = [n for n in tree.nodes if n.bl_idname == "ShaderNodeOutputMaterial"]
     active = [n for n in outputs if n.is_active_output and n.target in ("ALL", "CYCLES")]
     for out in active or outputs:
-        sock = out.inputs.get("Volume")
+        sock = out.inputs.get(socket)
         if sock is not None and sock.is_linked:
             return sock.links[0].from_node
     return None
@@ -96,17 +96,17 @@ def _component(color, density, absorption, anisotropy):
 def _principled(node, shader, grids):
     """Principled Volume: scattering, absorption, anisotropy, blackbody emission."""
     lo = shader.left_out
-    color = _rgb(_value(node, "Color", lo))
-    absorption = _rgb(_value(node, "Absorption Color", lo))
-    shader.density_scale = max(float(_value(node, "Density", lo)), 0.0)
-    density_attr = _value(node, "Density Attribute", lo) or "density"
+    color = rgb(value(node, "Color", lo))
+    absorption = rgb(value(node, "Absorption Color", lo))
+    shader.density_scale = max(float(value(node, "Density", lo)), 0.0)
+    density_attr = value(node, "Density Attribute", lo) or "density"
     shader.bind["density"] = density_attr
     shader.document["component"] = [
-        _component(color, shader.density_scale, absorption, _value(node, "Anisotropy", lo))]
+        _component(color, shader.density_scale, absorption, value(node, "Anisotropy", lo))]
     _blackbody(node, shader)
-    if float(_value(node, "Emission Strength", lo)) > _EMISSION_CUTOFF:
+    if float(value(node, "Emission Strength", lo)) > _EMISSION_CUTOFF:
         lo.append(f"{node.name} › Emission Strength (Mirage media emit as blackbodies only)")
-    color_attr = _value(node, "Color Attribute", lo)
+    color_attr = value(node, "Color Attribute", lo)
     if color_attr and color_attr in grids:
         lo.append(f"{node.name} › Color Attribute '{color_attr}'")
 
@@ -114,12 +114,12 @@ def _principled(node, shader, grids):
 def _blackbody(node, shader):
     """Blackbody emission: T = Temperature × the temperature attribute, Kirchhoff in Mirage."""
     lo = shader.left_out
-    intensity = float(_value(node, "Blackbody Intensity", lo))
+    intensity = float(value(node, "Blackbody Intensity", lo))
     if intensity <= _BLACKBODY_CUTOFF:
         return
-    attr = _value(node, "Temperature Attribute", lo)
-    scale = float(_value(node, "Temperature", lo))
-    tint = _rgb(_value(node, "Blackbody Tint", lo))
+    attr = value(node, "Temperature Attribute", lo)
+    scale = float(value(node, "Temperature", lo))
+    tint = rgb(value(node, "Blackbody Tint", lo))
     if tint != [1.0, 1.0, 1.0]:
         lo.append(f"{node.name} › Blackbody Tint")
     if not attr:
@@ -134,10 +134,10 @@ def _closest(node, shader):
     """Volume Scatter or Absorption, or any node with their sockets: its colour, density and
     anisotropy as a Principled Volume's, reading the grid "density"."""
     lo = shader.left_out
-    color = _rgb(_value(node, "Color", lo)) if node.inputs.get("Color") else [1.0, 1.0, 1.0]
-    density = _value(node, "Density", lo)
+    color = rgb(value(node, "Color", lo)) if node.inputs.get("Color") else [1.0, 1.0, 1.0]
+    density = value(node, "Density", lo)
     shader.density_scale = max(float(density), 0.0) if density is not None else 1.0
-    anisotropy = _value(node, "Anisotropy", lo) or 0.0
+    anisotropy = value(node, "Anisotropy", lo) or 0.0
     if node.bl_idname == "ShaderNodeVolumeAbsorption":
         color, absorption = [0.0, 0.0, 0.0], [1.0 - c for c in color]
     else:
@@ -150,7 +150,7 @@ def translate(material, grids, name):
     """The Mirage shader of a Blender material on a volume whose file holds `grids`."""
     shader = VolumeShader(name)
     tree = material.node_tree if material is not None and material.use_nodes else None
-    root = _volume_output_node(tree) if tree is not None else None
+    root = output_node(tree) if tree is not None else None
     if root is None:
         # No material, or nothing in its Volume socket: Cycles' default volume is a grey
         # Principled Volume of density 1 on "density" (its default material).

@@ -1,5 +1,6 @@
-"""Mirage's panels: its render settings (Render Properties), its passes (View Layer) and a
-material's Mirage-only physics (Material), shown when Mirage is the render engine."""
+"""Mirage's panels: its render settings (Render Properties), its passes (View Layer), a
+material's Mirage-only physics (Material) and a volume's velocity for motion blur (Volume
+data: Blender draws those settings for Cycles only), shown when Mirage is the render engine."""
 import bpy
 
 
@@ -12,6 +13,16 @@ class _MiragePanel:
     @classmethod
     def poll(cls, context):
         return context.engine in cls.COMPAT_ENGINES
+
+
+class _DataPanel(_MiragePanel):
+    """A panel of one kind of data block (`context_member`: material, volume, …), shown when
+    the context holds one."""
+    context_member = ""
+
+    @classmethod
+    def poll(cls, context):
+        return super().poll(context) and getattr(context, cls.context_member, None) is not None
 
 
 class MIRAGE_PT_render(_MiragePanel, bpy.types.Panel):
@@ -53,14 +64,11 @@ class MIRAGE_PT_passes(_MiragePanel, bpy.types.Panel):
         col.prop(view_layer.mirage, "use_pass_volume_indirect")
 
 
-class MIRAGE_PT_material_physics(_MiragePanel, bpy.types.Panel):
+class MIRAGE_PT_material_physics(_DataPanel, bpy.types.Panel):
     """Material properties: the Mirage-only physics beside the Principled Volume (physics.py)."""
     bl_label = "Mirage Physics"
     bl_context = "material"
-
-    @classmethod
-    def poll(cls, context):
-        return super().poll(context) and context.material is not None
+    context_member = "material"
 
     def draw(self, context):
         s = context.material.mirage
@@ -91,15 +99,30 @@ class MIRAGE_PT_material_physics(_MiragePanel, bpy.types.Panel):
         sub.prop(s, "ambient_temperature")
 
 
-_PANELS = (MIRAGE_PT_render, MIRAGE_PT_passes, MIRAGE_PT_material_physics)
+class MIRAGE_PT_volume_motion(_DataPanel, bpy.types.Panel):
+    """Volume data: the velocity grid Mirage's motion blur reads (motion.py)."""
+    bl_label = "Motion Blur"
+    bl_context = "data"
+    context_member = "volume"
+
+    def draw(self, context):
+        self.layout.use_property_split = True
+        for name in ("velocity_grid", "velocity_unit", "velocity_scale"):
+            self.layout.prop(context.volume, name)
+
+
+_PANELS = (MIRAGE_PT_render, MIRAGE_PT_passes, MIRAGE_PT_material_physics,
+           MIRAGE_PT_volume_motion)
 
 
 def _compatible_panels():
-    """Blender's own panels that apply to any engine (dimensions, output, colour management)."""
+    """Blender's own panels that apply to any engine (dimensions, output, colour management),
+    and Cycles' Motion Blur panel, whose shutter and position Mirage reads (motion.py)."""
     keep = ("RENDER_PT_format", "RENDER_PT_frame_range", "RENDER_PT_output",
             "RENDER_PT_color_management", "RENDER_PT_film", "DATA_PT_lens", "DATA_PT_camera",
             "DATA_PT_light", "DATA_PT_volume_file", "DATA_PT_volume_grids",
-            "MATERIAL_PT_preview", "EEVEE_MATERIAL_PT_volume", "WORLD_PT_context_world")
+            "MATERIAL_PT_preview", "EEVEE_MATERIAL_PT_volume", "WORLD_PT_context_world",
+            "CYCLES_RENDER_PT_motion_blur")
     return [getattr(bpy.types, n) for n in keep if hasattr(bpy.types, n)]
 
 

@@ -132,7 +132,10 @@ TEST(FirePhotons, PhotonMapOfGlowingSmokeAgreesWithVolPath) {
     auto pm = makePhotonIntegrator(ps);
     auto t1 = std::chrono::steady_clock::now();
     pm->preprocess(scene);
-    Image image = render(scene, *pm, settings(64, 3), nullptr).develop(color);
+    // 16 spp: the photon map's own noise is most of every error below (the block error against
+    // the reference measured 0.24 at 16 spp, 0.22 at 64), and the channels' means over 1024
+    // pixels hardly see the camera's; 64 spp took 4 times the render for that.
+    Image image = render(scene, *pm, settings(16, 3), nullptr).develop(color);
     compare(image, ref, &bias, &block);
     const test::ImageError colour = test::compareImages(image, ref);
     std::printf(
@@ -143,12 +146,11 @@ TEST(FirePhotons, PhotonMapOfGlowingSmokeAgreesWithVolPath) {
     EXPECT_LT(colour.chromaticity, 0.01);
 
     // "Within noise": the block error against the reference is mostly the photon map's own
-    // noise (it hardly falls from 16 to 64 spp: 0.24 → 0.22), measured here as the difference
-    // of two photon maps of different seeds, / √2.
+    // noise, measured here as the difference of two photon maps of different seeds, / √2.
     ps.seed = 6;
     auto pm2 = makePhotonIntegrator(ps);
     pm2->preprocess(scene);
-    Image image2 = render(scene, *pm2, settings(64, 4), nullptr).develop(color);
+    Image image2 = render(scene, *pm2, settings(16, 4), nullptr).develop(color);
     double bias2, seedBlock;
     compare(image2, image, &bias2, &seedBlock);
     const double noise = seedBlock / std::sqrt(2.0);

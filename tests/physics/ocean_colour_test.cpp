@@ -24,7 +24,6 @@
 
 namespace {
 
-
 std::vector<double> array(const std::string& json, const std::string& key) {
     std::vector<double> v;
     size_t at = json.find("\"" + key + "\": [");
@@ -93,10 +92,12 @@ Colour slabColour(const std::string& sets, double photons) {
 }  // namespace
 
 TEST(OceanColour, ChlorophyllMovesTheSeaFromBlueTowardsGreen) {
-    // Case-1 water: the ocean shader's CDOM follows the chlorophyll.
-    Colour c005 = slabColour("--set chlorophyll=0.05", 5e6);
-    Colour c01 = slabColour("--set chlorophyll=0.1", 5e6);
-    Colour c5 = slabColour("--set chlorophyll=5", 5e6);
+    // Case-1 water: the ocean shader's CDOM follows the chlorophyll. 2·10⁶ photons a run: the
+    // closest step, 0.05 → 0.1 mg/m³, moves the band ratio by 0.041 (0.147 → 0.188), 9 combined
+    // standard errors of 0.0045 (at 5·10⁶ photons 14, for 2.5 times the time); 3 are asserted.
+    Colour c005 = slabColour("--set chlorophyll=0.05", 2e6);
+    Colour c01 = slabColour("--set chlorophyll=0.1", 2e6);
+    Colour c5 = slabColour("--set chlorophyll=5", 2e6);
     auto above = [](const Colour& hi, const Colour& lo) {
         return hi.ratio - lo.ratio > 3 * std::hypot(hi.ratioSe, lo.ratioSe);
     };

@@ -39,7 +39,8 @@ bool samplesLamps(const RenderScene& scene) {
     return false;
 }
 
-LampSampling::LampSampling(const RenderScene& scene, const Ray& ray, float tEnd, bool on)
+LampSampling::LampSampling(const RenderScene& scene, const Ray& ray, float tEnd, bool on,
+                           Sampler& sampler)
     : mRay(ray) {
     float a = 0.f, b = 0.f;
     if (!on || !mediaSpan(scene, ray, tEnd, &a, &b)) return;
@@ -52,6 +53,44 @@ LampSampling::LampSampling(const RenderScene& scene, const Ray& ray, float tEnd,
         const EquiangularSegment segment(ray.o, ray.d, t0, t1, lamp->p);
         if (!segment.empty()) mLamps[mCount++] = Lamp{i, segment};
     }
+    for (size_t k = 0; k < mCount; ++k) {
+        Lamp& lamp = mLamps[k];
+        lamp.t = lamp.segment.sample(sampler.get1D());
+        lamp.pdf = lamp.segment.pdf(lamp.t);
+    }
+}
+
+void LampSampling::ratioTrack(const Collision& c, const TrackingContext& tracking) {
+    for (size_t k = 0; k < mCount; ++k) {
+        Lamp& lamp = mLamps[k];
+        if (lamp.passed || !(c.t > lamp.t)) continue;
+        lamp.ratio = mRatio;
+        lamp.passed = true;
+    }
+    mLastT = c.t;
+    if (tracking.medium(size_t(c.medium)).closedFormTransmittance()) return;
+    mRatio *= SampledSpectrum(1.f) - (c.mp.sigmaA + c.mp.sigmaS) / c.sigmaMaj;
+}
+
+void LampSampling::flightEnded(bool reached) {
+    if (!reached) return;
+    // No tentative collision lies between the last one and any point left: the product is
+    // complete.
+    for (size_t k = 0; k < mCount; ++k) {
+        if (mLamps[k].passed) continue;
+        mLamps[k].ratio = mRatio;
+        mLamps[k].passed = true;
+    }
+}
+
+SampledSpectrum LampSampling::toPoint(const Lamp& lamp, TrackingContext& tracking,
+                                      Sampler& sampler) const {
+    const SampledSpectrum T =
+        closedFormTransmittance(tracking, mRay, lamp.t) * (lamp.passed ? lamp.ratio : mRatio);
+    if (lamp.passed || !(T.maxValue() > 0.f)) return T;
+    // The flight stopped at mLastT, short of the point: the rest is tracked afresh.
+    const float rest = lamp.t - mLastT;
+    return T * trackedTransmittance(tracking, Ray{mRay.at(mLastT), mRay.d, rest}, rest, sampler);
 }
 
 const LampSampling::Lamp* LampSampling::find(size_t light) const {
@@ -71,8 +110,7 @@ void LampSampling::gather(const RenderScene& scene, const SampledSpectrum& beta,
     const Vec3 wo = -mRay.d;
     for (size_t k = 0; k < mCount; ++k) {
         const Lamp& lamp = mLamps[k];
-        const float t = lamp.segment.sample(sampler.get1D());
-        const float pe = lamp.segment.pdf(t);
+        const float t = lamp.t, pe = lamp.pdf;
         const Vec3 x = mRay.at(t);
         LightSample ls;
         if (!(pe > 0.f) || !scene.lights[lamp.light]->sampleLi(x, 0.5f, 0.5f, w, &ls)) continue;
@@ -96,8 +134,8 @@ void LampSampling::gather(const RenderScene& scene, const SampledSpectrum& beta,
         const SampledSpectrum toLamp =
             transmittance(ts.tracking, Ray{x, ls.wi, ls.distance}, ls.distance, sampler);
         if (toLamp.isZero()) continue;
-        const SampledSpectrum toPoint = transmittance(ts.tracking, mRay, t, sampler);
-        const SampledSpectrum term = toPoint * scattered * toLamp * ls.Li / pe;
+        const SampledSpectrum term =
+            toPoint(lamp, ts.tracking, sampler) * scattered * toLamp * ls.Li / pe;
         if (SampledSpectrum* split = ts.startLightSplit())
             split[scene.lightGroupSlot(lamp.light)] += term;
         rec.litInMedium(beta, term, t);

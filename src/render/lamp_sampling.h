@@ -15,9 +15,21 @@
 // proxy only decides how well the variance is split. Near the lamp p_e grows as 1/r and takes
 // the weight, where delta tracking's points made fireflies; far from it σs takes it back.
 //
-// The equiangular point's estimate: β T̂(0, t) σs,m(t) p(θ) Li T(t, lamp) / p_e(t), T̂ by ratio
-// tracking (unbiased), σs and p exact at t. Lamps beyond kMaxLamps, area lights and the dome
-// keep next-event estimation at the scattering points alone (weight 1).
+// The equiangular point's estimate: β T̂(0, t) σs,m(t) p(θ) Li T(t, lamp) / p_e(t), σs and p
+// exact at t. Lamps beyond kMaxLamps, area lights and the dome keep next-event estimation at the
+// scattering points alone (weight 1).
+//
+// T̂(0, t) comes from the path's own flight along the segment rather than a tracking pass of
+// its own: the points are drawn before the flight. Its tentative collisions are a Poisson process
+// of rate σ̄ whatever events it chooses, so the product of their ratio factors 1 − σt/σ̄ before t is
+// ratio tracking's estimate of T(0, t) (Novák et al. 2014) at no extra lookup. Where the flight
+// stops at τ < t (a real event), the process after τ is a fresh one (τ is a stopping time of it),
+// and M(s) = Π_{points ≤ s} (1 − σt/σ̄) · T(s, t) is a martingale with M(0) = T(0, t): the product
+// up to τ times any unbiased estimate of T(τ, t) drawn afterwards (residual ratio tracking)
+// keeps E[T̂(0, t)] = T(0, t). Homogeneous media stay in closed form, their collisions left
+// out of the product. The pass of its own cost about a seventh of the path tracer's
+// instructions in the lamp-point regime (thin smoke, docs/regimes.md); where the flight passes
+// the point, the flight's estimate costs no lookup at all.
 #pragma once
 
 #include <array>
@@ -30,18 +42,26 @@ namespace mirage {
 
 class LampSampling {
 public:
-    // The lamps' segments along `ray` over (0, tEnd): clipped to the media's bounds and to
-    // each spot's cone. Empty where the scene has no point or spot light, or `on` is false.
-    LampSampling(const RenderScene& scene, const Ray& ray, float tEnd, bool on);
+    // The lamps' segments along `ray` over (0, tEnd), clipped to the media's bounds and to each
+    // spot's cone, and one point drawn on each. Empty where the scene has no point or spot
+    // light, or `on` is false; then it draws nothing.
+    LampSampling(const RenderScene& scene, const Ray& ray, float tEnd, bool on, Sampler& sampler);
     bool empty() const { return mCount == 0; }
+
+    // The path's flight along the segment, which estimates the transmittance to the points:
+    // each of its tentative collisions in order of t, then its end (reached: it got through
+    // to tEnd without a real event).
+    void seen(const Collision& c, const TrackingContext& tracking) {
+        if (mCount) ratioTrack(c, tracking);
+    }
+    void flightEnded(bool reached);
 
     // The weight of next-event estimation to light `light` (an index into scene.lights) from a
     // scattering point that delta tracking found at c on this segment.
     float scatterPointWeight(size_t light, const Collision& c) const;
 
     // The equiangular points' estimate, one per lamp, each recorded as light gathered in the
-    // medium at its t: beta is the path's throughput at the segment's start, wo the direction
-    // back along the segment.
+    // medium at its t: beta is the path's throughput at the segment's start. After the flight.
     void gather(const RenderScene& scene, const SampledSpectrum& beta, Sampler& sampler,
                 ThreadState& ts, PathRecorder& rec) const;
 
@@ -49,12 +69,19 @@ private:
     struct Lamp {
         size_t light;
         EquiangularSegment segment;
+        float t = 0.f, pdf = 0.f;  // the point drawn, and its density (1/m)
+        bool passed = false;       // the flight's estimate of T(0, t) is complete: ratio
+        SampledSpectrum ratio{1.f};
     };
     static constexpr size_t kMaxLamps = 8;
     Ray mRay;
     std::array<Lamp, kMaxLamps> mLamps{};
     size_t mCount = 0;
+    SampledSpectrum mRatio{1.f};  // the flight's ratio product so far
+    float mLastT = 0.f;           // where the flight's last tentative collision was
     const Lamp* find(size_t light) const;
+    void ratioTrack(const Collision& c, const TrackingContext& tracking);
+    SampledSpectrum toPoint(const Lamp& lamp, TrackingContext& tracking, Sampler& sampler) const;
 };
 
 // Whether a scene's paths draw points towards its lamps: any point or spot light and the

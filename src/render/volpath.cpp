@@ -83,9 +83,9 @@ public:
         const bool towardsLamps = !path.guided && samplesLamps(scene);
         for (;; ++path.depth) {
             const SurfaceAhead ahead = surfaceAhead(scene, path.ray);
-            const LampSampling lamps(scene, path.ray, ahead.tEnd, towardsLamps);
+            LampSampling lamps(scene, path.ray, ahead.tEnd, towardsLamps, sampler);
             const SampledSpectrum betaAtStart = path.throughput.beta;
-            const Flight f = fly(ahead.tEnd, sampler, ts, path, rec);
+            const Flight f = fly(ahead.tEnd, lamps, sampler, ts, path, rec);
             if (!lamps.empty()) lamps.gather(scene, betaAtStart, sampler, ts, rec);
             // What the camera sees through the flight: the plate, past nothing or a holdout.
             const bool plate = f.end == Flight::End::Escaped &&
@@ -128,15 +128,17 @@ private:
     // The flight along the path's ray over (0, tEnd): emission scored at every tentative
     // collision, then the event chosen there (transport/path_vertex.h), or in a fluorescent
     // medium first the inelastic one (fluoresce). A holdout medium the camera sees only
-    // attenuates: no emission, and a real event in it ends the path with nothing.
-    static Flight fly(float tEnd, Sampler& sampler, ThreadState& ts, CameraPath& path,
-                      PathRecorder& rec) {
+    // attenuates: no emission, and a real event in it ends the path with nothing. The lamps'
+    // points on the segment read their transmittance off the flight (render/lamp_sampling.h).
+    static Flight fly(float tEnd, LampSampling& lamps, Sampler& sampler, ThreadState& ts,
+                      CameraPath& path, PathRecorder& rec) {
         Flight f;
         CameraRayData* data = rec.cameraRayData();
         PathThroughput& throughput = path.throughput;
         const bool reached =
             trackCollisions(ts.tracking, path.ray, tEnd, sampler, [&](const Collision& c) {
                 if (data) data->seen(c);
+                lamps.seen(c, ts.tracking);
                 const Medium& m = ts.tracking.medium(c.medium);
                 if (rec.holdout(size_t(c.medium))) {
                     if (chooseEvent(c, throughput, sampler).event == MediumEvent::Null)
@@ -160,21 +162,22 @@ private:
                 return Track::Stop;  // scattered, or absorbed for good
             });
         if (reached) f.end = Flight::End::Escaped;
+        lamps.flightEnded(reached);
         rec.cameraFlightEnded(reached);
         return f;
     }
 
     // A real scattering event at x: next-event estimation, weighed against the lobe walks of the
-    // run x belongs to and the segment's points towards the lamps, a lobe walk of its own where paths are guided, and the phase function's
-    // sample that continues the path.
+    // run x belongs to and the segment's points towards the lamps, a lobe walk of its own where
+    // paths are guided, and the phase function's sample that continues the path.
     void scatterInMedium(const RenderScene& scene, const Collision& x, const LampSampling& lamps,
                          Sampler& sampler, ThreadState& ts, CameraPath& path,
                          PathRecorder& rec) const {
         const float ratios = path.lobeRatios;  // the run's sum on the segment that reached x
-        rec.litInMedium(path.throughput.beta / (1.f + ratios),
-                        directLightMedium(scene, x, -path.ray.d, sampler, ts,
-                                          lamps.empty() ? nullptr : &lamps),
-                        x.t);
+        rec.litInMedium(
+            path.throughput.beta / (1.f + ratios),
+            directLightMedium(scene, x, -path.ray.d, sampler, ts, lamps.empty() ? nullptr : &lamps),
+            x.t);
         rec.scatteredInMedium(x.t);
         path.specularChain = false;  // a medium event: next-event estimation counted the dome
         const Medium& m = ts.tracking.medium(x.medium);

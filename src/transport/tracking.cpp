@@ -97,22 +97,15 @@ bool russianRoulette(SampledSpectrum* T, Sampler& sampler) {
     return true;
 }
 
-
-SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float tMax,
-                              Sampler& sampler) {
-    // Optical depths add over superposed media, so T is the product of each medium's
-    // transmittance. Homogeneous media have Beer–Lambert's closed form, exp(−σt(λ) ℓ) with ℓ
-    // the length of the ray inside the box (t is world metres in object space too, see
+SampledSpectrum closedFormTransmittance(TrackingContext& ctx, const Ray& worldRay, float tMax) {
+    // Homogeneous media have Beer–Lambert's closed form, exp(−σt(λ) ℓ) with ℓ the length of the
+    // ray inside the box (t is world metres in object space too, see
     // Medium::Context::toObject): exact and noiseless (docs/design.md, "homogeneous closed-form
-    // transmittance where a medium is constant").
+    // transmittance where a medium is constant"). Optical depths add over superposed media.
     SampledSpectrum tau(0.f);
-    bool heterogeneous = false;
     for (size_t i = 0; i < ctx.size(); ++i) {
         const Medium& m = ctx.medium(i);
-        if (!m.closedFormTransmittance()) {
-            heterogeneous = true;
-            continue;
-        }
+        if (!m.closedFormTransmittance()) continue;
         Ray r = ctx.context(i).toObject(worldRay);
         float t0, t1;
         if (!m.objectBounds().intersect(r.o, r.d, 0.f, tMax, &t0, &t1) || !(t1 > t0)) continue;
@@ -122,16 +115,34 @@ SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float t
         m.eval(r.at(0.5f * (t0 + t1)), ctx.context(i), &mp);  // inside box and region
         tau += (mp.sigmaA + mp.sigmaS) * (t1 - t0);
     }
-    SampledSpectrum T = exp(tau * -1.f);
-    if (!heterogeneous || T.maxValue() <= 0.f) return T;
+    return exp(tau * -1.f);
+}
 
-    // The rest by residual ratio tracking, medium by medium (optical depths add, so their
-    // transmittances multiply).
+SampledSpectrum trackedTransmittance(TrackingContext& ctx, const Ray& worldRay, float tMax,
+                                     Sampler& sampler) {
+    // Medium by medium: optical depths add, so their transmittances multiply.
+    SampledSpectrum T(1.f);
     for (size_t i = 0; i < ctx.size() && T.maxValue() > 0.f; ++i)
         if (!ctx.medium(i).closedFormTransmittance())
             T *= residualRatioTracking(ctx, i, worldRay, tMax, sampler);
     return T;
 }
+
+SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float tMax,
+                              Sampler& sampler) {
+    const SampledSpectrum T = closedFormTransmittance(ctx, worldRay, tMax);
+    return T.maxValue() > 0.f ? T * trackedTransmittance(ctx, worldRay, tMax, sampler) : T;
+}
+
+// The majorant optical depth σ̄ℓ of a ray's segment through a majorant cell below which its
+// control is 0. A control costs one lookup; plain ratio tracking (σc = 0, rate σ̄) expects σ̄ℓ of
+// them in the segment, and residual tracking still σ̄r ℓ ≥ σ̄ℓ / 2 besides the control: below
+// σ̄ℓ = 1 the control costs more lookups than it saves. Thin smoke, a plume's edges and the
+// corners of cells a ray only clips are such segments: in the lamp-point regime (thin smoke,
+// docs/regimes.md) three in four of the shadow rays' lookups were controls. The rule is a
+// function of the ray alone, so the estimate stays unbiased; its variance in a thin segment is
+// at most about σ̄ℓ (σt/σ̄)² relative.
+constexpr float kThinCell = 1.f;
 
 SampledSpectrum residualRatioTracking(TrackingContext& ctx, size_t i, const Ray& worldRay,
                                       float tMax, Sampler& sampler) {
@@ -149,11 +160,15 @@ SampledSpectrum residualRatioTracking(TrackingContext& ctx, size_t i, const Ray&
         // moving medium it is the still medium's σt there, which costs no velocity lookup
         // (most of a blurred shadow ray's lookups are controls). On the Mantaflow cache that
         // cut the blurred render's CPU time by about a fifth for 3 % more variance
-        // (docs/scene-file.md, "Motion blur").
+        // (docs/scene-file.md, "Motion blur"). Where the segment is thin (kThinCell), the
+        // control is 0: plain ratio tracking there.
         MediumPoint mp;
-        m.evalStill(r.at(0.5f * (t0 + t1)), mc, &mp);
-        ++ctx.lookups;
-        SampledSpectrum sigmaC = mp.sigmaA + mp.sigmaS;
+        SampledSpectrum sigmaC(0.f);
+        if (sigmaMaj * (t1 - t0) >= kThinCell) {
+            m.evalStill(r.at(0.5f * (t0 + t1)), mc, &mp);
+            ++ctx.lookups;
+            sigmaC = mp.sigmaA + mp.sigmaS;
+        }
         float sigmaR = 0.f;
         for (int k = 0; k < kSpectrumSamples; ++k) {
             sigmaC[k] = clamp(sigmaC[k], 0.f, sigmaMaj);

@@ -81,11 +81,11 @@ enum class Track { Continue, Stop };
 
 // A tentative collision handed to the caller of trackCollisions.
 struct Collision {
-    int medium;          // index into the context
-    float t;             // world ray parameter (m)
-    Vec3 p;              // world position
-    float sigmaMaj;      // majorant at the collision (1/m)
-    MediumPoint mp;      // coefficients at the path's wavelengths
+    int medium;      // index into the context
+    float t;         // world ray parameter (m)
+    Vec3 p;          // world position
+    float sigmaMaj;  // majorant at the collision (1/m)
+    MediumPoint mp;  // coefficients at the path's wavelengths
 };
 
 // Sees, in order, the tentative collisions of a walk that another estimator makes along the
@@ -109,9 +109,14 @@ bool trackCollisions(TrackingContext& ctx, const Ray& worldRay, float tMax, Samp
 
 // Transmittance along worldRay over (0, tMax): the closed form exp(−σt(λ)·d) for homogeneous
 // media, residual ratio tracking for the others — unbiased, with Russian roulette once it
-// falls below 0.05.
+// falls below 0.05. The product of the two parts below.
 SampledSpectrum transmittance(TrackingContext& ctx, const Ray& worldRay, float tMax,
                               Sampler& sampler);
+// The homogeneous media's part alone (Medium::closedFormTransmittance): exact.
+SampledSpectrum closedFormTransmittance(TrackingContext& ctx, const Ray& worldRay, float tMax);
+// The other media's part alone, by residual ratio tracking.
+SampledSpectrum trackedTransmittance(TrackingContext& ctx, const Ray& worldRay, float tMax,
+                                     Sampler& sampler);
 
 // Russian roulette on a transmittance estimate once it falls below 0.05: survives with
 // probability 1 − q = 1/4 and is reweighted by 1/(1 − q). False (and T = 0) when it ends.

@@ -205,19 +205,31 @@ RenderScene sunlitSmokeBox() {
 
 RayEstimate estimateAlongRay(const Integrator& integrator, const RenderScene& scene, const Ray& ray,
                              int samples) {
+    return estimateAlongRayPerWavelength(integrator, scene, ray, samples)[0];
+}
+
+std::array<RayEstimate, kSpectrumSamples> estimateAlongRayPerWavelength(
+    const Integrator& integrator, const RenderScene& scene, const Ray& ray, int samples) {
     ThreadState ts(scene);
-    double sum = 0, sum2 = 0, largest = 0;
+    std::array<double, kSpectrumSamples> sum{}, sum2{}, largest{};
     for (int i = 0; i < samples; ++i) {
         Sampler s(SamplerKind::Random, 1, 0, uint64_t(i));
         SampledWavelengths w = SampledWavelengths::sampleVisible(s.get1D());
         ts.tracking.setWavelengths(w);
-        const double v = integrator.Li(scene, ray, w, s, ts).L[0];
-        sum += v;
-        sum2 += v * v;
-        largest = std::max(largest, v);
+        const SampledSpectrum L = integrator.Li(scene, ray, w, s, ts).L;
+        for (int k = 0; k < kSpectrumSamples; ++k) {
+            sum[k] += L[k];
+            sum2[k] += double(L[k]) * L[k];
+            largest[k] = std::max(largest[k], double(L[k]));
+        }
     }
-    const double mean = sum / samples;
-    return {mean, std::sqrt(std::max(0.0, sum2 / samples - mean * mean) / samples), largest};
+    std::array<RayEstimate, kSpectrumSamples> out;
+    for (int k = 0; k < kSpectrumSamples; ++k) {
+        const double mean = sum[k] / samples;
+        out[k] = {mean, std::sqrt(std::max(0.0, sum2[k] / samples - mean * mean) / samples),
+                  largest[k]};
+    }
+    return out;
 }
 
 bool sameFilm(const Film& a, const Film& b) {

@@ -53,6 +53,7 @@ std::string shippedSceneCopy(const std::string& dir, const std::string& name,
     if (var.empty()) GTEST_SKIP() << "reference data ../shared/data/" << (rel)        \
                                   << " is absent; skipping"
 
+#include <array>
 #include <functional>
 
 #include "film/film.h"
@@ -105,6 +106,10 @@ struct RayEstimate {
 };
 RayEstimate estimateAlongRay(const Integrator& integrator, const RenderScene& scene,
                              const Ray& ray, int samples);
+// The same for each of the path's wavelengths, L[0] … L[3] (the hero and its rotations): the
+// checks of a spectral estimator per channel.
+std::array<RayEstimate, kSpectrumSamples> estimateAlongRayPerWavelength(
+    const Integrator& integrator, const RenderScene& scene, const Ray& ray, int samples);
 
 // volpath filmed at four wavelengths per sample (the integrator's radiance declared not
 // light-shaped), as before the exact-colour shortcuts of render/achromatic_film.h.

@@ -206,3 +206,35 @@ TEST(LampSampling, SpotBeamSeenFromTheSideMatchesQuadrature) {
     // The beam is a small part of the ray: points drawn inside it are the win.
     EXPECT_LT(eq.se * 2, dist.se);
 }
+
+TEST(LampSampling, SmokeAndHazeKeepTheMeanPerWavelength) {
+    // The equiangular points' transmittance read off the path's own flight (lamp_sampling.h),
+    // through a heterogeneous grid (density rising along x, ratio-tracked) and a coloured
+    // homogeneous haze over it (closed form), along paths of many bounces: every segment's
+    // flight either passes its point or stops short of it and is finished by tracking. Its mean
+    // must be distance sampling's (which reads no such estimate), at each of the four
+    // wavelengths.
+    RenderScene scene;
+    scene.media.push_back(test::gridMedium([](int i, int, int) { return 0.2f + 0.05f * i; }, 0, 31,
+                                           kH, 0.4f, 1.2f, 0.3f));
+    ShaderDesc haze = test::greyShader(0.f, 0.f);
+    haze.components[0].grid.clear();
+    haze.components[0].sigmaA = Spectrum(0.1f);
+    haze.components[0].sigmaS = Spectrum::fromTable({360.f, 830.f}, {3.f, 1.f});
+    Bounds3 box;
+    box.lo = Vec3(-0.1f);
+    box.hi = Vec3(1.1f);
+    scene.media.push_back(std::make_unique<Medium>(haze, box, Transform(), 1.f));
+    scene.lights.push_back(makePointLight(Vec3(0.5f, 0.5f, 0.5f), kPower, Spectrum(1.f)));
+    const Ray ray{Vec3(-0.2f, 0.6f, 0.5f), Vec3(1, 0, 0), kInfinity};
+    const auto volpath = makeVolPathIntegrator(16);
+    scene.equiangular = true;
+    const auto eq = test::estimateAlongRayPerWavelength(*volpath, scene, ray, 40000);
+    scene.equiangular = false;
+    const auto dist = test::estimateAlongRayPerWavelength(*volpath, scene, ray, 80000);
+    for (int k = 0; k < kSpectrumSamples; ++k) {
+        std::printf("λ%d: equiangular %.5g ± %.2g, distance %.5g ± %.2g\n", k, eq[k].mean, eq[k].se,
+                    dist[k].mean, dist[k].se);
+        EXPECT_NEAR(eq[k].mean, dist[k].mean, 4 * std::hypot(eq[k].se, dist[k].se)) << "λ" << k;
+    }
+}

@@ -76,6 +76,41 @@ TEST(Tracking, LinearRampTransmittanceMatchesClosedForm) {
     }
 }
 
+TEST(Tracking, ThinAndThickCellsTogetherMatchTheOpticalDepth) {
+    // Thin smoke (density 0.1, σ̄ℓ ≈ 0.1 per majorant cell of 1/16 m: plain ratio tracking,
+    // no control) around a dense sheet two voxels thick (σ̄ℓ ≈ 1.4: a control at the cell's
+    // middle), crossed along x: residual ratio tracking switches per cell (kThinCell in
+    // transport/tracking.cpp) and must stay unbiased across the switch, and spend fewer lookups
+    // than one control per cell would.
+    const float sigma = 22.f;
+    auto m = makeMedium([](int i, int, int) { return i == 15 || i == 16 ? 1.f : 0.1f; }, 2.f,
+                        sigma - 2.f);
+    const Vec3 a(float(1.5 * kH), float(9 * kH), float(9 * kH)), b(float(30 * kH), a.y, a.z);
+    const float L = length(b - a);
+    const FloatGrid& grid = m->binding().grids()[0];
+    const double exact = std::exp(-test::opticalDepth(grid, a, b, sigma));
+    for (SamplerKind kind : test::kSamplerKinds) {
+        Estimate e = estimateT(*m, Ray{a, Vec3(1, 0, 0), L}, L, 20000, kind);
+        EXPECT_NEAR(e.mean, exact, 4 * e.stderr_ + 1e-6) << "exact " << exact;
+    }
+    // One control per majorant cell the ray crosses would spend `cells` lookups per ray before
+    // any residual collision.
+    int cells = 0;
+    m->majorant().traverse(a, Vec3(1, 0, 0), 0.f, L, [&](float, float, float sigmaMaj) {
+        cells += sigmaMaj > 0.f;
+        return true;
+    });
+    TrackingContext ctx({m.get()});
+    const int n = 2000;
+    for (int i = 0; i < n; ++i) {
+        Sampler s(5, uint64_t(i), 0);
+        ctx.setWavelengths(SampledWavelengths::sampleVisible(s.get1D()));
+        transmittance(ctx, Ray{a, Vec3(1, 0, 0), L}, L, s);
+    }
+    std::printf("%d cells; %.2f lookups per ray\n", cells, double(ctx.lookups) / n);
+    EXPECT_LT(double(ctx.lookups) / n, 0.6 * cells);
+}
+
 TEST(Tracking, ScaledTransformStretchesOpticalDepth) {
     // σ is per world metre: scaling the object by 2 doubles every path length inside it.
     const float sigma = 2.f;
@@ -91,8 +126,8 @@ TEST(Tracking, ScaledTransformStretchesOpticalDepth) {
 
 TEST(Tracking, TransmittanceOutsideMediumIsOne) {
     auto m = makeMedium([](int, int, int) { return 1.f; }, 1.f, 1.f);
-    Estimate e = estimateT(*m, Ray{Vec3(-1, -1, -1), Vec3(0, 1, 0), 10.f}, 10.f, 100,
-                           SamplerKind::Sobol);
+    Estimate e =
+        estimateT(*m, Ray{Vec3(-1, -1, -1), Vec3(0, 1, 0), 10.f}, 10.f, 100, SamplerKind::Sobol);
     EXPECT_EQ(e.mean, 1.0);
 }
 
@@ -258,9 +293,8 @@ TEST(Tracking, ThreeHundredVolumesRenderAsTheOneThatShows) {
     };
     ColorPipeline color;
     auto single = makeSingleScatterIntegrator();
-    const Image one =
-        render(scene(1), *single, test::smallRenderSettings(1024, 3, 16, 16), nullptr)
-            .develop(color);
+    const Image one = render(scene(1), *single, test::smallRenderSettings(1024, 3, 16, 16), nullptr)
+                          .develop(color);
     const Image many =
         render(scene(300), *single, test::smallRenderSettings(256, 4, 16, 16), nullptr)
             .develop(color);

@@ -14,6 +14,12 @@ class _MiragePanel:
     def poll(cls, context):
         return context.engine in cls.COMPAT_ENGINES
 
+    def split_layout(self):
+        """The panel's layout with each label left of its field, as Blender's own panels."""
+        layout = self.layout
+        layout.use_property_split = True
+        return layout
+
 
 class _DataPanel(_MiragePanel):
     """A panel of one kind of data block (`context_member`: material, volume, …), shown when
@@ -31,8 +37,7 @@ class MIRAGE_PT_render(_MiragePanel, bpy.types.Panel):
 
     def draw(self, context):
         s = context.scene.mirage
-        layout = self.layout
-        layout.use_property_split = True
+        layout = self.split_layout()
         layout.prop(s, "integrator")
         layout.prop(s, "samples")
         layout.prop(s, "preview_samples")
@@ -51,8 +56,7 @@ class MIRAGE_PT_passes(_MiragePanel, bpy.types.Panel):
 
     def draw(self, context):
         view_layer = context.view_layer
-        layout = self.layout
-        layout.use_property_split = True
+        layout = self.split_layout()
         col = layout.column(heading="Data")
         col.prop(view_layer, "use_pass_combined")
         col.prop(view_layer, "use_pass_z")
@@ -72,8 +76,7 @@ class MIRAGE_PT_material_physics(_DataPanel, bpy.types.Panel):
 
     def draw(self, context):
         s = context.material.mirage
-        layout = self.layout
-        layout.use_property_split = True
+        layout = self.split_layout()
         col = layout.column(heading="Sea Water")
         col.prop(s, "use_chlorophyll")
         sub = col.column()
@@ -106,9 +109,9 @@ class MIRAGE_PT_volume_motion(_DataPanel, bpy.types.Panel):
     context_member = "volume"
 
     def draw(self, context):
-        self.layout.use_property_split = True
+        layout = self.split_layout()
         for name in ("velocity_grid", "velocity_unit", "velocity_scale"):
-            self.layout.prop(context.volume, name)
+            layout.prop(context.volume, name)
 
 
 _PANELS = (MIRAGE_PT_render, MIRAGE_PT_passes, MIRAGE_PT_material_physics,

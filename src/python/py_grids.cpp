@@ -38,6 +38,10 @@ std::vector<std::pair<std::string, py::object>> namedGrids(py::handle file,
             throw MirageError("scene dict: '" + where +
                               "' is a bare numpy array, which has no voxel size: give "
                               "mirage.Grid(array, voxel_size=…, offset=…)");
+        if (py::isinstance<PyGrid>(v))
+            throw MirageError("scene dict: '" + where +
+                              "' is a mirage.Grid, which has no name: give the volume's file as "
+                              "a dict of grid name → mirage.Grid");
         throw MirageError("scene dict: '" + where + "' is a " + typeName(v) +
                           "; a volume's grids in memory are mirage.Grid or pyopenvdb grids");
     };

@@ -146,6 +146,8 @@ def test_bad_grids_raise_errors_naming_the_key(fog_grid):
     unnamed = vdb.FloatGrid()
     with pytest.raises(mirage.Error, match=r"volume\.0\.file\.0' has no name"):
         mirage.Scene.from_dict(with_file([unnamed]))
+    with pytest.raises(mirage.Error, match=r"volume\.0\.file' is a mirage.Grid, which has no name"):
+        mirage.Scene.from_dict(with_file(mirage.Grid(np.ones((2, 2, 2)), 0.1)))
     with pytest.raises(mirage.Error, match=r"volume\.0\.file\.density.*is a str"):
         mirage.Scene.from_dict(with_file({"density": "density.vdb"}))
     # A grid the shader needs and the dict lacks: the loader's own message (a lone grid would be

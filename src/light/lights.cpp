@@ -1,28 +1,31 @@
-// The four light types: incident-light sampling for the render pass, photon emission for the
-// photon pass. Emission sampling (origin, direction) is exact for every light but the spot,
-// whose falloff rides in PhotonEmission::weight; wavelengths come from a SpectrumSampler over
-// the normalised spectral power distribution.
-#include "light/light.h"
-
+// Distant and quad lights (point, spot and sphere lights are light/lamp.cpp): incident-light
+// sampling for the render pass, photon emission for the photon pass. Emission sampling
+// (origin, direction) is exact; wavelengths come from a SpectrumSampler over the normalised
+// spectral power distribution.
 #include <cstdio>
 
 #include "core/error.h"
 #include "core/sampling.h"
 #include "core/surface_epsilon.h"
+#include "light/light.h"
+#include "light/light_common.h"
 #include "light/spherical_rectangle.h"
 #include "spectrum/spectrum_sampling.h"
 
 namespace mirage {
 
-Spectrum normalizedPowerSpectrum(const Spectrum& colour) {
+double powerIntegral(const Spectrum& s) {
     double integral = 0.0;
     for (int l = int(kLambdaMin); l <= int(kLambdaMax); ++l)
-        integral += colour(float(l)) * ((l == int(kLambdaMin) || l == int(kLambdaMax)) ? 0.5 : 1.0);
+        integral += s(float(l)) * ((l == int(kLambdaMin) || l == int(kLambdaMax)) ? 0.5 : 1.0);
+    return integral;
+}
+
+Spectrum normalizedPowerSpectrum(const Spectrum& colour) {
+    const double integral = powerIntegral(colour);
     if (!(integral > 0.0)) throw MirageError("light colour has no energy in 360–830 nm");
     return colour.scaled(float(1.0 / integral));
 }
-
-namespace {
 
 std::string vecStr(const Vec3& v) {
     char buf[96];
@@ -30,161 +33,7 @@ std::string vecStr(const Vec3& v) {
     return buf;
 }
 
-// Direction and distance from a shaded point p to a point emitter at q; false when they
-// coincide (the inverse-square law has no finite value there).
-bool towardsPoint(const Vec3& q, const Vec3& p, LightSample* out, float* d2) {
-    Vec3 d = q - p;
-    *d2 = dot(d, d);
-    if (!(*d2 > 0.f)) return false;
-    out->distance = std::sqrt(*d2);
-    out->wi = d / out->distance;
-    return true;
-}
-
-// The cone of directions from a light at p that can reach anything inside the scene's bounds:
-// seen from outside their bounding sphere (centre c, radius r, at distance d > r) it has
-// half-angle asin(r/d) about c − p, solid angle 2π(1 − cos θ), cos θ = √(d² − r²)/d. A photon
-// leaving outside it meets nothing, so lights draw theirs inside (a projection map of one
-// cell: Jensen 2001, §5.1.3). From inside the sphere, or for empty bounds, there is none
-// (`valid` false) and the light emits over all its directions. Like the distant light's disc,
-// the cone is straight-line geometry: in a refractive-index field, light bent in from
-// outside it is not emitted.
-struct AimCone {
-    Vec3 axis;
-    float cosMax = -1.f;
-    bool valid = false;
-};
-
-AimCone sceneCone(const Vec3& p, const Bounds3& b) {
-    AimCone cone;
-    if (b.empty()) return cone;
-    const Vec3 toCentre = b.center() - p;
-    const float d = length(toCentre), r = 0.5f * length(b.diagonal());
-    // A margin of 0.1 % keeps a light on the sphere from a degenerate, razor-thin cone.
-    if (!(d > 1.001f * r) || !std::isfinite(d)) return cone;
-    cone.axis = toCentre / d;
-    cone.cosMax = std::sqrt((d - r) * (d + r)) / d;
-    cone.valid = true;
-    return cone;
-}
-
-class PointLight : public Light {
-public:
-    PointLight(const Vec3& p, float power, const Spectrum& c)
-        : mP(p),
-          mPower(power),
-          mI(normalizedPowerSpectrum(c).scaled(power * kInv4Pi)),
-          mLambda(normalizedPowerSpectrum(c)) {}
-    bool sampleLi(const Vec3& p, float, float, const SampledWavelengths& w,
-                  LightSample* out) const override {
-        float d2;
-        if (!towardsPoint(mP, p, out, &d2)) return false;
-        out->Li = mI.sample(w) / d2;  // I/r²: inverse-square law
-        return true;
-    }
-    // Isotropic: the power into the scene's cone is Φ (1 − cos θ)/2, all of it when the light
-    // is inside the scene's bounding sphere.
-    float emittedPower(const Bounds3& b) const override {
-        const AimCone cone = sceneCone(mP, b);
-        return cone.valid ? mPower * 0.5f * (1.f - cone.cosMax) : mPower;
-    }
-    // Uniform directions in that cone (or on the whole sphere), each photon of weight 1.
-    bool emitPhoton(const Bounds3& b, Sampler& s, PhotonEmission* out) const override {
-        out->origin = mP;
-        float u1 = s.get1D(), u2 = s.get1D();
-        const AimCone cone = sceneCone(mP, b);
-        out->direction = cone.valid ? sampleUniformCone(cone.axis, cone.cosMax, u1, u2)
-                                    : sampleUniformSphere(u1, u2);
-        out->lambda = mLambda.sample(s.get1D());
-        out->weight = 1.f;
-        return mPower > 0.f;
-    }
-    std::string describe() const override {
-        return "point light at " + vecStr(mP) + ", " + std::to_string(mPower) + " W";
-    }
-
-    const Spectrum* spectrum() const override { return &mI; }
-    std::optional<LightOrigin> origin() const override { return LightOrigin{mP}; }
-
-private:
-    Vec3 mP;
-    float mPower;
-    Spectrum mI;  // W/sr/nm
-    SpectrumSampler mLambda;
-};
-
-class SpotLight : public Light {
-public:
-    SpotLight(const Vec3& p, const Vec3& dir, float power, float inner, float outer,
-              const Spectrum& c)
-        : mP(p), mDir(normalize(dir)), mPower(power) {
-        outer = clamp(outer, 0.01f, 180.f);
-        inner = clamp(inner, 0.f, outer);
-        mCosOuter = std::cos(radians(outer));
-        mCosInner = std::cos(radians(inner));
-        // Solid angle weighted by the falloff, Ω_f = ∫ f dω. The falloff is a smoothstep in
-        // cosθ, and ∫₀¹ (3t² − 2t³) dt = 1/2, so the ramp counts for half its width in cosθ
-        // and Ω_f = 2π(1 − (cosInner + cosOuter)/2) exactly: the light radiates `power`.
-        float omega = 2.f * kPi * (1.f - 0.5f * (mCosInner + mCosOuter));
-        mI = normalizedPowerSpectrum(c).scaled(power / omega);
-        mLambda = SpectrumSampler(normalizedPowerSpectrum(c));
-        // Photons are drawn uniformly over the cone, Ω_c = 2π(1 − cosOuter), and weighted by
-        // f Ω_c / Ω_f: I f / (1/Ω_c) divided by the mean I Ω_f, so that the weight's mean is 1.
-        mWeightScale = (1.f - mCosOuter) / (1.f - 0.5f * (mCosInner + mCosOuter));
-    }
-    bool sampleLi(const Vec3& p, float, float, const SampledWavelengths& w,
-                  LightSample* out) const override {
-        float d2;
-        if (!towardsPoint(mP, p, out, &d2)) return false;
-        float cosT = dot(-out->wi, mDir);
-        float f = falloff(cosT);
-        if (f <= 0.f) return false;
-        out->Li = mI.sample(w) * (f / d2);
-        return true;
-    }
-    float emittedPower(const Bounds3&) const override { return mPower; }
-    // Uniform in the smaller of two cones that hold every direction worth a photon: the spot's
-    // own (f > 0) and the scene's (sceneCone). A cone of solid angle Ω_s sampled uniformly
-    // gives the weight I f Ω_s / Φ = f Ω_s / Ω_f, whose mean over the spot's own cone is 1;
-    // over the scene's cone it is the share of the power that can reach the scene (< 1, so
-    // the emitted power stays Φ and the photons that carry it are not wasted on empty space).
-    bool emitPhoton(const Bounds3& b, Sampler& s, PhotonEmission* out) const override {
-        float u1 = s.get1D(), u2 = s.get1D();
-        const AimCone cone = sceneCone(mP, b);
-        out->origin = mP;
-        if (cone.valid && cone.cosMax > mCosOuter) {
-            out->direction = sampleUniformCone(cone.axis, cone.cosMax, u1, u2);
-            out->weight = falloff(dot(out->direction, mDir)) * (1.f - cone.cosMax) /
-                          (1.f - 0.5f * (mCosInner + mCosOuter));
-        } else {
-            out->direction = sampleUniformCone(mDir, mCosOuter, u1, u2);
-            out->weight = falloff(dot(out->direction, mDir)) * mWeightScale;
-        }
-        out->lambda = mLambda.sample(s.get1D());
-        return mPower > 0.f && out->weight > 0.f;
-    }
-    std::string describe() const override {
-        return "spot light at " + vecStr(mP) + " towards " + vecStr(mDir) + ", " +
-               std::to_string(mPower) + " W";
-    }
-
-    const Spectrum* spectrum() const override { return &mI; }
-    std::optional<LightOrigin> origin() const override {
-        return LightOrigin{mP, mDir, mCosOuter};
-    }
-
-private:
-    float falloff(float cosT) const {
-        if (cosT >= mCosInner) return 1.f;
-        if (cosT <= mCosOuter) return 0.f;
-        float t = (cosT - mCosOuter) / (mCosInner - mCosOuter);
-        return t * t * (3.f - 2.f * t);
-    }
-    Vec3 mP, mDir;
-    float mPower, mCosInner, mCosOuter, mWeightScale;
-    Spectrum mI;
-    SpectrumSampler mLambda;
-};
+namespace {
 
 class DistantLight : public Light {
 public:
@@ -329,18 +178,11 @@ private:
 
 }  // namespace
 
-std::unique_ptr<Light> makePointLight(const Vec3& p, float power, const Spectrum& c) {
-    return std::make_unique<PointLight>(p, power, c);
-}
-std::unique_ptr<Light> makeSpotLight(const Vec3& p, const Vec3& dir, float power, float inner,
-                                     float outer, const Spectrum& c) {
-    return std::make_unique<SpotLight>(p, dir, power, inner, outer, c);
-}
 std::unique_ptr<Light> makeDistantLight(const Vec3& dir, float E, const Spectrum& c) {
     return std::make_unique<DistantLight>(dir, E, c);
 }
-std::unique_ptr<Light> makeQuadLight(const Vec3& corner, const Vec3& u, const Vec3& v,
-                                     float power, const Spectrum& c) {
+std::unique_ptr<Light> makeQuadLight(const Vec3& corner, const Vec3& u, const Vec3& v, float power,
+                                     const Spectrum& c) {
     return std::make_unique<QuadLight>(corner, u, v, power, c);
 }
 

@@ -3,9 +3,21 @@
 
 #include <cmath>
 
+#include "light/surface_light.h"
 #include "render/direct_light.h"
 
 namespace mirage {
+
+namespace {
+
+// Whether next-event estimation samples the emission of the scene's shape `shape`.
+bool sampledEmitter(const RenderScene& scene, int shape) {
+    for (const auto& light : scene.lights)
+        if (const SurfaceLight* s = surfaceLightOf(*light)) return s->samples(shape);
+    return false;
+}
+
+}  // namespace
 
 SurfaceAhead surfaceAhead(const RenderScene& scene, const Ray& ray) {
     SurfaceAhead ahead;
@@ -19,7 +31,10 @@ const Material& gatherAtSurface(const RenderScene& scene, const SurfaceHit& hit,
                                 PathRecorder& rec) {
     const Material& mat = scene.geometry->materialAt(hit);
     const SampledSpectrum& beta = path.throughput.beta;
-    if (mat.emissive()) rec.emittedAtSurface(beta * mat.emission(path.wavelengths), hit.t);
+    // An emitter next-event estimation samples was counted at the vertex before, unless the
+    // path came straight from the camera or through mirrors and glass (no shadow ray there).
+    if (mat.emissive() && (path.specularChain || !sampledEmitter(scene, hit.shape)))
+        rec.emittedAtSurface(beta * mat.emission(path.wavelengths), hit.t);
     if (mat.specular()) {
         rec.passedSpecular(hit.t);
         return mat;

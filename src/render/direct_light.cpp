@@ -1,5 +1,6 @@
 #include "render/direct_light.h"
 
+#include "light/surface_light.h"
 #include "render/lamp_sampling.h"
 
 namespace mirage {
@@ -19,14 +20,31 @@ float powerHeuristic(float a, float b) {
     return b2 > 0.f ? a2 / b2 : 0.f;
 }
 
+// Whether the ray from o along the unit wi meets light `i` (then *out holds the distance, the
+// radiance and the pdf its sampleLi draws wi with): Light::hitLi, but for the emissive
+// surfaces, which only the geometry can intersect — the first surface along wi, if it is one of
+// their emitters.
+bool hitLight(const RenderScene& scene, const Light& light, const Vec3& o, const Vec3& wi,
+              const SampledWavelengths& w, LightSample* out) {
+    const SurfaceLight* surfaces = surfaceLightOf(light);
+    if (!surfaces) return light.hitLi(o, wi, w, out);
+    const std::optional<SurfaceHit> hit = scene.geometry->intersect(Ray{o, wi, kInfinity});
+    if (!hit || !surfaces->samples(hit->shape)) return false;
+    out->wi = wi;
+    out->distance = hit->t;
+    out->Li = scene.geometry->materialAt(*hit).emission(w);
+    out->pdf = surfaces->pdfAt(hit->material, o, hit->p, hit->ng);
+    return out->pdf > 0.f;
+}
+
 }  // namespace
 
 // Light arriving at a medium point, by next-event estimation. A light a direction can hit (the
-// quad, the dome) is sampled twice, by the light and by the phase function, the two combined by
-// multiple importance sampling (Veach 1997): in a strongly forward medium (marine particles,
-// HG g = 0.92, p up to 26/sr against a mean of 1/4π) the light's own samples alone score rare
-// directions along the lobe ~300 times the mean, the speckles of a lit water box; phase
-// samples take those directions at the lobe's own density. Both are shadow rays with the same
+// quad, the dome, the emissive surfaces) is sampled twice, by the light and by the phase function,
+// the two combined by multiple importance sampling (Veach 1997): in a strongly forward medium
+// (marine particles, HG g = 0.92, p up to 26/sr against a mean of 1/4π) the light's own samples
+// alone score rare directions along the lobe ~300 times the mean, the speckles of a lit water box;
+// phase samples take those directions at the lobe's own density. Both are shadow rays with the same
 // transmittance estimate, so the sum stays an unbiased estimate of ∫ T p L dω.
 SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, const Vec3& wo,
                                   Sampler& sampler, ThreadState& ts, const LampSampling* lamps) {
@@ -65,7 +83,7 @@ SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, 
             const float uc = sampler.get1D(), v1 = sampler.get1D(), v2 = sampler.get1D();
             const Vec3 wi = m.phaseSample(c.mp, -wo, uc, v1, v2, &weight, &pdf);
             LightSample hs;
-            if (pdf > 0.f && light->hitLi(c.p, wi, w, &hs))
+            if (pdf > 0.f && hitLight(scene, *light, c.p, wi, w, &hs))
                 term += shadowed(hs) * weight * powerHeuristic(pdf, hs.pdf);
         }
         L += term;
@@ -77,8 +95,10 @@ SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, 
 // Light arriving at a diffuse surface point, by next-event estimation. A light at infinity (the
 // dome) is sampled twice, by the light and by the BSDF, combined by multiple importance sampling
 // as in a medium: a constant dome drawn uniformly over the sphere sends half its samples below
-// the surface, and the BSDF's cosine lobe draws exactly the directions that count. A quad's
-// small solid angle would waste most BSDF samples, so it keeps its own sampling alone.
+// the surface, and the BSDF's cosine lobe draws exactly the directions that count. So are the
+// emissive surfaces, which may be large and near (a glowing wall beside the point), where
+// points drawn on them by area score d²/cos without bound. A quad's small solid angle would
+// waste most BSDF samples, so it keeps its own sampling alone.
 SampledSpectrum directLightSurface(const RenderScene& scene, const SurfaceHit& hit,
                                    const Material& material, const Vec3& wo, Sampler& sampler,
                                    ThreadState& ts) {
@@ -103,7 +123,7 @@ SampledSpectrum directLightSurface(const RenderScene& scene, const SurfaceHit& h
     };
     for (size_t i = 0; i < scene.lights.size(); ++i) {
         const Light* light = scene.lights[i].get();
-        const bool twoStrategies = light->infinite();
+        const bool twoStrategies = light->infinite() || surfaceLightOf(*light);
         float u1, u2;
         sampler.get2D(&u1, &u2);  // one pair of dimensions: stratified over the light
         SampledSpectrum term(0.f);
@@ -121,7 +141,7 @@ SampledSpectrum directLightSurface(const RenderScene& scene, const SurfaceHit& h
             if (material.sample(woL, uc, v1, v2, w, TransportMode::Radiance, &bs) && !bs.specular) {
                 const float pdf = material.pdf(woL, bs.wi);
                 const Vec3 wi = frame.toWorld(bs.wi);
-                if (pdf > 0.f && light->hitLi(hit.p, wi, w, &hs))
+                if (pdf > 0.f && hitLight(scene, *light, spawnRay(hit, wi).o, wi, w, &hs))
                     term += shadowed(hs) * hs.Li * (powerHeuristic(pdf, hs.pdf) / pdf);
             }
         }

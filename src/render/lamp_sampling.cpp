@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "light/lamp.h"
+
 namespace mirage {
 
 namespace {
@@ -46,9 +48,10 @@ LampSampling::LampSampling(const RenderScene& scene, const Ray& ray, float tEnd,
     if (!on || !mediaSpan(scene, ray, tEnd, &a, &b)) return;
     for (size_t i = 0; i < scene.lights.size() && mCount < kMaxLamps; ++i) {
         const std::optional<LightOrigin> lamp = scene.lights[i]->origin();
+        const auto* shape = dynamic_cast<const mirage::Lamp*>(scene.lights[i].get());
+        const Vec3 apex = shape ? shape->coneApex() : lamp ? lamp->p : Vec3(0.f);
         float t0 = a, t1 = b;
-        if (!lamp ||
-            !coneInterval(ray.o, ray.d, Cone{lamp->p, lamp->axis, lamp->cosCone}, &t0, &t1))
+        if (!lamp || !coneInterval(ray.o, ray.d, Cone{apex, lamp->axis, lamp->cosCone}, &t0, &t1))
             continue;
         const EquiangularSegment segment(ray.o, ray.d, t0, t1, lamp->p);
         if (!segment.empty()) mLamps[mCount++] = Lamp{i, segment};
@@ -112,8 +115,14 @@ void LampSampling::gather(const RenderScene& scene, const SampledSpectrum& beta,
         const Lamp& lamp = mLamps[k];
         const float t = lamp.t, pe = lamp.pdf;
         const Vec3 x = mRay.at(t);
+        // A point lamp's light at x is one direction; a sphere's is an integral over the cone
+        // it subtends, drawn at random like next-event estimation's so that the estimate stays
+        // unbiased (the weights depend on t alone).
+        float u1 = 0.5f, u2 = 0.5f;
+        const auto* shape = dynamic_cast<const mirage::Lamp*>(scene.lights[lamp.light].get());
+        if (shape && shape->radius() > 0.f) sampler.get2D(&u1, &u2);
         LightSample ls;
-        if (!(pe > 0.f) || !scene.lights[lamp.light]->sampleLi(x, 0.5f, 0.5f, w, &ls)) continue;
+        if (!(pe > 0.f) || !scene.lights[lamp.light]->sampleLi(x, u1, u2, w, &ls)) continue;
         // What scatters towards wo at x, each medium by its phase function and its weight.
         SampledSpectrum scattered(0.f);
         for (size_t m = 0; m < ts.tracking.size(); ++m) {

@@ -1,8 +1,10 @@
-// Light from point and spot lights scattered off a path's segment, drawn two ways and combined
-// by multiple importance sampling (Kulla & Fajardo 2012; Veach 1997 §9.2): the path tracer's
-// own scattering points, drawn by delta tracking ∝ T σs, and one point per lamp drawn by
-// equiangular sampling ∝ 1/r² towards it (transport/equiangular.h), over the part of the
-// segment inside the media and inside a spot's cone.
+// Light from point, spot and sphere lights scattered off a path's segment, drawn two ways and
+// combined by multiple importance sampling (Kulla & Fajardo 2012; Veach 1997 §9.2): the path
+// tracer's own scattering points, drawn by delta tracking ∝ T σs, and one point per lamp drawn
+// by equiangular sampling ∝ 1/r² towards it (transport/equiangular.h), over the part of the
+// segment inside the media and inside a spot's cone. A sphere light is aimed at by its centre
+// (its light falls off as 1/r² outside it, as a point's), and each strategy then estimates the
+// light at its point by one direction drawn in the cone the sphere subtends.
 //
 // Both strategies estimate the single scattering of lamp k off the segment,
 //     S_k = ∫ T(0, t) σs(t) p(θ) I_k V T(t, lamp) / r² dt,

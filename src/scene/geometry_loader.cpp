@@ -67,11 +67,22 @@ Material readMaterial(const TableReader& t, const ColorPipeline& color) {
     return m;
 }
 
+// The triangles (3 corners each, world) of the shape just added, among the emitters when its
+// material emits.
+void addEmitter(std::vector<Vec3> corners, int material, const GeometryScene& geometry,
+                EmissiveTriangles* emitters) {
+    if (!geometry.material(material).emissive()) return;
+    emitters->shapes.resize(geometry.shapeCount(), false);
+    emitters->shapes.back() = true;
+    emitters->emitter.insert(emitters->emitter.end(), corners.size() / 3, material);
+    emitters->vertices.insert(emitters->vertices.end(), corners.begin(), corners.end());
+}
+
 }  // namespace
 
 std::unique_ptr<GeometryScene> readGeometry(
     const TableReader& top, const std::function<std::string(const std::string&)>& resolve,
-    size_t volumeCount, const ColorPipeline& color) {
+    size_t volumeCount, const ColorPipeline& color, EmissiveTriangles* emitters) {
     const std::vector<TableReader> materials = top.tables("material"), shapes = top.tables("shape");
     if (materials.empty() && shapes.empty()) return nullptr;  // no Embree device for media alone
     auto geometry = std::make_unique<GeometryScene>();
@@ -84,6 +95,12 @@ std::unique_ptr<GeometryScene> readGeometry(
         geometry->addMaterial(std::move(m));
     }
 
+    EmissiveTriangles unused;
+    if (!emitters) emitters = &unused;
+    for (size_t m = 0; m < geometry->materialCount(); ++m) {
+        const Material& mat = geometry->material(int(m));
+        emitters->radiance.push_back(mat.emissive() ? mat.emissionSpectrum() : Spectrum(0.f));
+    }
     std::vector<int> interiors;  // volumes already placed inside a shape
     for (const auto& t : shapes) {
         std::string type = t.getString("type");
@@ -128,6 +145,9 @@ std::unique_ptr<GeometryScene> readGeometry(
             if (!(length(cross(u, v)) > 0.f))
                 t.fail("edge_v", "the quad's edges are parallel or zero");
             geometry->addQuad(xf.point(corner), xf.vector(u), xf.vector(v), material, interior);
+            const Vec3 c = xf.point(corner), cu = c + xf.vector(u), cv = c + xf.vector(v);
+            addEmitter({c, cu, cu + xf.vector(v), c, cu + xf.vector(v), cv}, material, *geometry,
+                       emitters);
         } else if (type == "mesh") {
             std::string file = resolve(t.getString("file"));
             if (const std::string problem = pathProblem(file); !problem.empty())
@@ -139,10 +159,14 @@ std::unique_ptr<GeometryScene> readGeometry(
                 t.fail("file", e.what());
             }
             geometry->addMesh(mesh, xf, material, interior);
+            std::vector<Vec3> corners;
+            for (uint32_t i : mesh.indices) corners.push_back(xf.point(mesh.positions[i]));
+            addEmitter(std::move(corners), material, *geometry, emitters);
         } else {
             t.fail("type", "unknown shape type '" + type + "'; expected mesh, sphere or quad");
         }
         const int shape = int(geometry->shapeCount()) - 1;
+        emitters->shapes.resize(size_t(shape) + 1, false);
         geometry->setHoldout(shape, t.getBool("holdout", false));
         geometry->setName(shape, readObjectName(t, "shape" + std::to_string(shape)));
         t.finish();

@@ -1,5 +1,6 @@
-// [[light]] tables → lights: point, spot, distant/sun, quad and dome, coloured by RGB in the
-// working space or by a blackbody temperature (docs/scene-file.md, "Lights").
+// [[light]] tables → lights: point and spot (either with a radius: a sphere; either with an
+// IES profile), distant/sun, quad and dome, coloured by RGB in the working space or by a
+// blackbody temperature (docs/scene-file.md, "Lights").
 #include "scene/light_loader.h"
 
 #include <algorithm>
@@ -8,6 +9,9 @@
 #include "core/error.h"
 #include "film/color.h"
 #include "light/dome_light.h"
+#include "light/ies_file.h"
+#include "light/lamp.h"
+#include "light/surface_light.h"
 #include "scene/scene.h"
 #include "spectrum/spectrum.h"
 
@@ -46,6 +50,45 @@ std::unique_ptr<Light> readDome(const TableReader& t, const ColorPipeline& color
         t.fail("map", e.what());
     }
     return nullptr;
+}
+
+// Where a lamp points: `look_at` or `direction`; `fallback` when neither is given (a spot must
+// give one: fallback null).
+Vec3 lampAxis(const TableReader& t, const Vec3& position, const Vec3* fallback) {
+    if (fallback && !t.has("look_at") && !t.has("direction")) return *fallback;
+    const Vec3 dir = t.has("look_at") ? t.getVec3("look_at") - position : t.getVec3("direction");
+    if (!(length(dir) > 0))
+        t.fail(t.has("look_at") ? "look_at" : "direction", "the light points nowhere");
+    return normalize(dir);
+}
+
+// A point or spot light: position, power, colour; `radius` makes it a sphere; a spot's cone
+// (cone_angle, cone_inner); `ies`, a photometric file shaping its intensity, its nadir along
+// the spot's direction or a point light's `direction`/`look_at` (default straight down, −y).
+std::unique_ptr<Light> readLamp(const TableReader& t, bool spot, const ColorPipeline& color,
+                                const std::function<std::string(const std::string&)>& resolve) {
+    LampDesc d;
+    d.position = t.getVec3("position");
+    d.powerW = float(t.getNumber("power", 100, 0, 1e15));
+    d.radius = float(t.getNumber("radius", 0, 0, 1e6));
+    const Vec3 down(0.f, -1.f, 0.f);
+    if (spot) {
+        d.profile.axis = lampAxis(t, d.position, nullptr);
+        d.profile.spot = true;
+        d.profile.outerDeg = float(t.getNumber("cone_angle", 30, 0.1, 180));
+        d.profile.innerDeg =
+            float(t.getNumber("cone_inner", d.profile.outerDeg * 0.8, 0, d.profile.outerDeg));
+    }
+    if (t.has("ies")) {
+        if (!spot) d.profile.axis = lampAxis(t, d.position, &down);
+        const std::string file = resolve(t.getString("ies"));
+        try {
+            d.profile.ies = std::make_shared<const IesProfile>(IesProfile::read(file));
+        } catch (const MirageError& e) {
+            t.fail("ies", e.what());
+        }
+    }
+    return makeLamp(d, lightColour(t, color));
 }
 
 // [[light]] group: a name the lightgroup_<name> pass takes, so Nuke's layer rule applies.
@@ -89,17 +132,8 @@ std::unique_ptr<Light> readLight(const TableReader& t, const ColorPipeline& colo
                                  const std::function<std::string(const std::string&)>& resolve) {
     std::string type = t.getString("type");
     std::unique_ptr<Light> light;
-    if (type == "point") {
-        light = makePointLight(t.getVec3("position"), float(t.getNumber("power", 100, 0, 1e15)),
-                               lightColour(t, color));
-    } else if (type == "spot") {
-        Vec3 p = t.getVec3("position");
-        Vec3 dir = t.has("look_at") ? t.getVec3("look_at") - p : t.getVec3("direction");
-        if (!(length(dir) > 0)) t.fail("direction", "the spot light points nowhere");
-        float outer = float(t.getNumber("cone_angle", 30, 0.1, 180));
-        float inner = float(t.getNumber("cone_inner", outer * 0.8, 0, outer));
-        light = makeSpotLight(p, dir, float(t.getNumber("power", 100, 0, 1e15)), inner, outer,
-                              lightColour(t, color));
+    if (type == "point" || type == "spot") {
+        light = readLamp(t, type == "spot", color, resolve);
     } else if (type == "distant" || type == "sun") {
         Vec3 dir = t.getVec3("direction");
         if (!(length(dir) > 0)) t.fail("direction", "expected a non-zero direction");
@@ -117,6 +151,16 @@ std::unique_ptr<Light> readLight(const TableReader& t, const ColorPipeline& colo
     }
     t.finish();
     return light;
+}
+
+void addSurfaceLight(EmissiveTriangles triangles, RenderScene* scene) {
+    if (triangles.emitter.empty()) return;
+    auto light = std::make_unique<SurfaceLight>(std::move(triangles));
+    if (!(light->emittedPower(Bounds3{}) > 0.f)) return;
+    scene->lights.push_back(std::move(light));
+    // Its light is emission's (slot 0 of the light-group passes): lightGroupSlot adds 1.
+    if (scene->lightGroupIndex.empty()) scene->lightGroupIndex.assign(scene->lights.size() - 1, 0);
+    scene->lightGroupIndex.push_back(-1);
 }
 
 void readLights(const TableReader& top, const ColorPipeline& color,

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "light/light.h"
+#include "light/surface_light.h"
 #include "render/render_scene.h"
 #include "scene/toml_reader.h"
 
@@ -21,5 +22,10 @@ std::unique_ptr<Light> readLight(const TableReader& t, const ColorPipeline& colo
 // lightgroup_* passes) into scene->lightGroups and lightGroupIndex.
 void readLights(const TableReader& top, const ColorPipeline& color,
                 const std::function<std::string(const std::string&)>& resolve, RenderScene* scene);
+
+// The scene's emissive meshes and quads (readGeometry's `emitters`) as one light after its
+// [[light]]s (light/surface_light.h), in the light-group passes' emission slot; nothing when no
+// surface emits.
+void addSurfaceLight(EmissiveTriangles triangles, RenderScene* scene);
 
 }  // namespace mirage

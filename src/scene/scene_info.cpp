@@ -67,7 +67,8 @@ VolumeInfo describeVolume(const VolumeRecord& v, const Medium& m) {
 // Light `i`'s group, as the lightgroup_* passes name it ("" when no light has a group).
 std::string lightGroupOf(const RenderScene& scene, size_t i) {
     if (scene.lightGroups.empty()) return "";
-    return scene.lightGroupNames()[size_t(scene.lightGroupSlot(i) - 1)];
+    const int slot = scene.lightGroupSlot(i);
+    return slot == 0 ? "emission" : scene.lightGroupNames()[size_t(slot - 1)];
 }
 
 OutputInfo describeOutput(const Scene& scene) {

@@ -521,7 +521,10 @@ Scene loadScene(const std::string& path, const LoadOptions& options, const Color
         scene.shutter = readShutter(*c);
     for (const auto& v : top.tables("volume")) readVolume(v, resolve, dir, options, &scene);
     readLights(top, color, resolve, &scene.render);
-    scene.render.geometry = readGeometry(top, resolve, scene.render.media.size(), color);
+    EmissiveTriangles emitters;
+    scene.render.geometry =
+        readGeometry(top, resolve, scene.render.media.size(), color, &emitters);
+    addSurfaceLight(std::move(emitters), &scene.render);
     for (size_t i = 0; scene.render.geometry && i < scene.render.geometry->shapeCount(); ++i)
         scene.render.cryptoObjects.shapes.push_back(scene.render.geometry->shape(int(i)).name);
     checkAovs(top, scene);

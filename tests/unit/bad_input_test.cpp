@@ -261,6 +261,13 @@ TEST_F(BadInput, AbsurdValuesAreRefusedOrBounded) {
         {"[[light]]\ntype = \"point\"\nposition = [0, 1, 0]\ntemperature = -100\n",
          "temperature"},
         {"[[light]]\ntype = \"laser\"\n", "type"},
+        {"[[light]]\ntype = \"point\"\nposition = [0, 1, 0]\nradius = -0.1\n", "radius"},
+        {"[[light]]\ntype = \"spot\"\nposition = [0, 1, 0]\ndirection = [0, -1, 0]\n"
+         "radius = nan\n",
+         "radius"},
+        {"[[light]]\ntype = \"point\"\nposition = [0, 1, 0]\nies = \"absent.ies\"\n", "absent.ies"},
+        {"[[light]]\ntype = \"point\"\nposition = [0, 1, 0]\ndirection = [0, -1, 0]\n",
+         "direction"},
         {sceneFor("good.vdb", "density_scale = -1.0\n"), "density_scale"},
         {sceneFor("good.vdb", "density_scale = 1e300\n"), "density_scale"},
         {sceneFor("good.vdb", "transform = { scale = 0.0 }\n"), "scale"},
@@ -285,6 +292,17 @@ TEST_F(BadInput, AbsurdValuesAreRefusedOrBounded) {
     ColorPipeline color;
     Scene loaded = loadScene(s, LoadOptions{}, color);
     EXPECT_EQ(loaded.photon.photons, 1000000000u);
+}
+
+TEST_F(BadInput, MalformedIesFileIsNamedWithItsLineAndTheKey) {
+    scene("bad.ies",
+          "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 3 1 1 2 0 0 0\n1 1 0\n0 45 90\n0\n"
+          "1 oops 1\n");
+    const std::string s = scene("ies.toml",
+                                "[[light]]\ntype = \"spot\"\nposition = [0, 1, 0]\n"
+                                "direction = [0, -1, 0]\nies = \"bad.ies\"\n");
+    expectClearMessage(sceneError(s), {s + ":", "ies", "bad.ies:7", "candela", "'oops'"},
+                       "malformed IES file");
 }
 
 TEST_F(BadInput, OverflowingCoefficientProductIsRefusedNamingTheGrid) {

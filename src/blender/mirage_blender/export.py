@@ -115,17 +115,18 @@ def light(obj, ex):
         return {"type": "sun", "direction": _direction(obj), "color": color,
                 "irradiance": units.sun_irradiance(lamp.energy, color)}
     pos = units.to_mirage(obj.matrix_world.translation)
-    if lamp.type in ("POINT", "SPOT") and lamp.shadow_soft_size > 0.0:
-        ex.left_out.append(f"light '{obj.name}': radius (a point emitter in Mirage)")
+    # Cycles' point and spot lights are spheres of radius shadow_soft_size (metres, the
+    # object's scale left out, as Cycles does), and so are Mirage's with `radius`.
+    radius = {"radius": float(lamp.shadow_soft_size)} if lamp.shadow_soft_size > 0.0 else {}
     if lamp.type == "POINT":
         return {"type": "point", "position": pos, "color": color,
-                "power": units.point_power(lamp.energy, color)}
+                "power": units.point_power(lamp.energy, color), **radius}
     if lamp.type == "SPOT":
         outer, inner = units.spot_cone(lamp.spot_size, lamp.spot_blend)
         power = units.spot_power(lamp.energy, color, math.cos(math.radians(inner)),
                                  math.cos(math.radians(outer)))
         return {"type": "spot", "position": pos, "direction": _direction(obj), "color": color,
-                "cone_angle": outer, "cone_inner": inner, "power": power}
+                "cone_angle": outer, "cone_inner": inner, "power": power, **radius}
     if lamp.type == "AREA":
         return _area(obj, lamp, color, ex)
     ex.left_out.append(f"light '{obj.name}': type {lamp.type}")

@@ -23,6 +23,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -89,10 +90,7 @@ public:
         std::vector<double> weight(n);
         mTotal = 0.0;
         for (int j = 0; j < mHeight; ++j) {
-            // The row's solid angle per pixel, exactly: 2π/W (cos θ0 − cos θ1).
-            const double dOmega =
-                2.0 * kPi / mWidth *
-                (std::cos(kPi * j / double(mHeight)) - std::cos(kPi * (j + 1) / double(mHeight)));
+            const double dOmega = pixelSolidAngle(j);
             const double sinT = std::sin(kPi * (j + 0.5) / double(mHeight));
             for (int i = 0; i < mWidth; ++i) {
                 const size_t p = size_t(j) * mWidth + i;
@@ -106,6 +104,7 @@ public:
             }
         }
         mDistribution = Distribution2D(weight, mWidth, mHeight);
+        findSun();
     }
 
     bool sampleLi(const Vec3&, float u1, float u2, const SampledWavelengths& w,
@@ -136,6 +135,7 @@ public:
         return radiance(d, w);
     }
     bool infinite() const override { return true; }
+    std::optional<LightLobe> lobe() const override { return mSun; }
 
     float emittedPower(const Bounds3& b) const override {
         if (b.empty()) return 0.f;
@@ -189,6 +189,45 @@ public:
     }
 
 private:
+    // The row's solid angle per pixel, exactly: 2π/W (cos θ0 − cos θ1).
+    double pixelSolidAngle(int row) const {
+        return 2.0 * kPi / mWidth *
+               (std::cos(kPi * row / double(mHeight)) -
+                std::cos(kPi * (row + 1) / double(mHeight)));
+    }
+    Vec3 pixelDirection(int i, int j) const {
+        return latLongDirection((i + 0.5f) / mWidth, (j + 0.5f) / mHeight, mRotation);
+    }
+
+    // A sun in the map: the power within kSunRadius of the brightest pixel, if it holds at
+    // least kSunShare of the dome's. Then a strongly forward medium's paths are guided towards
+    // it (render/light_lobes.h), as they are towards a distant light: the light a cloud's
+    // vertex receives through its forward lobe from a small, bright sun is what its phase
+    // samples find rarely and brightly.
+    void findSun() {
+        const float kSunRadius = radians(5.f);
+        constexpr double kSunShare = 0.5;
+        if (!(mTotal > 0.0)) return;
+        const size_t brightest =
+            size_t(std::max_element(mPixelPower.begin(), mPixelPower.end()) - mPixelPower.begin());
+        const Vec3 centre = pixelDirection(int(brightest % mWidth), int(brightest / mWidth));
+        const float cosRadius = std::cos(kSunRadius);
+        double power = 0.0;
+        Vec3d mean(0.0);
+        for (int j = 0; j < mHeight; ++j) {
+            const double dOmega = pixelSolidAngle(j);
+            for (int i = 0; i < mWidth; ++i) {
+                const Vec3 d = pixelDirection(i, j);
+                if (dot(d, centre) < cosRadius) continue;
+                const double p = mPixelPower[size_t(j) * mWidth + i] * dOmega;
+                power += p;
+                mean = mean + Vec3d(d.x, d.y, d.z) * p;
+            }
+        }
+        if (power < kSunShare * mTotal) return;
+        mSun = LightLobe{normalize(Vec3(mean)), float(power / (kLambdaMax - kLambdaMin))};
+    }
+
     Vec3 sampleDirection(float u1, float u2, float* pdf) const {
         if (mDistribution.empty()) {
             *pdf = kInv4Pi;
@@ -251,6 +290,7 @@ private:
     std::vector<Vec3> mCoefficients;  // c_k per pixel, intensity folded in
     std::vector<float> mPixelPower;   // ∫ L dλ per pixel, W·m⁻²·sr⁻¹
     Distribution2D mDistribution;     // empty for the constant dome
+    std::optional<LightLobe> mSun;    // findSun
 };
 
 }  // namespace

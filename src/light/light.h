@@ -51,6 +51,11 @@ struct LightOrigin {
     float cosCone = -1.f;
 };
 
+struct LightLobe {
+    Vec3 dir;
+    float irradiance = 0.f;
+};
+
 class Light {
 public:
     virtual ~Light() = default;
@@ -89,6 +94,10 @@ public:
     virtual const Spectrum* spectrum() const { return nullptr; }
     // A light at a point (point, spot): where it is. The others: nothing.
     virtual std::optional<LightOrigin> origin() const { return std::nullopt; }
+    // A light at infinity most of whose power comes from one small patch of sky (a sun in a
+    // sky map): the direction towards the patch and the patch's irradiance, mean over
+    // 360–830 nm (W·m⁻²·nm⁻¹, the unit of a distant light's Li). The others: nothing.
+    virtual std::optional<LightLobe> lobe() const { return std::nullopt; }
 };
 
 // Normalises a colour spectrum so that ∫ S dλ = 1 over 360–830 nm.

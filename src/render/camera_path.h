@@ -25,9 +25,11 @@ struct CameraPath : PathSegment {
     bool reemitted = false;
     int depth = 0;              // vertices before the current ray (scattering and specular)
     bool specularChain = true;  // every vertex so far a mirror or glass: escapes see the dome
-    // Lobe walks (render/light_lobes.h, volpath.cpp): whether the path draws them, and the sum
-    // Σ_j r_j q^(k−1−j) over the medium vertices of the run the current ray ends.
+    // Lobe walks (render/light_lobes.h, volpath.cpp): whether the path draws them, the
+    // probability s that a medium vertex starts one (lobeWalkStart), and the sum
+    // Σ_j s r_j q^(k−1−j) over the medium vertices of the run the current ray ends.
     bool guided = false;
+    float walkStart = 1.f;
     float lobeRatios = 0.f;
 };
 

@@ -47,7 +47,8 @@ bool hitLight(const RenderScene& scene, const Light& light, const Vec3& o, const
 // phase samples take those directions at the lobe's own density. Both are shadow rays with the same
 // transmittance estimate, so the sum stays an unbiased estimate of ∫ T p L dω.
 SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, const Vec3& wo,
-                                  Sampler& sampler, ThreadState& ts, const LampSampling* lamps) {
+                                  Sampler& sampler, ThreadState& ts, const LampSampling* lamps,
+                                  bool infiniteOnly) {
     SampledSpectrum L(0.f);
     const Medium& m = ts.tracking.medium(c.medium);
     const SampledWavelengths& w = ts.tracking.wavelengths();
@@ -63,6 +64,9 @@ SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, 
     };
     for (size_t i = 0; i < scene.lights.size(); ++i) {
         const Light* light = scene.lights[i].get();
+        if (infiniteOnly && !light->infinite()) continue;
+        const float share = lamps ? lamps->scatterPointWeight(i, c) : 1.f;
+        if (!(share > 0.f)) continue;
         float u1, u2;
         sampler.get2D(&u1, &u2);  // one pair of dimensions: stratified over the light
         SampledSpectrum term(0.f);
@@ -70,9 +74,8 @@ SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, 
         if (light->sampleLi(c.p, u1, u2, w, &ls)) {
             // The light travels along −wi into the point and leaves along wo.
             const SampledSpectrum phase = m.phaseEval(c.mp, -ls.wi, wo);
-            const float mis = ls.pdf > 0.f ? powerHeuristic(ls.pdf, m.phasePdf(c.mp, -wo, ls.wi))
-                              : lamps      ? lamps->scatterPointWeight(i, c)
-                                           : 1.f;
+            const float mis =
+                ls.pdf > 0.f ? powerHeuristic(ls.pdf, m.phasePdf(c.mp, -wo, ls.wi)) : share;
             if (!phase.isZero() && mis > 0.f) term += shadowed(ls) * phase * mis;
         }
         if (ls.pdf > 0.f) {
@@ -85,6 +88,7 @@ SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, 
             LightSample hs;
             if (pdf > 0.f && hitLight(scene, *light, c.p, wi, w, &hs))
                 term += shadowed(hs) * weight * powerHeuristic(pdf, hs.pdf);
+            term *= share;
         }
         L += term;
         if (split) split[scene.lightGroupSlot(i)] += term;

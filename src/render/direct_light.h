@@ -12,11 +12,13 @@ class LampSampling;
 
 // Σ_lights p(−wi, wo) · Li · T(shadow ray). wo is the direction the light leaves towards the
 // viewer (the reverse of the incoming path direction). With `lamps`, the segment c lies on
-// draws points towards the point and spot lights too (render/lamp_sampling.h), and each lamp's
-// term here carries its multiple-importance weight against them.
+// draws points towards the point and spot lights and the lights at infinity too
+// (render/lamp_sampling.h), and each light's term here carries its weight against them (a
+// light of weight 0 draws no shadow ray). infiniteOnly: the lights at infinity alone (the
+// estimate at such a point).
 SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, const Vec3& wo,
                                   Sampler& sampler, ThreadState& ts,
-                                  const LampSampling* lamps = nullptr);
+                                  const LampSampling* lamps = nullptr, bool infiniteOnly = false);
 
 // Σ_lights f(wo, wi) |cos θi| · Li · T(shadow ray) at a diffuse surface point; wo (world, unit)
 // points towards the viewer. Light arriving from the other side of the surface than wo is not

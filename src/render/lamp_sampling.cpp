@@ -1,6 +1,9 @@
 #include "render/lamp_sampling.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include "render/direct_light.h"
 
 #include "light/lamp.h"
 
@@ -34,6 +37,13 @@ float scatterProxy(const MediumPoint& mp) { return mp.sigmaS.average(); }
 
 }  // namespace
 
+bool samplesSky(const RenderScene& scene) {
+    if (!scene.equiangular || scene.media.empty()) return false;
+    for (const auto& light : scene.lights)
+        if (light->infinite()) return true;
+    return false;
+}
+
 bool samplesLamps(const RenderScene& scene) {
     if (!scene.equiangular || scene.media.empty()) return false;
     for (const auto& light : scene.lights)
@@ -42,8 +52,9 @@ bool samplesLamps(const RenderScene& scene) {
 }
 
 LampSampling::LampSampling(const RenderScene& scene, const Ray& ray, float tEnd, bool on,
-                           Sampler& sampler)
-    : mRay(ray) {
+                           Sampler& sampler, TrackingContext* sky)
+    : mRay(ray), mScene(&scene) {
+    if (sky) drawSky(*sky, tEnd, sampler);
     float a = 0.f, b = 0.f;
     if (!on || !mediaSpan(scene, ray, tEnd, &a, &b)) return;
     for (size_t i = 0; i < scene.lights.size() && mCount < kMaxLamps; ++i) {
@@ -54,22 +65,27 @@ LampSampling::LampSampling(const RenderScene& scene, const Ray& ray, float tEnd,
         if (!lamp || !coneInterval(ray.o, ray.d, Cone{apex, lamp->axis, lamp->cosCone}, &t0, &t1))
             continue;
         const EquiangularSegment segment(ray.o, ray.d, t0, t1, lamp->p);
-        if (!segment.empty()) mLamps[mCount++] = Lamp{i, segment};
+        if (!segment.empty()) mLamps[mCount++] = Lamp{i, segment, {}};
     }
     for (size_t k = 0; k < mCount; ++k) {
         Lamp& lamp = mLamps[k];
-        lamp.t = lamp.segment.sample(sampler.get1D());
-        lamp.pdf = lamp.segment.pdf(lamp.t);
+        lamp.point.t = lamp.segment.sample(sampler.get1D());
+        lamp.point.pdf = lamp.segment.pdf(lamp.point.t);
     }
 }
 
+void LampSampling::passPoints(float t) {
+    auto pass = [&](FlightPoint& p) {
+        if (p.passed || !(t > p.t)) return;
+        p.ratio = mRatio;
+        p.passed = true;
+    };
+    for (size_t k = 0; k < mCount; ++k) pass(mLamps[k].point);
+    for (size_t k = 0; k < mSkyCount; ++k) pass(mSky[k].point);
+}
+
 void LampSampling::ratioTrack(const Collision& c, const TrackingContext& tracking) {
-    for (size_t k = 0; k < mCount; ++k) {
-        Lamp& lamp = mLamps[k];
-        if (lamp.passed || !(c.t > lamp.t)) continue;
-        lamp.ratio = mRatio;
-        lamp.passed = true;
-    }
+    passPoints(c.t);
     mLastT = c.t;
     if (tracking.medium(size_t(c.medium)).closedFormTransmittance()) return;
     mRatio *= SampledSpectrum(1.f) - (c.mp.sigmaA + c.mp.sigmaS) / c.sigmaMaj;
@@ -79,14 +95,10 @@ void LampSampling::flightEnded(bool reached) {
     if (!reached) return;
     // No tentative collision lies between the last one and any point left: the product is
     // complete.
-    for (size_t k = 0; k < mCount; ++k) {
-        if (mLamps[k].passed) continue;
-        mLamps[k].ratio = mRatio;
-        mLamps[k].passed = true;
-    }
+    passPoints(kInfinity);
 }
 
-SampledSpectrum LampSampling::toPoint(const Lamp& lamp, TrackingContext& tracking,
+SampledSpectrum LampSampling::toPoint(const FlightPoint& lamp, TrackingContext& tracking,
                                       Sampler& sampler) const {
     const SampledSpectrum T =
         closedFormTransmittance(tracking, mRay, lamp.t) * (lamp.passed ? lamp.ratio : mRatio);
@@ -104,16 +116,84 @@ const LampSampling::Lamp* LampSampling::find(size_t light) const {
 
 float LampSampling::scatterPointWeight(size_t light, const Collision& c) const {
     const Lamp* lamp = find(light);
-    return lamp ? powerWeight(scatterProxy(c.mp), lamp->segment.pdf(c.t)) : 1.f;
+    if (lamp) return powerWeight(scatterProxy(c.mp), lamp->segment.pdf(c.t));
+    for (size_t k = 0; k < mSkyCount; ++k)
+        if (mSky[k].medium == c.medium && c.t < mSky[k].tCap && mScene->lights[light]->infinite())
+            return 0.f;
+    return 1.f;
+}
+
+// The majorant's optical depth along the camera ray that its points for the lights at
+// infinity cover (lamp_sampling.h): beyond it, delta tracking's scattering points alone.
+constexpr float kSkyDepthCap = 3.f;
+
+void LampSampling::drawSky(TrackingContext& tracking, float tEnd, Sampler& sampler) {
+    for (size_t m = 0; m < tracking.size() && mSkyCount < kMaxSky; ++m) {
+        const Medium& medium = tracking.medium(m);
+        const Ray r = tracking.context(m).toObject(mRay);
+        const float path = tracking.pathMajorant(m);
+        // The first walk: the majorant's optical depth over the segment, up to the cap.
+        float depth = 0.f, tCap = tEnd;
+        MajorantGrid::Walk walk(medium.majorant(), r.o, r.d, 0.f, tEnd);
+        for (MajorantGrid::Walk::Segment s; walk.next(&s); walk.advanceTo(s.t1)) {
+            const float sigma = path >= 0.f ? path : s.sigmaMaj;
+            if (!(sigma > 0.f)) continue;
+            const float cell = sigma * (s.t1 - s.t0);
+            if (depth + cell >= kSkyDepthCap) {
+                tCap = s.t0 + (kSkyDepthCap - depth) / sigma;
+                depth = kSkyDepthCap;
+                break;
+            }
+            depth += cell;
+        }
+        const float u = sampler.get1D();
+        if (!(depth > 0.f)) continue;
+        // The point: the exponential of the majorant truncated at `depth`, by inversion.
+        const float mass = -std::expm1(-depth);
+        const float tau = std::min(-std::log1p(-u * mass), depth);
+        MajorantGrid::Walk second(medium.majorant(), r.o, r.d, 0.f, tEnd);
+        float t, sigma;
+        if (!nextTentativeCollision(second, 0.f, tau, &t, &sigma, path)) continue;
+        SkyPoint& p = mSky[mSkyCount++];
+        p.medium = int(m);
+        p.tCap = tCap;
+        p.point.t = t;
+        p.point.pdf = sigma * std::exp(-tau) / mass;
+    }
+}
+
+void LampSampling::gatherSky(const RenderScene& scene, const SampledSpectrum& beta,
+                             Sampler& sampler, ThreadState& ts, PathRecorder& rec) const {
+    for (size_t k = 0; k < mSkyCount; ++k) {
+        const SkyPoint& sky = mSky[k];
+        const size_t m = size_t(sky.medium);
+        if (rec.holdout(m) || !(sky.point.pdf > 0.f)) continue;
+        const Medium& medium = ts.tracking.medium(m);
+        Medium::Context& ctx = ts.tracking.context(m);
+        Collision c;
+        c.medium = sky.medium;
+        c.t = sky.point.t;
+        c.p = mRay.at(c.t);
+        c.sigmaMaj = 0.f;
+        medium.eval(ctx.toObject(mRay).at(c.t), ctx, &c.mp);
+        ++ts.tracking.lookups;
+        if (c.mp.sigmaS.isZero()) continue;
+        const SampledSpectrum T = toPoint(sky.point, ts.tracking, sampler);
+        if (T.isZero()) continue;
+        const SampledSpectrum weight = beta * T * c.mp.sigmaS / sky.point.pdf;
+        rec.litInMedium(weight, directLightMedium(scene, c, -mRay.d, sampler, ts, nullptr, true),
+                        c.t);
+    }
 }
 
 void LampSampling::gather(const RenderScene& scene, const SampledSpectrum& beta, Sampler& sampler,
                           ThreadState& ts, PathRecorder& rec) const {
+    if (mSkyCount) gatherSky(scene, beta, sampler, ts, rec);
     const SampledWavelengths& w = ts.tracking.wavelengths();
     const Vec3 wo = -mRay.d;
     for (size_t k = 0; k < mCount; ++k) {
         const Lamp& lamp = mLamps[k];
-        const float t = lamp.t, pe = lamp.pdf;
+        const float t = lamp.point.t, pe = lamp.point.pdf;
         const Vec3 x = mRay.at(t);
         // A point lamp's light at x is one direction; a sphere's is an integral over the cone
         // it subtends, drawn at random like next-event estimation's so that the estimate stays
@@ -144,7 +224,7 @@ void LampSampling::gather(const RenderScene& scene, const SampledSpectrum& beta,
             transmittance(ts.tracking, Ray{x, ls.wi, ls.distance}, ls.distance, sampler);
         if (toLamp.isZero()) continue;
         const SampledSpectrum term =
-            toPoint(lamp, ts.tracking, sampler) * scattered * toLamp * ls.Li / pe;
+            toPoint(lamp.point, ts.tracking, sampler) * scattered * toLamp * ls.Li / pe;
         if (SampledSpectrum* split = ts.startLightSplit())
             split[scene.lightGroupSlot(lamp.light)] += term;
         rec.litInMedium(beta, term, t);

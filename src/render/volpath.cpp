@@ -78,12 +78,17 @@ public:
         PathRecorder rec(&out, ts);
         CameraPath path(cameraRay, w);
         path.guided = guidesPaths(scene);  // render/light_lobes.h
-        // Lobe walks weigh next-event estimation against themselves; lamps draw their own
-        // points only where they do not (render/lamp_sampling.h).
+        if (path.guided) path.walkStart = lobeWalkStart(scene);
+        // Lobe walks weigh next-event estimation against themselves; lamps and the lights at
+        // infinity draw their own points only where they do not (render/lamp_sampling.h).
         const bool towardsLamps = !path.guided && samplesLamps(scene);
+        const bool towardsSky = !path.guided && samplesSky(scene);
         for (;; ++path.depth) {
             const SurfaceAhead ahead = surfaceAhead(scene, path.ray);
-            LampSampling lamps(scene, path.ray, ahead.tEnd, towardsLamps, sampler);
+            // The camera ray also draws a point per medium for the lights at infinity.
+            const bool sky = path.depth == 0 && towardsSky;
+            LampSampling lamps(scene, path.ray, ahead.tEnd, towardsLamps, sampler,
+                               sky ? &ts.tracking : nullptr);
             const SampledSpectrum betaAtStart = path.throughput.beta;
             const Flight f = fly(ahead.tEnd, lamps, sampler, ts, path, rec);
             if (!lamps.empty()) lamps.gather(scene, betaAtStart, sampler, ts, rec);
@@ -188,12 +193,14 @@ private:
             return;
         }
         const LightLobes lobes(scene, x.p, path.wavelengths);
-        if (!lobes.empty()) walkFromMedium(scene, lobes, x, path, sampler, ts, rec);
+        if (!lobes.empty() && (path.walkStart >= 1.f || sampler.get1D() < path.walkStart))
+            walkFromMedium(scene, lobes, x, path, sampler, ts, rec);
         float pdf;
         const Vec3 dir = samplePhase(m, x, path.ray.d, sampler, &path.throughput, &pdf);
         // Walks from earlier vertices pass this one even where no light has a lobe (outside a
         // spot's cone): their share decays all the same.
-        path.lobeRatios = kLobeWalkGoesOn * ratios + (lobes.empty() ? 0.f : lobes.pdf(dir) / pdf);
+        path.lobeRatios = kLobeWalkGoesOn * ratios +
+                          (lobes.empty() ? 0.f : path.walkStart * lobes.pdf(dir) / pdf);
         path.ray = Ray{x.p, dir, kInfinity};
     }
 
@@ -285,16 +292,18 @@ private:
     // the path itself or from the walk started at any earlier vertex j of the run. Their
     // densities differ in one direction and in the q's, so the balance heuristic (Veach 1997,
     // §9.2) weighs every one of them by
-    //     1 / (1 + Σ_j r_j q^(k−1−j)),  r_j = pdf_lobes(ω_j) / pdf_phase(ω_j),
+    //     1 / (1 + Σ_j s r_j q^(k−1−j)),  r_j = pdf_lobes(ω_j) / pdf_phase(ω_j),
     // on the directions the estimate's own path took, with its throughput taken as if every
-    // direction had been drawn from the phase function (p/pdf_phase). The sum is kept along the
-    // path (CameraPath::lobeRatios: S ← q S + r at each vertex). No walk crosses a surface or a
-    // re-emission, so the sum restarts there; a diffuse surface starts a walk of its own, the
-    // BSDF in the phase function's place, and its r begins the next run (the sand under a
-    // sunlit sea, the walls of a lit water box). Weights never exceed one, and the path's own
-    // throughput is untouched, so the long paths of a dense sea gain no product of weights (a
-    // one-sample mixture of phase and lobes at each vertex, weighing p / (½ p + ½ pdf_lobes),
-    // up to 2, made bright outliers in green water).
+    // direction had been drawn from the phase function (p/pdf_phase), and s the probability
+    // that a medium vertex starts a walk (render/light_lobes.h: lobeWalkStart; 1 but in media
+    // of albedo above 0.96, whose paths are long). The sum is kept along the path
+    // (CameraPath::lobeRatios: S ← q S + s r at each medium vertex, + r at a diffuse one). No walk
+    // crosses a surface or a re-emission, so the sum restarts there; a diffuse surface starts a
+    // walk of its own, the BSDF in the phase function's place, and its r begins the next run (the
+    // sand under a sunlit sea, the walls of a lit water box). Weights never exceed one, and the
+    // path's own throughput is untouched, so the long paths of a dense sea gain no product of
+    // weights (a one-sample mixture of phase and lobes at each vertex, weighing p / (½ p + ½
+    // pdf_lobes), up to 2, made bright outliers in green water).
     //
     // Measured on the gallery's underwater scene (24×16 pixels, 1024 samples, relMSE against
     // 4× the samples): 0.26 with guided surface continuations alone, 0.020 with walks from
@@ -316,7 +325,7 @@ private:
         CameraPath walk = path;
         walk.throughput.beta *= m.phaseEval(x.mp, dirIn, dir) / pdf;
         walk.ray = Ray{x.p, dir, kInfinity};
-        walk.lobeRatios = kLobeWalkGoesOn * path.lobeRatios + lobes.pdf(dir) / pdf;
+        walk.lobeRatios = kLobeWalkGoesOn * path.lobeRatios + path.walkStart * lobes.pdf(dir) / pdf;
         lobeWalk(scene, walk, sampler, ts, rec.branch());
     }
 
@@ -364,8 +373,9 @@ private:
             float pdf;
             const Vec3 dir = samplePhase(ts.tracking.medium(y->medium), *y, walk.ray.d, sampler,
                                          &throughput, &pdf);
-            walk.lobeRatios = kLobeWalkGoesOn * walk.lobeRatios +
-                              LightLobes(scene, y->p, walk.wavelengths).pdf(dir) / pdf;
+            walk.lobeRatios =
+                kLobeWalkGoesOn * walk.lobeRatios +
+                walk.walkStart * LightLobes(scene, y->p, walk.wavelengths).pdf(dir) / pdf;
             walk.ray = Ray{y->p, dir, kInfinity};
         }
     }

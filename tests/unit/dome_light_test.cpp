@@ -237,3 +237,32 @@ TEST(DomeLight, WhiteFurnace) {
         EXPECT_EQ(volpath->stats().cappedPaths, 0u);
     }
 }
+
+// A sun in the map: the direction of the power within 5° of the brightest pixel, where that
+// holds at least half of the dome's (Light::lobe). A bright patch of sky that does not, and a
+// constant dome, have none.
+TEST(DomeLight, FindsTheSunInAMap) {
+    const int w = 512, h = 256;
+    LatLongImage img;
+    img.width = w;
+    img.height = h;
+    img.rgb.assign(size_t(w) * h * 3, 0.3f);
+    // A sun of 3 × 3 pixels about column 300, row 80 (35.2° above the horizon).
+    // The pixel's centre by the convention of dome_light.h (pixelOf above, inverted).
+    const float theta = kPi * 80.5f / h, phi = 2 * kPi * 300.5f / w;
+    const Vec3 expected(-std::sin(theta) * std::sin(phi), std::cos(theta),
+                        std::sin(theta) * std::cos(phi));
+    const auto paint = [&](float v) {
+        for (int j = 79; j <= 81; ++j)
+            for (int i = 299; i <= 301; ++i)
+                for (int c = 0; c < 3; ++c) img.rgb[3 * (size_t(j) * w + i) + c] = v;
+    };
+    paint(2e4f);  // 0.86 of the dome's power
+    const auto sun = makeDomeLight(img, 1.f, kXyz, DomeSettings{})->lobe();
+    ASSERT_TRUE(sun.has_value());
+    EXPECT_GT(dot(sun->dir, expected), std::cos(radians(0.3f)));
+    EXPECT_GT(sun->irradiance, 0.f);
+    paint(2e3f);  // 0.37 of it: a bright patch of sky, not a sun
+    EXPECT_FALSE(makeDomeLight(img, 1.f, kXyz, DomeSettings{})->lobe().has_value());
+    EXPECT_FALSE(makeDomeLight(Spectrum(1.f), DomeSettings{})->lobe().has_value());
+}

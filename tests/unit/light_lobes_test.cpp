@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "chi_square.h"
+#include "light/dome_light.h"
 #include "test_support.h"
 
 using namespace mirage;
@@ -86,4 +87,33 @@ TEST(LightLobes, GuideOnlyForwardMediaUnderLights) {
     EXPECT_TRUE(guidesPaths(sea));
     sea.lights.clear();
     EXPECT_FALSE(guidesPaths(sea));
+}
+
+// A sun in a sky map is a light to guide to (Light::lobe); a sky without one is not. Walks
+// start at every vertex of a sea's paths, at fewer of a cloud's (lobeWalkStart).
+TEST(LightLobes, GuideToASunInASkyMapAndStartFewerWalksInClouds) {
+    const auto sky = [](bool sun) {
+        LatLongImage img;
+        img.width = 256;
+        img.height = 128;
+        img.rgb.assign(size_t(img.width) * img.height * 3, 0.2f);
+        if (sun)
+            for (int c = 0; c < 3; ++c) img.rgb[3 * (size_t(40) * img.width + 100) + c] = 4e4f;
+        return makeDomeLight(img, 1.f, Mat3(), DomeSettings{});
+    };
+    RenderScene cloud;
+    cloud.media.push_back(
+        test::gridMedium([](int, int, int) { return 1.f; }, 0, 31, kH, 0.05f, 4.95f, 0.85f));
+    cloud.lights.push_back(sky(false));
+    EXPECT_FALSE(guidesPaths(cloud));
+    cloud.lights[0] = sky(true);
+    ASSERT_TRUE(cloud.lights[0]->lobe().has_value());
+    EXPECT_TRUE(guidesPaths(cloud));
+    const LightLobes lobes(cloud, Vec3(0.5f), SampledWavelengths::sampleVisible(0.5f));
+    ASSERT_FALSE(lobes.empty());
+    EXPECT_NEAR(lobeWalkStart(cloud), 0.25f, 1e-5f);  // albedo 0.99
+    RenderScene sea;
+    sea.media.push_back(
+        test::gridMedium([](int, int, int) { return 1.f; }, 0, 31, kH, 1.f, 4.f, 0.92f));
+    EXPECT_EQ(lobeWalkStart(sea), 1.f);  // albedo 0.8
 }

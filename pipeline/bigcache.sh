@@ -32,15 +32,14 @@ measure() {
 }
 loadavg() { cut -d' ' -f1-3 /proc/loadavg; }
 
-printf '| active voxels | file | renderer | wall s | CPU s | peak GiB | load avg |\n'
+printf '| density voxels | file | renderer | wall s | CPU s | peak GiB | load avg |\n'
 printf '|---|---|---|---|---|---|---|\n'
 for size in $SIZES; do
   cache="$DIR/pyro_$size.vdb"
   [ -f "$cache" ] || "$MIRAGE" make-asset pyro --voxels "$size" -o "$cache" --quiet >/dev/null
   bytes=$(stat -c %s "$cache")
-  file=$(awk -v b="$bytes" 'BEGIN {printf "%.0f MB", b / 1e6}')
-  voxels=$("$MIRAGE" info "$cache" | awk '/\[0\] .density./ {d = 1} d && /active voxels/ {
-             sub(/,.*/, "", $3); print $3; exit}')
+  file=$(awk -v b="$bytes" 'BEGIN {printf "%.1f MB", b / 1e6}')
+  voxels=$size
   for run in $(seq "$RUNS"); do
     load=$(loadavg)
     read -r wall cpu peak < <(measure "$MIRAGE" render tests/bench/bigcache.toml \

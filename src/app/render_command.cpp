@@ -18,6 +18,7 @@
 #include "frame/frame_photons.h"
 #include "render/coarse_image.h"
 #include "scene/memory_budget.h"
+#include "volume/load_progress.h"
 
 namespace mirage {
 
@@ -279,6 +280,7 @@ int runRender(const RenderOptions& o) {
     RenderSession rs(o);
     // From here a SIGINT/SIGTERM stops the render between tiles and saves what is finished.
     installInterruptHandlers();
+    setGridLoadProgress(o.request.quiet ? Progress::Mode::Quiet : Progress::Mode::Auto);
 
     const std::vector<int> frames = frameList(o);
     rs.sequence = frames.size() > 1;

@@ -11,14 +11,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
-#include "core/rng.h"
+#include "core/progress.h"
 #include "core/text.h"
 #include "tools/dense_vdb.h"
 #include "tools/vdb_writer.h"
@@ -30,292 +32,6 @@ namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& msg) {
     throw MirageError(FileLoc{path}, msg);
-}
-
-// ---- Noise -------------------------------------------------------------------------------
-// Gradient noise (Perlin 2002, "Improving noise": quintic fade, gradients towards the 12 cube
-// edges) with the lattice hashed by mix64 instead of a permutation table, so that the seed
-// selects an independent field. Only +, −, × and floor: bit-identical on every IEEE platform.
-
-class GradientNoise {
-public:
-    explicit GradientNoise(uint64_t key = 0) : mKey(key) {}
-
-    float operator()(float x, float y, float z) const {
-        const float fx = std::floor(x), fy = std::floor(y), fz = std::floor(z);
-        const int ix = int(fx), iy = int(fy), iz = int(fz);
-        const float tx = x - fx, ty = y - fy, tz = z - fz;
-        const float u = fade(tx), v = fade(ty), w = fade(tz);
-        auto g = [&](int dx, int dy, int dz) {
-            return grad(ix + dx, iy + dy, iz + dz, tx - float(dx), ty - float(dy), tz - float(dz));
-        };
-        return lerp(w, lerp(v, lerp(u, g(0, 0, 0), g(1, 0, 0)), lerp(u, g(0, 1, 0), g(1, 1, 0))),
-                    lerp(v, lerp(u, g(0, 0, 1), g(1, 0, 1)), lerp(u, g(0, 1, 1), g(1, 1, 1))));
-    }
-
-private:
-    static float fade(float t) { return t * t * t * (t * (t * 6.f - 15.f) + 10.f); }
-
-    float grad(int ix, int iy, int iz, float x, float y, float z) const {
-        uint64_t h = mix64(mKey ^ (uint64_t(uint32_t(ix)) * 0x9e3779b97f4a7c15ull) ^
-                           (uint64_t(uint32_t(iy)) * 0xc2b2ae3d27d4eb4full) ^
-                           (uint64_t(uint32_t(iz)) * 0x165667b19e3779f9ull));
-        switch (h % 12) {
-            case 0:
-                return x + y;
-            case 1:
-                return -x + y;
-            case 2:
-                return x - y;
-            case 3:
-                return -x - y;
-            case 4:
-                return x + z;
-            case 5:
-                return -x + z;
-            case 6:
-                return x - z;
-            case 7:
-                return -x - z;
-            case 8:
-                return y + z;
-            case 9:
-                return -y + z;
-            case 10:
-                return y - z;
-            default:
-                return -y - z;
-        }
-    }
-
-    uint64_t mKey;
-};
-
-// Fractional Brownian motion: octaves of gradient noise at doubling frequency and halving
-// amplitude, normalised by the amplitude sum and clamped to [-1, 1].
-class Fbm {
-public:
-    Fbm(uint64_t seed, uint64_t stream, int octaves) : mOctaves(std::min(octaves, 6)) {
-        for (int o = 0; o < mOctaves; ++o)
-            mNoise[o] = GradientNoise(hashCombine(hashCombine(mix64(seed), stream), uint64_t(o)));
-    }
-    float operator()(const Vec3& p) const {
-        float sum = 0.f, amp = 1.f, norm = 0.f, f = 1.f;
-        for (int o = 0; o < mOctaves; ++o) {
-            sum += amp * mNoise[o](p.x * f, p.y * f, p.z * f);
-            norm += amp;
-            amp *= 0.5f;
-            f *= 2.f;
-        }
-        return clamp(sum / norm, -1.f, 1.f);
-    }
-
-private:
-    int mOctaves;
-    GradientNoise mNoise[6];
-};
-
-float smoothstep(float a, float b, float x) {
-    float t = clamp((x - a) / (b - a), 0.f, 1.f);
-    return t * t * (3.f - 2.f * t);
-}
-
-// ---- Asset fields ------------------------------------------------------------------------
-
-struct AssetField {
-    std::vector<std::string> grids;  // names, in output order
-    std::vector<std::string> units;
-    Vec3 lo, hi;                                    // object-space domain (m)
-    std::function<void(const Vec3&, float*)> eval;  // writes one value per grid
-    // The flow (m/s) where the first grid is non-zero, written as the collocated vec3s grid
-    // `vel` (Houdini's convention) for motion blur; empty for a still asset.
-    std::function<Vec3(const Vec3&)> velocity;
-};
-
-// The flow of a rising plume whose radius grows linearly from rBase at yBase to rTop at 2 m:
-// an updraft `rise` (m/s) slowing by `slow` per metre of height, the self-similar spreading
-// that keeps the plume's profile (radial speed ∝ r · dR/dy · v_y / R), and a swirl about the
-// axis, solid-body within the plume, `swirl` m/s at its edge.
-std::function<Vec3(const Vec3&)> plumeFlow(float yBase, float rBase, float rTop, float rise,
-                                           float slow, float swirl) {
-    return [=](const Vec3& p) {
-        const float vy = rise * std::max(0.2f, 1.f - slow * p.y);
-        const float t = clamp((p.y - yBase) / (2.f - yBase), 0.f, 1.f);
-        const float radius = rBase + (rTop - rBase) * t;
-        const float spread = (rTop - rBase) / (2.f - yBase) * vy / radius;  // 1/s
-        const float omega = swirl / radius;                                 // rad/s
-        return Vec3(spread * p.x - omega * p.z, vy, spread * p.z + omega * p.x);
-    };
-}
-
-// A rising plume of radius growing from rBase at yBase to rTop at y = 2 m, billowing (its
-// radius swells and shrinks by up to 30% with low-frequency noise), whose axis wanders with
-// height and whose edge is domain-warped more the higher it rises. Returns the radial profile
-// (1 − r²)² in [0, 1] and r² (0 on the axis, 1 at the edge) through *r2. The plume stays
-// within rTop·1.3 + kWander + kWarpTop of the y axis.
-class Plume {
-public:
-    Plume(uint64_t seed, float yBase, float rBase, float rTop)
-        : mYBase(yBase),
-          mRBase(rBase),
-          mRTop(rTop),
-          mWanderX(seed, 1, 3),
-          mWanderZ(seed, 2, 3),
-          mWarpX(seed, 3, 3),
-          mWarpZ(seed, 4, 3),
-          mBillow(seed, 8, 2) {}
-
-    static constexpr float kWander = 0.1f, kWarpBase = 0.03f, kWarpTop = 0.12f;  // m
-
-    float profile(const Vec3& p, float* r2) const {
-        *r2 = 1.f;
-        if (p.y <= mYBase) return 0.f;
-        const float t = (p.y - mYBase) / (2.f - mYBase);
-        const float cx = kWander * t * mWanderX(Vec3(0.f, 0.7f * p.y, 0.f));
-        const float cz = kWander * t * mWanderZ(Vec3(0.f, 0.7f * p.y, 3.1f));
-        float dx = p.x - cx, dz = p.z - cz;
-        const float warp = kWarpBase + (kWarpTop - kWarpBase) * t;
-        float radius = mRBase + (mRTop - mRBase) * t;
-        // Outside the plume even at its widest and after the largest warp: skip the noise.
-        const float reach = 1.3f * radius + warp;
-        if (dx * dx + dz * dz >= reach * reach) return 0.f;
-        radius *= 1.f + 0.3f * mBillow(p * 1.8f);
-        const Vec3 q = p * 2.5f;
-        dx += warp * mWarpX(q);
-        dz += warp * mWarpZ(q);
-        *r2 = (dx * dx + dz * dz) / (radius * radius);
-        if (*r2 >= 1.f) return 0.f;
-        return (1.f - *r2) * (1.f - *r2);
-    }
-
-private:
-    float mYBase, mRBase, mRTop;
-    Fbm mWanderX, mWanderZ, mWarpX, mWarpZ, mBillow;
-};
-
-AssetField smokeField(uint64_t seed) {
-    auto plume = std::make_shared<Plume>(seed, 0.f, 0.12f, 0.27f);
-    auto detail = std::make_shared<Fbm>(seed, 5, 4);
-    AssetField a;
-    a.grids = {"density", "temperature"};
-    a.units = {"unitless (a shader scales it into sigma, 1/m)", "K"};
-    a.lo = Vec3(-0.6f, 0.f, -0.6f);
-    a.hi = Vec3(0.6f, 2.f, 0.6f);
-    a.eval = [plume, detail](const Vec3& p, float* out) {
-        out[0] = out[1] = 0.f;
-        float r2;
-        const float shape = plume->profile(p, &r2);
-        if (shape <= 0.f) return;
-        const float n = (*detail)(p * 5.f);
-        const float fade = smoothstep(0.f, 0.12f, p.y) * (1.f - smoothstep(1.3f, 1.98f, p.y));
-        const float density = shape * clamp(0.5f + 1.5f * n, 0.f, 1.3f) * fade;
-        if (density < 1e-3f) return;
-        out[0] = density;
-        // Hot core near the source cooling with height and towards the edge: 300–900 K.
-        const float heat = (1.f - r2) * (1.f - r2) * (1.f - r2) * (1.f - 0.35f * p.y);
-        out[1] = 300.f + 600.f * clamp(heat * (0.9f + 0.3f * n), 0.f, 1.f);
-    };
-    a.velocity = plumeFlow(0.f, 0.12f, 0.27f, 1.2f, 0.25f, 0.3f);
-    return a;
-}
-
-AssetField fireField(uint64_t seed) {
-    auto plume = std::make_shared<Plume>(seed, 0.45f, 0.15f, 0.21f);
-    auto detail = std::make_shared<Fbm>(seed, 5, 4);
-    auto tongues = std::make_shared<Fbm>(seed, 6, 3);
-    auto flicker = std::make_shared<Fbm>(seed, 7, 4);
-    AssetField a;
-    a.grids = {"density", "temperature", "flame"};
-    a.units = {"unitless soot density (a shader scales it into sigma, 1/m)", "K",
-               "unitless reaction intensity 0..1"};
-    a.lo = Vec3(-0.5f, 0.f, -0.5f);
-    a.hi = Vec3(0.5f, 2.f, 0.5f);
-    a.eval = [plume, detail, tongues, flicker](const Vec3& p, float* out) {
-        out[0] = out[1] = out[2] = 0.f;
-        // Flames: a cone over a 0.3 m radius base whose height varies across the base
-        // (tongues) and whose surface is displaced by noise (flicker).
-        float flame = 0.f;
-        const float rBase = 0.3f;
-        const float base2 = p.x * p.x + p.z * p.z;
-        if (p.y < 1.3f && base2 < (rBase + 0.06f) * (rBase + 0.06f)) {
-            const float height = 0.9f * (1.f + 0.35f * (*tongues)(Vec3(p.x * 3.f, 0.f, p.z * 3.f)));
-            const float n = (*flicker)(p * Vec3(4.f, 2.5f, 4.f));
-            const float yw = p.y + 0.12f * n;
-            if (yw > 0.f && yw < height) {
-                const float radius = rBase * (1.f - yw / height);
-                const float r = std::sqrt(base2) + 0.05f * n;
-                const float r2 = r * r / (radius * radius);
-                if (r2 < 1.f)
-                    flame = clamp((1.f - r2) * (1.f - 0.5f * yw / height) * (0.9f + 0.6f * n), 0.f,
-                                  1.f) *
-                            smoothstep(0.f, 0.04f, p.y);
-            }
-        }
-        // Smoke above the flames.
-        float r2;
-        const float shape = plume->profile(p, &r2);
-        float smoke = 0.f;
-        if (shape > 0.f) {
-            const float n = (*detail)(p * 5.f);
-            smoke = shape * clamp(0.5f + 1.2f * n, 0.f, 1.f) * smoothstep(0.45f, 0.9f, p.y) *
-                    (1.f - smoothstep(1.6f, 1.98f, p.y));
-        }
-        const float density = std::max(smoke, 0.08f * flame);
-        if (density < 1e-3f && flame < 1e-3f) return;
-        out[0] = density >= 1e-3f ? density : 0.f;
-        out[2] = flame >= 1e-3f ? flame : 0.f;
-        // 1800 K at full reaction. The luminous zone of a sooty flame is hot nearly throughout
-        // (soot at ~1300–1700 K), cooling only at its thin edge: T rises as flame^0.3 (1520 K
-        // at half reaction), not linearly, or most of the flame would glow 10 stops dimmer
-        // than its core. The smoke cools from ~700 K above the flames to ambient.
-        const float tSmoke = 300.f + 400.f * shape * clamp(1.6f - p.y, 0.f, 1.f);
-        out[1] = std::max(300.f + 1500.f * std::pow(flame, 0.3f), tSmoke);
-    };
-    // Flames rise faster than the smoke they feed (buoyancy of ~1800 K gas).
-    const auto smokeFlow = plumeFlow(0.45f, 0.15f, 0.21f, 1.5f, 0.2f, 0.25f);
-    a.velocity = [smokeFlow](const Vec3& p) {
-        const Vec3 v = smokeFlow(p);
-        return p.y < 1.f ? Vec3(v.x, v.y * (2.f - p.y), v.z) : v;
-    };
-    return a;
-}
-
-AssetField fogSphereField() {
-    AssetField a;
-    a.grids = {"density"};
-    a.units = {"unitless (a shader scales it into sigma, 1/m)"};
-    a.lo = Vec3(-1.f, 0.f, -1.f);
-    a.hi = Vec3(1.f, 2.f, 1.f);
-    a.eval = [](const Vec3& p, float* out) {
-        const float r = length(p - Vec3(0.f, 1.f, 0.f));
-        out[0] = 1.f - smoothstep(0.6f, 1.f, r);
-    };
-    return a;
-}
-
-// A phytoplankton plume in sea water: chlorophyll a (mg/m³) welling up from a patch on the
-// floor and spreading as it rises, its edge and interior broken up by noise (blooms are
-// patchy), over a clear-water background of 0 (the shader adds pure water everywhere). Peak
-// ~10 mg/m³, bloom waters; the plume's rim is ~0.1–1 mg/m³, open-ocean values.
-AssetField oceanField(uint64_t seed) {
-    auto plume = std::make_shared<Plume>(seed, 0.f, 0.3f, 0.7f);
-    auto patches = std::make_shared<Fbm>(seed, 9, 4);
-    AssetField a;
-    a.grids = {"chlorophyll"};
-    a.units = {"mg/m^3 (chlorophyll a)"};
-    a.lo = Vec3(-1.f, 0.f, -1.f);
-    a.hi = Vec3(1.f, 2.f, 1.f);
-    a.eval = [plume, patches](const Vec3& p, float* out) {
-        out[0] = 0.f;
-        float r2;
-        const float shape = plume->profile(p, &r2);
-        if (shape <= 0.f) return;
-        const float n = (*patches)(p * 3.f);
-        const float chl =
-            10.f * shape * clamp(0.55f + 1.2f * n, 0.f, 1.f) * (1.f - smoothstep(1.6f, 1.98f, p.y));
-        out[0] = chl >= 0.01f ? chl : 0.f;
-    };
-    return a;
 }
 
 }  // namespace
@@ -369,93 +85,213 @@ openvdb::math::Transform::Ptr linearVdbTransform(double voxelSize, const Vec3d& 
     return xform;
 }
 
-const std::vector<std::string>& proceduralAssetKinds() {
-    static const std::vector<std::string> kinds = {"smoke", "fire", "fog-sphere", "ocean"};
-    return kinds;
+namespace {
+
+constexpr size_t kMaxAssetGrids = 8;  // values one voxel of a field holds, at most
+
+// The voxels of an asset: n[a] along each axis, voxel centres at first + index · h.
+struct VoxelDomain {
+    int n[3];
+    Vec3 first;
+    float h;
+    int blocks(int a) const { return (n[a] + 7) / 8; }
+    uint64_t blockCount() const { return uint64_t(blocks(0)) * blocks(1) * blocks(2); }
+    openvdb::Coord blockOrigin(uint64_t b) const {
+        const uint64_t bx = uint64_t(blocks(0)), by = uint64_t(blocks(1));
+        return openvdb::Coord(int(b % bx) * 8, int(b / bx % by) * 8, int(b / (bx * by)) * 8);
+    }
+    Vec3 centre(const openvdb::Coord& c) const {
+        return first + Vec3(float(c.x()), float(c.y()), float(c.z())) * h;
+    }
+};
+
+// Fills `trees` block by block: the domain's 8³ blocks are evaluated in parallel, each into
+// leaf nodes of its own (`eval(ijk, values, active)` gives every tree's value and state at one
+// voxel), then added to the trees in block order. A voxel's value depends on its position
+// only, so the trees are the same for any thread count. `skip(origin)` answers whether a block
+// is empty without evaluating it. Blocks are taken in batches so that at most one batch of
+// leaves waits outside the trees.
+template <typename TreeT, typename Eval, typename Skip>
+void fillTrees(const VoxelDomain& d, const std::vector<TreeT*>& trees, const Eval& eval,
+               const Skip& skip, Progress* progress) {
+    using Leaf = typename TreeT::LeafNodeType;
+    using Value = typename TreeT::ValueType;
+    const size_t numTrees = trees.size();
+    constexpr uint64_t kBatch = 16384;
+    std::vector<Leaf*> leaves;
+    for (uint64_t b0 = 0; b0 < d.blockCount(); b0 += kBatch) {
+        const uint64_t b1 = std::min(d.blockCount(), b0 + kBatch);
+        leaves.assign((b1 - b0) * numTrees, nullptr);
+        tbb::parallel_for(tbb::blocked_range<uint64_t>(b0, b1, 16), [&](const auto& r) {
+            std::vector<Value> values(numTrees);
+            std::unique_ptr<bool[]> active(new bool[numTrees]);
+            for (uint64_t b = r.begin(); b != r.end(); ++b) {
+                const openvdb::Coord origin = d.blockOrigin(b);
+                if (skip(origin)) continue;
+                Leaf** out = &leaves[(b - b0) * numTrees];
+                for (int k = origin.z(); k < std::min(origin.z() + 8, d.n[2]); ++k)
+                    for (int j = origin.y(); j < std::min(origin.y() + 8, d.n[1]); ++j)
+                        for (int i = origin.x(); i < std::min(origin.x() + 8, d.n[0]); ++i) {
+                            const openvdb::Coord ijk(i, j, k);
+                            eval(ijk, values.data(), active.get());
+                            for (size_t t = 0; t < numTrees; ++t) {
+                                if (!active[t]) continue;
+                                if (!out[t]) out[t] = new Leaf(origin, openvdb::zeroVal<Value>());
+                                out[t]->setValueOn(ijk, values[t]);
+                            }
+                        }
+            }
+            if (progress) progress->advance(r.size());
+        });
+        for (size_t i = 0; i < leaves.size(); ++i)
+            if (leaves[i]) trees[i % numTrees]->addLeaf(leaves[i]);
+    }
+}
+
+// Whether the field can be non-zero anywhere in the block of `size` voxels of size `h` at
+// `origin` (voxel centres from d.centre(origin)).
+bool blockMayCover(const AssetField& field, const VoxelDomain& d, const openvdb::Coord& origin,
+                   int size, float h) {
+    if (!field.mayCover) return true;
+    const Vec3 lo = d.centre(origin) - Vec3(0.5f * h);
+    return field.mayCover(lo, lo + Vec3(float(size) * h));
+}
+
+openvdb::FloatGrid::Ptr emptyFogGrid(const std::string& name, const std::string& units,
+                                     const openvdb::math::Transform& xform, bool half) {
+    auto grid = openvdb::FloatGrid::create(0.f);
+    grid->setName(name);
+    grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+    grid->setTransform(xform.copy());
+    grid->insertMeta("units", openvdb::StringMetadata(units));
+    if (half) grid->setSaveFloatAsHalf(true);
+    return grid;
+}
+
+// The scalar grids of the field over the domain.
+std::vector<openvdb::FloatGrid::Ptr> scalarGrids(const AssetField& field, const VoxelDomain& d,
+                                                 const openvdb::math::Transform& xform,
+                                                 Progress* progress) {
+    const size_t numGrids = field.grids.size();
+    std::vector<openvdb::FloatGrid::Ptr> grids;
+    std::vector<openvdb::FloatTree*> trees;
+    for (size_t g = 0; g < numGrids; ++g) {
+        grids.push_back(emptyFogGrid(field.grids[g], field.units[g], xform, field.half));
+        trees.push_back(&grids.back()->tree());
+    }
+    fillTrees(
+        d, trees,
+        [&](const openvdb::Coord& ijk, float* v, bool* active) {
+            field.eval(d.centre(ijk), v);
+            for (size_t g = 0; g < numGrids; ++g) active[g] = v[g] > 0.f;
+        },
+        [&](const openvdb::Coord& o) { return !blockMayCover(field, d, o, 8, d.h); }, progress);
+    return grids;
+}
+
+// The flow as the vec3s grid `vel`. At velocityScale 1, over the density's voxels (a copy of
+// its topology, leaf by leaf in parallel: the flow needs no noise); at 2, over the voxels of
+// twice the size whose centre has a non-zero first grid, evaluated like the scalar grids.
+openvdb::Vec3SGrid::Ptr velocityGrid(const AssetField& field, const VoxelDomain& d,
+                                     const openvdb::FloatTree& density, Progress* progress) {
+    auto vel = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
+    vel->setName("vel");
+    vel->setGridClass(openvdb::GRID_UNKNOWN);
+    vel->setVectorType(openvdb::VEC_CONTRAVARIANT_RELATIVE);
+    vel->insertMeta("units", openvdb::StringMetadata("m/s"));
+    if (field.half) vel->setSaveFloatAsHalf(true);
+    const int s = field.velocityScale;
+    // Voxel (I, J, K) of `vel` covers the voxels s·I … s·I + s − 1 of the others: its centre
+    // is half a voxel of theirs from the first one's at s = 2.
+    const VoxelDomain coarse{{(d.n[0] + s - 1) / s, (d.n[1] + s - 1) / s, (d.n[2] + s - 1) / s},
+                             d.first + Vec3(0.5f * float(s - 1) * d.h),
+                             d.h * float(s)};
+    vel->setTransform(linearVdbTransform(coarse.h, Vec3d(coarse.first)));
+    auto flow = [&](const openvdb::Coord& ijk) {
+        const Vec3 u = field.velocity(coarse.centre(ijk));
+        return openvdb::Vec3s(u.x, u.y, u.z);
+    };
+    std::vector<openvdb::Vec3STree*> trees{&vel->tree()};
+    if (s == 1) {
+        std::vector<const openvdb::FloatTree::LeafNodeType*> leaves;
+        density.getNodes(leaves);
+        std::vector<openvdb::Vec3STree::LeafNodeType*> out(leaves.size());
+        tbb::parallel_for(size_t(0), leaves.size(), [&](size_t i) {
+            out[i] = new openvdb::Vec3STree::LeafNodeType(leaves[i]->origin(), openvdb::Vec3s(0.f));
+            for (auto it = leaves[i]->cbeginValueOn(); it; ++it)
+                out[i]->setValueOn(it.pos(), flow(it.getCoord()));
+        });
+        for (auto* leaf : out) vel->tree().addLeaf(leaf);
+        return vel;
+    }
+    fillTrees(
+        coarse, trees,
+        [&](const openvdb::Coord& ijk, openvdb::Vec3s* v, bool* active) {
+            float values[kMaxAssetGrids];
+            field.eval(coarse.centre(ijk), values);
+            active[0] = values[0] > 0.f;
+            if (active[0]) v[0] = flow(ijk);
+        },
+        [&](const openvdb::Coord& o) { return !blockMayCover(field, coarse, o, 8, coarse.h); },
+        progress);
+    return vel;
+}
+
+VoxelDomain assetDomain(const AssetField& field, int resolution) {
+    // Voxel centres at lo + (i + ½) h: the voxels tile the domain exactly along y.
+    VoxelDomain d;
+    d.h = 2.f / float(resolution);
+    for (int a = 0; a < 3; ++a)
+        d.n[a] = std::max(1, int(std::lround((field.hi[a] - field.lo[a]) / d.h)));
+    d.first = field.lo + Vec3(0.5f * d.h);
+    return d;
+}
+
+uint64_t progressBlocks(const AssetField& field, const VoxelDomain& d) {
+    uint64_t blocks = d.blockCount();
+    const int s = field.velocityScale;
+    if (field.velocity && s > 1)
+        blocks += uint64_t((d.blocks(0) + s - 1) / s) * ((d.blocks(1) + s - 1) / s) *
+                  ((d.blocks(2) + s - 1) / s);
+    return blocks;
+}
+
+}  // namespace
+
+int assetResolutionForVoxels(const std::string& kind, uint64_t seed, double voxels) {
+    // The fields are defined in metres, so their active voxel count grows as resolution³: one
+    // count at a small resolution fixes the constant.
+    constexpr int kPilot = 96;
+    const AssetField field = proceduralField(kind, seed);
+    initOpenVdb();
+    const VoxelDomain d = assetDomain(field, kPilot);
+    const auto grids = scalarGrids(field, d, *linearVdbTransform(d.h, Vec3d(d.first)), nullptr);
+    const double count = double(grids[0]->activeVoxelCount());
+    if (!(voxels > 0.0) || count <= 0.0)
+        throw MirageError("asset '" + kind + "': cannot aim at " + std::to_string(voxels) +
+                          " active voxels");
+    const double r = double(kPilot) * std::cbrt(voxels / count);
+    return int(
+        std::lround(std::clamp(r, double(kMinAssetResolution), double(kMaxAssetResolution))));
 }
 
 void writeProceduralAsset(const std::string& kind, const std::string& path, int resolution,
-                          uint64_t seed) {
-    AssetField field;
-    if (kind == "smoke") {
-        field = smokeField(seed);
-    } else if (kind == "fire") {
-        field = fireField(seed);
-    } else if (kind == "fog-sphere") {
-        field = fogSphereField();
-    } else if (kind == "ocean") {
-        field = oceanField(seed);
-    } else {
-        throw MirageError("unknown asset kind '" + boundedMessage(kind, 60) +
-                          "' (valid kinds: " + joinList(proceduralAssetKinds()) + ")");
-    }
-    if (resolution < 8 || resolution > 1024)
-        throw MirageError("asset resolution " + std::to_string(resolution) +
-                          " is out of range (8 to 1024 voxels along the 2 m height)");
+                          uint64_t seed, bool report) {
+    const AssetField field = proceduralField(kind, seed);
+    if (resolution < kMinAssetResolution || resolution > kMaxAssetResolution)
+        throw MirageError("asset resolution " + std::to_string(resolution) + " is out of range (" +
+                          std::to_string(kMinAssetResolution) + " to " +
+                          std::to_string(kMaxAssetResolution) + " voxels along the 2 m height)");
     initOpenVdb();
-
-    // Voxel centres at lo + (i + ½) h: the voxels tile the domain exactly along y.
-    const float h = 2.f / float(resolution);
-    int n[3];
-    for (int a = 0; a < 3; ++a)
-        n[a] = std::max(1, int(std::lround((field.hi[a] - field.lo[a]) / h)));
-    const Vec3 first = field.lo + Vec3(0.5f * h);
-    auto xform = linearVdbTransform(h, Vec3d(first));
-    const size_t numGrids = field.grids.size();
-    std::vector<openvdb::FloatGrid::Ptr> grids;
-    for (size_t g = 0; g < numGrids; ++g) {
-        auto grid = openvdb::FloatGrid::create(0.f);
-        grid->setName(field.grids[g]);
-        grid->setGridClass(openvdb::GRID_FOG_VOLUME);
-        grid->setTransform(xform->copy());
-        grid->insertMeta("units", openvdb::StringMetadata(field.units[g]));
-        grids.push_back(grid);
-    }
-
+    const VoxelDomain d = assetDomain(field, resolution);
+    auto xform = linearVdbTransform(d.h, Vec3d(d.first));
+    std::optional<Progress> progress;
+    if (report) progress.emplace("make-asset " + kind, progressBlocks(field, d), "blocks");
+    Progress* p = progress ? &*progress : nullptr;
+    std::vector<openvdb::FloatGrid::Ptr> grids = scalarGrids(field, d, *xform, p);
     openvdb::Vec3SGrid::Ptr vel;
-    if (field.velocity) {
-        vel = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
-        vel->setName("vel");
-        vel->setGridClass(openvdb::GRID_UNKNOWN);
-        vel->setVectorType(openvdb::VEC_CONTRAVARIANT_RELATIVE);
-        vel->setTransform(xform->copy());
-        vel->insertMeta("units", openvdb::StringMetadata("m/s"));
-    }
-
-    // Slabs of z-slices evaluated in parallel, then inserted serially: the memory stays
-    // bounded and the voxel values do not depend on the thread count or scheduling.
-    constexpr int kSlab = 8;
-    const size_t slice = size_t(n[0]) * n[1];
-    std::vector<float> values(kSlab * slice * numGrids);
-    std::vector<openvdb::FloatGrid::Accessor> accessors;
-    for (auto& g : grids) accessors.push_back(g->getAccessor());
-    std::optional<openvdb::Vec3SGrid::Accessor> velAcc;
-    if (vel) velAcc.emplace(vel->getAccessor());
-    for (int k0 = 0; k0 < n[2]; k0 += kSlab) {
-        const int k1 = std::min(n[2], k0 + kSlab);
-        tbb::parallel_for(tbb::blocked_range<int>(k0, k1), [&](const tbb::blocked_range<int>& r) {
-            for (int k = r.begin(); k != r.end(); ++k)
-                for (int j = 0; j < n[1]; ++j)
-                    for (int i = 0; i < n[0]; ++i) {
-                        Vec3 p = first + Vec3(float(i), float(j), float(k)) * h;
-                        float* out = &values[((size_t(k - k0) * n[1] + j) * n[0] + i) * numGrids];
-                        field.eval(p, out);
-                    }
-        });
-        for (int k = k0; k < k1; ++k)
-            for (int j = 0; j < n[1]; ++j)
-                for (int i = 0; i < n[0]; ++i) {
-                    const float* v = &values[((size_t(k - k0) * n[1] + j) * n[0] + i) * numGrids];
-                    for (size_t g = 0; g < numGrids; ++g)
-                        if (v[g] > 0.f) accessors[g].setValue(openvdb::Coord(i, j, k), v[g]);
-                    // The flow where there is something to move (cheap: no noise).
-                    if (vel && v[0] > 0.f) {
-                        const Vec3 u =
-                            field.velocity(first + Vec3(float(i), float(j), float(k)) * h);
-                        velAcc->setValue(openvdb::Coord(i, j, k), openvdb::Vec3s(u.x, u.y, u.z));
-                    }
-                }
-    }
+    if (field.velocity) vel = velocityGrid(field, d, grids[0]->tree(), p);
+    if (progress) progress->finish();
 
     // Blocks whose voxels are all equal (the fog sphere's core) become single tiles.
     for (auto& g : grids) openvdb::tools::prune(g->tree());
@@ -467,6 +303,12 @@ void writeProceduralAsset(const std::string& kind, const std::string& path, int 
     meta.insertMeta("mirage_asset_resolution", openvdb::Int32Metadata(resolution));
     openvdb::GridPtrVec out(grids.begin(), grids.end());
     if (vel) out.push_back(vel);
+    if (report) {
+        uint64_t voxels = 0;
+        for (const auto& g : out) voxels += g->activeVoxelCount();
+        std::fprintf(stderr, "make-asset: writing %zu grids, %llu active voxels\n", out.size(),
+                     (unsigned long long)voxels);
+    }
     writeVdbFile(path, out, meta, "blosc");
 }
 

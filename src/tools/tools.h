@@ -14,7 +14,9 @@ namespace mirage {
 struct AssetOptions {
     std::string kind, output;
     int resolution = 64;
+    double voxels = 0;  // --voxels: a target active voxel count instead of a resolution
     uint64_t seed = 1;
+    bool quiet = false;
 };
 int runMakeAsset(const AssetOptions& o);
 Command addMakeAssetCommand(CLI::App& app);

@@ -1,5 +1,9 @@
 #include "volume/majorant.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -272,14 +276,32 @@ std::vector<float> MajorantGrid::cellMaxima(const FloatGrid& grid) const {
     Splatter splatter(g, mBounds, mRes, mCellSize, cells);
 
     // Leaves: all 512 values, inactive ones included (the sampler reads them); voxel by voxel
-    // where the map allows, else the leaf's maximum over the leaf's footprint.
+    // where the map allows, else the leaf's maximum over the leaf's footprint. In parallel, each
+    // thread onto cells of its own, merged by maximum: exact, so the same cells for any thread
+    // count. A fine majorant grid (over kParallelCells cells) is splatted by one thread.
     const auto* leaf = tree.getFirstLeaf();
-    for (uint32_t i = 0; i < tree.nodeCount(0); ++i) {
-        const float* v = leaf[i].data()->mValues;
-        if (splatter.splatVoxels(leaf[i].origin(), v)) continue;
-        float m = 0.f;
-        for (int k = 0; k < 512; ++k) m = std::max(m, v[k]);
-        splatter.splat(leaf[i].origin(), 8, m);
+    auto splatLeaves = [&](Splatter& s, uint32_t begin, uint32_t end) {
+        for (uint32_t i = begin; i < end; ++i) {
+            const float* v = leaf[i].data()->mValues;
+            if (s.splatVoxels(leaf[i].origin(), v)) continue;
+            float m = 0.f;
+            for (int k = 0; k < 512; ++k) m = std::max(m, v[k]);
+            s.splat(leaf[i].origin(), 8, m);
+        }
+    };
+    constexpr size_t kParallelCells = size_t(1) << 24;
+    if (cells.size() > kParallelCells) {
+        splatLeaves(splatter, 0, tree.nodeCount(0));
+    } else {
+        tbb::enumerable_thread_specific<std::vector<float>> own(
+            [&] { return std::vector<float>(cells.size(), 0.f); });
+        tbb::parallel_for(tbb::blocked_range<uint32_t>(0, tree.nodeCount(0), 256),
+                          [&](const tbb::blocked_range<uint32_t>& r) {
+                              Splatter s(g, mBounds, mRes, mCellSize, own.local());
+                              splatLeaves(s, r.begin(), r.end());
+                          });
+        for (const std::vector<float>& o : own)
+            for (size_t c = 0; c < cells.size(); ++c) cells[c] = std::max(cells[c], o[c]);
     }
     // Tiles of the lower (8³-voxel tiles) and upper (128³) internal nodes and of the root
     // (4096³). Inactive tiles count too: their value is what a lookup there returns.

@@ -28,9 +28,10 @@
 #include "core/grid_name.h"
 #include "volume/grid_lookup.h"
 #include "volume/openvdb_expression.h"
-#include "volume/voxel_rule.h"
+#include "volume/openvdb_read.h"
 #include "volume/vdb_format.h"
 #include "volume/vdb_tree.h"
+#include "volume/voxel_rule.h"
 
 namespace mirage {
 
@@ -117,20 +118,24 @@ void checkFogClass(const std::string& path, const std::string& label, const std:
         fail(path, "grid " + label + " is a " + cls + " grid, expected a fog volume (density)");
 }
 
-openvdb::GridBase::Ptr readOpenVdbGrid(const std::string& path, const FileLayout& layout,
-                                       int index, bool metadataOnly) {
+// Lazy: the leaves' values read when first touched (OpenVDB's delayed loading: the file mapped,
+// not copied, until the grid is dropped), then on every core (openvdb_read.h).
+enum class ReadMode { Metadata, Values, Lazy };
+
+openvdb::GridBase::Ptr readOpenVdbGrid(const std::string& path, const FileLayout& layout, int index,
+                                       ReadMode mode) {
     const GridRecord& record = layout.grids[size_t(index)];
     const std::string label = vdbformat::gridLabel(layout, index);
     // The tree's counts and block sizes are checked before OpenVDB trusts them (vdb_tree.h).
-    if (!metadataOnly) vdbformat::checkOpenVdbTree(path, layout, index);
+    if (mode != ReadMode::Metadata) vdbformat::checkOpenVdbTree(path, layout, index);
     initOpenVdb();
     try {
         openvdb::io::File file(path);
-        // No delayed loading: it memory-maps the file, which then must not change while in use.
-        file.open(/*delayLoad=*/false);
+        file.setCopyMaxBytes(0);
+        file.open(/*delayLoad=*/mode == ReadMode::Lazy);
         const std::string name = openvdb::io::GridDescriptor::nameAsString(record.uniqueName);
         openvdb::GridBase::Ptr grid =
-            metadataOnly ? file.readGridMetadata(name) : file.readGrid(name);
+            mode == ReadMode::Metadata ? file.readGridMetadata(name) : file.readGrid(name);
         file.close();
         // A singular index → object map (a zero or denormal voxel size in a corrupt file) reads
         // without complaint, but OpenVDB throws ArithmeticError wherever the map is later
@@ -160,13 +165,14 @@ openvdb::FloatGrid::Ptr readFogVolume(const std::string& path, const FileLayout&
     if (valueType != "float" && valueType != "half" && valueType != "double")
         fail(path, "grid " + label + " holds " + describeValueType(valueType) +
                        " values, expected a scalar float fog volume (density)");
-    openvdb::GridBase::Ptr base = readOpenVdbGrid(path, layout, index, false);
+    openvdb::GridBase::Ptr base = readOpenVdbGrid(path, layout, index, ReadMode::Lazy);
     checkFogClass(path, label, openvdb::GridBase::gridClassToString(base->getGridClass()));
     if (!base->transform().baseMap()->isLinear())
         fail(path, "grid " + label + " has a " + base->transform().mapType() +
                        " transform; only affine index → object maps are supported");
 
     openvdb::FloatGrid::Ptr grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+    if (grid) readLeavesInParallel(*grid, record.endPos - record.gridPos, path, label);
     if (!grid) {
         auto dgrid = openvdb::gridPtrCast<openvdb::DoubleGrid>(base);
         if (!dgrid) fail(path, "grid " + label + " has an unexpected tree type " + record.type);
@@ -270,7 +276,7 @@ nanovdb::GridHandle<nanovdb::HostBuffer> readNanoVdbGrid(const std::string& path
 GridInfo openVdbGridInfo(const std::string& path, const FileLayout& layout, int index) {
     const GridRecord& record = layout.grids[size_t(index)];
     const std::string label = vdbformat::gridLabel(layout, index);
-    openvdb::GridBase::Ptr grid = readOpenVdbGrid(path, layout, index, true);
+    openvdb::GridBase::Ptr grid = readOpenVdbGrid(path, layout, index, ReadMode::Metadata);
 
     GridInfo info;
     info.name = record.name;
@@ -299,7 +305,7 @@ GridInfo openVdbGridInfo(const std::string& path, const FileLayout& layout, int 
         info.activeVoxels = uint64_t(std::max<int64_t>(0, voxels->value()));
         info.memoryBytes = mem ? uint64_t(std::max<int64_t>(0, mem->value())) : 0;
     } else if (vdbformat::treeIsWalkable(layout, index)) {
-        openvdb::GridBase::Ptr full = readOpenVdbGrid(path, layout, index, false);
+        openvdb::GridBase::Ptr full = readOpenVdbGrid(path, layout, index, ReadMode::Values);
         box = full->evalActiveVoxelBoundingBox();
         info.activeVoxels = full->activeVoxelCount();
         info.memoryBytes = full->memUsage();
@@ -507,12 +513,13 @@ VectorGrid loadVectorGrid(const std::string& path, const std::string& gridName) 
     if (valueType != "vec3s" && valueType != "vec3d")
         fail(path, "grid " + label + " holds " + describeValueType(valueType) +
                        " values, expected a 3-vector grid (vec3s or vec3d) of velocities");
-    openvdb::GridBase::Ptr base = readOpenVdbGrid(path, layout, index, false);
+    openvdb::GridBase::Ptr base = readOpenVdbGrid(path, layout, index, ReadMode::Lazy);
     if (!base->transform().baseMap()->isLinear())
         fail(path, "grid " + label + " has a " + base->transform().mapType() +
                        " transform; only affine index → object maps are supported");
     const bool staggered = base->getGridClass() == openvdb::GRID_STAGGERED;
     openvdb::Vec3SGrid::Ptr grid = openvdb::gridPtrCast<openvdb::Vec3SGrid>(base);
+    if (grid) readLeavesInParallel(*grid, record.endPos - record.gridPos, path, label);
     if (!grid) {
         auto dgrid = openvdb::gridPtrCast<openvdb::Vec3DGrid>(base);
         if (!dgrid) fail(path, "grid " + label + " has an unexpected tree type " + record.type);
@@ -566,11 +573,12 @@ VectorGrid loadVectorGridFromScalars(const std::string& path, const std::string&
                            describeValueType(vdbformat::valueTypeOf(layout.grids[size_t(index)])) +
                            " values, expected a float grid (one velocity component)");
         parts[a] = openvdb::gridPtrCast<openvdb::FloatGrid>(
-            readOpenVdbGrid(path, layout, index, false));
+            readOpenVdbGrid(path, layout, index, ReadMode::Values));
         if (!parts[a]) fail(path, "grid " + label + " is not a float grid");
         if (!parts[a]->transform().baseMap()->isLinear() ||
             parts[a]->transform() != parts[0]->transform())
-            fail(path, "grid " + label + ": the three velocity components must share one "
+            fail(path, "grid " + label +
+                           ": the three velocity components must share one "
                            "affine transform");
         if (parts[a]->background() != 0.f)
             fail(path, "grid " + label + " has a non-zero background, expected 0");

@@ -3,6 +3,7 @@
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
 #include <openvdb/tools/Interpolation.h>
+#include <nanovdb/util/OpenToNanoVDB.h>
 
 #include "core/error.h"
 #include "tools/vdb_writer.h"
@@ -133,6 +134,24 @@ std::vector<double> openvdbSampleForTest(const std::string& path, const std::str
         values.push_back(indexSpace ? sampler.isSample(q) : sampler.wsSample(q));
     }
     return values;
+}
+
+std::string eagerNanoVdbForTest(const std::string& path, const std::string& gridName) {
+    initOpenVdb();
+    openvdb::io::File file(path);
+    file.open(/*delayLoad=*/false);
+    openvdb::GridBase::Ptr base = file.readGrid(gridName);
+    file.close();
+    nanovdb::GridHandle<nanovdb::HostBuffer> handle;
+    if (auto scalar = openvdb::gridPtrCast<openvdb::FloatGrid>(base))
+        handle = nanovdb::openToNanoVDB(*scalar, nanovdb::StatsMode::All,
+                                        nanovdb::ChecksumMode::Partial);
+    else if (auto vector = openvdb::gridPtrCast<openvdb::Vec3SGrid>(base))
+        handle = nanovdb::openToNanoVDB(*vector, nanovdb::StatsMode::All,
+                                        nanovdb::ChecksumMode::Partial);
+    else
+        fail(path, "grid '" + gridName + "' is neither a float nor a vec3s grid");
+    return std::string(reinterpret_cast<const char*>(handle.data()), handle.size());
 }
 
 }  // namespace mirage

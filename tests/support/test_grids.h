@@ -69,4 +69,9 @@ inline void writeTestGrid(const std::string& path, const TestGridSpec& spec,
 std::vector<double> openvdbSampleForTest(const std::string& path, const std::string& gridName,
                                          const std::vector<Vec3d>& points, bool indexSpace);
 
+// The bytes of the NanoVDB grid that OpenVDB's whole-grid reader (no delayed loading) and
+// NanoVDB's converter make of the float or vec3s grid `gridName` — the load before the leaves
+// were read in parallel — with the loader's statistics and checksum settings.
+std::string eagerNanoVdbForTest(const std::string& path, const std::string& gridName);
+
 }  // namespace mirage

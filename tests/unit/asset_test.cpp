@@ -6,6 +6,8 @@
 #include <fstream>
 #include <iterator>
 
+#include <tbb/global_control.h>
+
 #include "core/error.h"
 #include "test_support.h"
 #include "tools/asset_writer.h"
@@ -72,6 +74,38 @@ TEST(Asset, SameSeedSameFileDifferentSeedDifferentFile) {
                 differ += ta.getValue(c) != gc.grid()->tree().getValue(c);
             }
     EXPECT_GT(differ, 100);
+}
+
+// The blocks are evaluated in parallel: one thread and every thread write the same file.
+TEST(Asset, SameFileForAnyThreadCount) {
+    const std::string dir = test::tempDir();
+    for (const char* kind : {"smoke", "pyro"}) {
+        SCOPED_TRACE(kind);
+        const std::string one = dir + "/" + kind + "_1.vdb", all = dir + "/" + kind + "_n.vdb";
+        {
+            tbb::global_control serial(tbb::global_control::max_allowed_parallelism, 1);
+            writeProceduralAsset(kind, one, 40, 3);
+        }
+        writeProceduralAsset(kind, all, 40, 3);
+        const std::string a = contentWithoutUuid(one);
+        EXPECT_GT(a.size(), 10000u);
+        EXPECT_TRUE(a == contentWithoutUuid(all));
+    }
+}
+
+// --voxels aims at an active voxel count by the resolution; the pyro's density is within a few
+// per cent of it.
+TEST(Asset, PyroReachesTheVoxelCountAskedFor) {
+    const int res = assetResolutionForVoxels("pyro", 1, 2e5);
+    const std::string path = test::tempDir() + "/pyro.vdb";
+    writeProceduralAsset("pyro", path, res, 1);
+    const VdbFileInfo info = inspectVdbFile(path);
+    EXPECT_NEAR(double(info.grids[0].activeVoxels), 2e5, 0.1 * 2e5);
+    // The temperature lies in the column's core, a subset of the density's voxels.
+    EXPECT_LT(info.grids[1].activeVoxels, info.grids[0].activeVoxels);
+    const ValueRange t = activeRange(loadFloatGrid(path, "temperature"));
+    EXPECT_GE(t.lo, 299.f);
+    EXPECT_LE(t.hi, 1201.f);
 }
 
 TEST(Asset, KindsHaveTheDocumentedGridsAndRanges) {
@@ -172,7 +206,7 @@ TEST(Asset, BadKindListsTheValidKinds) {
         writeProceduralAsset("smokey", path, 32, 1);
         ADD_FAILURE() << "no error";
     } catch (const MirageError& e) {
-        EXPECT_NE(std::string(e.what()).find("'smokey' (valid kinds: smoke, fire, fog-sphere, ocean)"),
+        EXPECT_NE(std::string(e.what()).find("'smokey' (valid kinds: smoke, fire, fog-sphere, ocean, pyro)"),
                   std::string::npos)
             << e.what();
     }

@@ -1,0 +1,385 @@
+// The procedural fields of `mirage make-asset` (procedural_fields.h).
+#include "tools/procedural_fields.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "core/error.h"
+#include "core/rng.h"
+#include "core/text.h"
+
+namespace mirage {
+
+namespace {
+
+// ---- Noise -------------------------------------------------------------------------------
+// Gradient noise (Perlin 2002, "Improving noise": quintic fade, gradients towards the 12 cube
+// edges) with the lattice hashed by mix64 instead of a permutation table, so that the seed
+// selects an independent field. Only +, −, × and floor: bit-identical on every IEEE platform.
+
+class GradientNoise {
+public:
+    explicit GradientNoise(uint64_t key = 0) : mKey(key) {}
+
+    float operator()(float x, float y, float z) const {
+        const float fx = std::floor(x), fy = std::floor(y), fz = std::floor(z);
+        const int ix = int(fx), iy = int(fy), iz = int(fz);
+        const float tx = x - fx, ty = y - fy, tz = z - fz;
+        const float u = fade(tx), v = fade(ty), w = fade(tz);
+        auto g = [&](int dx, int dy, int dz) {
+            return grad(ix + dx, iy + dy, iz + dz, tx - float(dx), ty - float(dy), tz - float(dz));
+        };
+        return lerp(w, lerp(v, lerp(u, g(0, 0, 0), g(1, 0, 0)), lerp(u, g(0, 1, 0), g(1, 1, 0))),
+                    lerp(v, lerp(u, g(0, 0, 1), g(1, 0, 1)), lerp(u, g(0, 1, 1), g(1, 1, 1))));
+    }
+
+private:
+    static float fade(float t) { return t * t * t * (t * (t * 6.f - 15.f) + 10.f); }
+
+    float grad(int ix, int iy, int iz, float x, float y, float z) const {
+        uint64_t h = mix64(mKey ^ (uint64_t(uint32_t(ix)) * 0x9e3779b97f4a7c15ull) ^
+                           (uint64_t(uint32_t(iy)) * 0xc2b2ae3d27d4eb4full) ^
+                           (uint64_t(uint32_t(iz)) * 0x165667b19e3779f9ull));
+        switch (h % 12) {
+            case 0:
+                return x + y;
+            case 1:
+                return -x + y;
+            case 2:
+                return x - y;
+            case 3:
+                return -x - y;
+            case 4:
+                return x + z;
+            case 5:
+                return -x + z;
+            case 6:
+                return x - z;
+            case 7:
+                return -x - z;
+            case 8:
+                return y + z;
+            case 9:
+                return -y + z;
+            case 10:
+                return y - z;
+            default:
+                return -y - z;
+        }
+    }
+
+    uint64_t mKey;
+};
+
+// Fractional Brownian motion: octaves of gradient noise at doubling frequency and halving
+// amplitude, normalised by the amplitude sum and clamped to [-1, 1].
+class Fbm {
+public:
+    Fbm(uint64_t seed, uint64_t stream, int octaves) : mOctaves(std::min(octaves, 6)) {
+        for (int o = 0; o < mOctaves; ++o)
+            mNoise[o] = GradientNoise(hashCombine(hashCombine(mix64(seed), stream), uint64_t(o)));
+    }
+    float operator()(const Vec3& p) const {
+        float sum = 0.f, amp = 1.f, norm = 0.f, f = 1.f;
+        for (int o = 0; o < mOctaves; ++o) {
+            sum += amp * mNoise[o](p.x * f, p.y * f, p.z * f);
+            norm += amp;
+            amp *= 0.5f;
+            f *= 2.f;
+        }
+        return clamp(sum / norm, -1.f, 1.f);
+    }
+
+private:
+    int mOctaves;
+    GradientNoise mNoise[6];
+};
+
+float smoothstep(float a, float b, float x) {
+    float t = clamp((x - a) / (b - a), 0.f, 1.f);
+    return t * t * (3.f - 2.f * t);
+}
+
+// ---- Asset fields ------------------------------------------------------------------------
+
+// The flow of a rising plume whose radius grows linearly from rBase at yBase to rTop at 2 m:
+// an updraft `rise` (m/s) slowing by `slow` per metre of height, the self-similar spreading
+// that keeps the plume's profile (radial speed ∝ r · dR/dy · v_y / R), and a swirl about the
+// axis, solid-body within the plume, `swirl` m/s at its edge.
+std::function<Vec3(const Vec3&)> plumeFlow(float yBase, float rBase, float rTop, float rise,
+                                           float slow, float swirl) {
+    return [=](const Vec3& p) {
+        const float vy = rise * std::max(0.2f, 1.f - slow * p.y);
+        const float t = clamp((p.y - yBase) / (2.f - yBase), 0.f, 1.f);
+        const float radius = rBase + (rTop - rBase) * t;
+        const float spread = (rTop - rBase) / (2.f - yBase) * vy / radius;  // 1/s
+        const float omega = swirl / radius;                                 // rad/s
+        return Vec3(spread * p.x - omega * p.z, vy, spread * p.z + omega * p.x);
+    };
+}
+
+// Squared distance from the y axis to the nearest point of the box [lo, hi], in the xz plane.
+float horizontalDistance2(const Vec3& lo, const Vec3& hi) {
+    const float dx = std::max({0.f, lo.x, -hi.x}), dz = std::max({0.f, lo.z, -hi.z});
+    return dx * dx + dz * dz;
+}
+
+// A rising plume of radius growing from rBase at yBase to rTop at y = 2 m, billowing (its
+// radius swells and shrinks by up to 30% with low-frequency noise), whose axis wanders with
+// height and whose edge is domain-warped more the higher it rises. Returns the radial profile
+// (1 − r²)² in [0, 1] and r² (0 on the axis, 1 at the edge) through *r2. The plume stays
+// within rTop·1.3 + kWander + kWarpTop of the y axis.
+class Plume {
+public:
+    Plume(uint64_t seed, float yBase, float rBase, float rTop)
+        : mYBase(yBase),
+          mRBase(rBase),
+          mRTop(rTop),
+          mWanderX(seed, 1, 3),
+          mWanderZ(seed, 2, 3),
+          mWarpX(seed, 3, 3),
+          mWarpZ(seed, 4, 3),
+          mBillow(seed, 8, 2) {}
+
+    static constexpr float kWander = 0.1f, kWarpBase = 0.03f, kWarpTop = 0.12f;  // m
+
+    float profile(const Vec3& p, float* r2) const {
+        *r2 = 1.f;
+        if (p.y <= mYBase) return 0.f;
+        const float t = (p.y - mYBase) / (2.f - mYBase);
+        const float warp = kWarpBase + (kWarpTop - kWarpBase) * t;
+        float radius = mRBase + (mRTop - mRBase) * t;
+        // Outside the plume even at its widest and after the largest warp: skip the noise.
+        const float reach = 1.3f * radius + warp;
+        // The same test before the axis's wander is known, with the wander's bound (√2 kWander
+        // t off the y axis) and a margin for rounding: the noise is skipped for most voxels.
+        const float farthest = reach + 1.415f * kWander * t + 1e-3f;
+        if (p.x * p.x + p.z * p.z >= farthest * farthest) return 0.f;
+        const float cx = kWander * t * mWanderX(Vec3(0.f, 0.7f * p.y, 0.f));
+        const float cz = kWander * t * mWanderZ(Vec3(0.f, 0.7f * p.y, 3.1f));
+        float dx = p.x - cx, dz = p.z - cz;
+        if (dx * dx + dz * dz >= reach * reach) return 0.f;
+        radius *= 1.f + 0.3f * mBillow(p * 1.8f);
+        const Vec3 q = p * 2.5f;
+        dx += warp * mWarpX(q);
+        dz += warp * mWarpZ(q);
+        *r2 = (dx * dx + dz * dz) / (radius * radius);
+        if (*r2 >= 1.f) return 0.f;
+        return (1.f - *r2) * (1.f - *r2);
+    }
+
+    // False when no point of the box [lo, hi] can be inside the plume: the box lies below the
+    // base, or farther from the y axis than the plume's reach at the box's top plus the
+    // largest wander of its axis (the Fbm's are clamped to [-1, 1]).
+    bool mayCover(const Vec3& lo, const Vec3& hi) const {
+        if (hi.y <= mYBase) return false;
+        const float t = clamp((hi.y - mYBase) / (2.f - mYBase), 0.f, 1.f);
+        // The axis wanders by up to kWander along x and z at once: √2 kWander off the y axis.
+        const float reach = 1.3f * (mRBase + (mRTop - mRBase) * t) + kWarpBase +
+                            (kWarpTop - kWarpBase) * t + 1.415f * kWander;
+        return horizontalDistance2(lo, hi) <= reach * reach * 1.01f;
+    }
+
+private:
+    float mYBase, mRBase, mRTop;
+    Fbm mWanderX, mWanderZ, mWarpX, mWarpZ, mBillow;
+};
+
+AssetField smokeField(uint64_t seed) {
+    auto plume = std::make_shared<Plume>(seed, 0.f, 0.12f, 0.27f);
+    auto detail = std::make_shared<Fbm>(seed, 5, 4);
+    AssetField a;
+    a.grids = {"density", "temperature"};
+    a.units = {"unitless (a shader scales it into sigma, 1/m)", "K"};
+    a.lo = Vec3(-0.6f, 0.f, -0.6f);
+    a.hi = Vec3(0.6f, 2.f, 0.6f);
+    a.eval = [plume, detail](const Vec3& p, float* out) {
+        out[0] = out[1] = 0.f;
+        float r2;
+        const float shape = plume->profile(p, &r2);
+        if (shape <= 0.f) return;
+        const float n = (*detail)(p * 5.f);
+        const float fade = smoothstep(0.f, 0.12f, p.y) * (1.f - smoothstep(1.3f, 1.98f, p.y));
+        const float density = shape * clamp(0.5f + 1.5f * n, 0.f, 1.3f) * fade;
+        if (density < 1e-3f) return;
+        out[0] = density;
+        // Hot core near the source cooling with height and towards the edge: 300–900 K.
+        const float heat = (1.f - r2) * (1.f - r2) * (1.f - r2) * (1.f - 0.35f * p.y);
+        out[1] = 300.f + 600.f * clamp(heat * (0.9f + 0.3f * n), 0.f, 1.f);
+    };
+    a.mayCover = [plume](const Vec3& lo, const Vec3& hi) { return plume->mayCover(lo, hi); };
+    a.velocity = plumeFlow(0.f, 0.12f, 0.27f, 1.2f, 0.25f, 0.3f);
+    return a;
+}
+
+AssetField fireField(uint64_t seed) {
+    auto plume = std::make_shared<Plume>(seed, 0.45f, 0.15f, 0.21f);
+    auto detail = std::make_shared<Fbm>(seed, 5, 4);
+    auto tongues = std::make_shared<Fbm>(seed, 6, 3);
+    auto flicker = std::make_shared<Fbm>(seed, 7, 4);
+    AssetField a;
+    a.grids = {"density", "temperature", "flame"};
+    a.units = {"unitless soot density (a shader scales it into sigma, 1/m)", "K",
+               "unitless reaction intensity 0..1"};
+    a.lo = Vec3(-0.5f, 0.f, -0.5f);
+    a.hi = Vec3(0.5f, 2.f, 0.5f);
+    a.eval = [plume, detail, tongues, flicker](const Vec3& p, float* out) {
+        out[0] = out[1] = out[2] = 0.f;
+        // Flames: a cone over a 0.3 m radius base whose height varies across the base
+        // (tongues) and whose surface is displaced by noise (flicker).
+        float flame = 0.f;
+        const float rBase = 0.3f;
+        const float base2 = p.x * p.x + p.z * p.z;
+        if (p.y < 1.3f && base2 < (rBase + 0.06f) * (rBase + 0.06f)) {
+            const float height = 0.9f * (1.f + 0.35f * (*tongues)(Vec3(p.x * 3.f, 0.f, p.z * 3.f)));
+            const float n = (*flicker)(p * Vec3(4.f, 2.5f, 4.f));
+            const float yw = p.y + 0.12f * n;
+            if (yw > 0.f && yw < height) {
+                const float radius = rBase * (1.f - yw / height);
+                const float r = std::sqrt(base2) + 0.05f * n;
+                const float r2 = r * r / (radius * radius);
+                if (r2 < 1.f)
+                    flame = clamp((1.f - r2) * (1.f - 0.5f * yw / height) * (0.9f + 0.6f * n), 0.f,
+                                  1.f) *
+                            smoothstep(0.f, 0.04f, p.y);
+            }
+        }
+        // Smoke above the flames.
+        float r2;
+        const float shape = plume->profile(p, &r2);
+        float smoke = 0.f;
+        if (shape > 0.f) {
+            const float n = (*detail)(p * 5.f);
+            smoke = shape * clamp(0.5f + 1.2f * n, 0.f, 1.f) * smoothstep(0.45f, 0.9f, p.y) *
+                    (1.f - smoothstep(1.6f, 1.98f, p.y));
+        }
+        const float density = std::max(smoke, 0.08f * flame);
+        if (density < 1e-3f && flame < 1e-3f) return;
+        out[0] = density >= 1e-3f ? density : 0.f;
+        out[2] = flame >= 1e-3f ? flame : 0.f;
+        // 1800 K at full reaction. The luminous zone of a sooty flame is hot nearly throughout
+        // (soot at ~1300–1700 K), cooling only at its thin edge: T rises as flame^0.3 (1520 K
+        // at half reaction), not linearly, or most of the flame would glow 10 stops dimmer
+        // than its core. The smoke cools from ~700 K above the flames to ambient.
+        const float tSmoke = 300.f + 400.f * shape * clamp(1.6f - p.y, 0.f, 1.f);
+        out[1] = std::max(300.f + 1500.f * std::pow(flame, 0.3f), tSmoke);
+    };
+    // Flames rise faster than the smoke they feed (buoyancy of ~1800 K gas).
+    const auto smokeFlow = plumeFlow(0.45f, 0.15f, 0.21f, 1.5f, 0.2f, 0.25f);
+    // Flames only below 1.3 m within 0.36 m of the axis; smoke only inside the plume.
+    a.mayCover = [plume](const Vec3& lo, const Vec3& hi) {
+        const bool flames = lo.y < 1.3f && horizontalDistance2(lo, hi) < 0.37f * 0.37f;
+        return flames || plume->mayCover(lo, hi);
+    };
+    a.velocity = [smokeFlow](const Vec3& p) {
+        const Vec3 v = smokeFlow(p);
+        return p.y < 1.f ? Vec3(v.x, v.y * (2.f - p.y), v.z) : v;
+    };
+    return a;
+}
+
+AssetField fogSphereField() {
+    AssetField a;
+    a.grids = {"density"};
+    a.units = {"unitless (a shader scales it into sigma, 1/m)"};
+    a.lo = Vec3(-1.f, 0.f, -1.f);
+    a.hi = Vec3(1.f, 2.f, 1.f);
+    a.eval = [](const Vec3& p, float* out) {
+        const float r = length(p - Vec3(0.f, 1.f, 0.f));
+        out[0] = 1.f - smoothstep(0.6f, 1.f, r);
+    };
+    return a;
+}
+
+// A phytoplankton plume in sea water: chlorophyll a (mg/m³) welling up from a patch on the
+// floor and spreading as it rises, its edge and interior broken up by noise (blooms are
+// patchy), over a clear-water background of 0 (the shader adds pure water everywhere). Peak
+// ~10 mg/m³, bloom waters; the plume's rim is ~0.1–1 mg/m³, open-ocean values.
+AssetField oceanField(uint64_t seed) {
+    auto plume = std::make_shared<Plume>(seed, 0.f, 0.3f, 0.7f);
+    auto patches = std::make_shared<Fbm>(seed, 9, 4);
+    AssetField a;
+    a.grids = {"chlorophyll"};
+    a.units = {"mg/m^3 (chlorophyll a)"};
+    a.lo = Vec3(-1.f, 0.f, -1.f);
+    a.hi = Vec3(1.f, 2.f, 1.f);
+    a.eval = [plume, patches](const Vec3& p, float* out) {
+        out[0] = 0.f;
+        float r2;
+        const float shape = plume->profile(p, &r2);
+        if (shape <= 0.f) return;
+        const float n = (*patches)(p * 3.f);
+        const float chl =
+            10.f * shape * clamp(0.55f + 1.2f * n, 0.f, 1.f) * (1.f - smoothstep(1.6f, 1.98f, p.y));
+        out[0] = chl >= 0.01f ? chl : 0.f;
+    };
+    a.mayCover = [plume](const Vec3& lo, const Vec3& hi) { return plume->mayCover(lo, hi); };
+    return a;
+}
+
+// A production-sized pyro cache: a billowing column 0.6 m wide at its base and 1.2 m at its
+// top, filling a quarter of its 1.6 × 2 × 1.6 m box, so that the voxel count reaches 10^9 at
+// ~1800 voxels along the height. Five octaves of noise per voxel (a billow of 2 that moves the
+// column's edge, a detail of 3 inside it) keep a billion voxels within minutes. Stored as
+// half floats, with `vel` at twice the voxel size, like the caches of production pyro solvers.
+//   `density`     unitless, ≤ 1.2, the column's profile broken up by the detail noise.
+//   `temperature` K, 300–1200 K in the column's core (the inner ~70 % of its radius), 0
+//                 outside it: a subset of the density's voxels.
+//   `vel`         m/s: an updraft of 1.5 m/s slowing with height, spreading, a 0.4 m/s swirl.
+AssetField pyroField(uint64_t seed) {
+    auto billow = std::make_shared<Fbm>(seed, 10, 2);
+    auto detail = std::make_shared<Fbm>(seed, 11, 3);
+    const auto radius = [](float y) { return 0.3f + 0.15f * clamp(y, 0.f, 2.f); };
+    constexpr float kBillow = 0.35f;  // the edge moves by up to ±35 % of the radius
+    AssetField a;
+    a.grids = {"density", "temperature"};
+    a.units = {"unitless (a shader scales it into sigma, 1/m)", "K"};
+    a.lo = Vec3(-0.8f, 0.f, -0.8f);
+    a.hi = Vec3(0.8f, 2.f, 0.8f);
+    a.eval = [billow, detail, radius](const Vec3& p, float* out) {
+        out[0] = out[1] = 0.f;
+        const float d2 = p.x * p.x + p.z * p.z;
+        const float reach = (1.f + kBillow) * radius(p.y);
+        if (d2 >= reach * reach) return;
+        const float r = radius(p.y) * (1.f + kBillow * (*billow)(p * 2.f));
+        const float r2 = d2 / (r * r);
+        if (r2 >= 1.f) return;
+        const float n = (*detail)(p * 7.f);
+        const float fade = smoothstep(0.f, 0.1f, p.y) * (1.f - smoothstep(1.85f, 1.99f, p.y));
+        const float density = fade * clamp((1.f - r2) * 1.5f * (0.55f + 0.9f * n), 0.f, 1.2f);
+        if (density < 1e-3f) return;
+        out[0] = density;
+        if (r2 < 0.5f) {
+            const float heat = (1.f - 2.f * r2) * (1.f - 0.3f * p.y) * (0.9f + 0.3f * n);
+            out[1] = 300.f + 900.f * clamp(heat, 0.f, 1.f);
+        }
+    };
+    a.mayCover = [radius](const Vec3& lo, const Vec3& hi) {
+        const float reach = (1.f + kBillow) * radius(hi.y) * 1.01f;
+        return hi.y > 0.f && horizontalDistance2(lo, hi) < reach * reach;
+    };
+    a.velocity = plumeFlow(0.f, 0.3f, 0.6f, 1.5f, 0.2f, 0.4f);
+    a.velocityScale = 2;
+    a.half = true;
+    return a;
+}
+
+}  // namespace
+
+const std::vector<std::string>& proceduralAssetKinds() {
+    static const std::vector<std::string> kinds = {"smoke", "fire", "fog-sphere", "ocean", "pyro"};
+    return kinds;
+}
+
+AssetField proceduralField(const std::string& kind, uint64_t seed) {
+    if (kind == "smoke") return smokeField(seed);
+    if (kind == "fire") return fireField(seed);
+    if (kind == "fog-sphere") return fogSphereField();
+    if (kind == "ocean") return oceanField(seed);
+    if (kind == "pyro") return pyroField(seed);
+    throw MirageError("unknown asset kind '" + boundedMessage(kind, 60) +
+                      "' (valid kinds: " + joinList(proceduralAssetKinds()) + ")");
+}
+
+}  // namespace mirage

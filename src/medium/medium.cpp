@@ -103,8 +103,10 @@ void Medium::buildMajorantAndPhases(const Bounds3& objectBounds, int majorantRes
         greyAll &= mBinding.componentModel(int(i)).grey() && !c.fluorescent();
         mFluorescent |= c.fluorescent();
         mFluorescence.push_back(
-            c.fluorescent() ? FluorescenceEmission(c.emissionPeakNm, c.emissionFwhmNm, c.antiStokes)
-                            : FluorescenceEmission());
+            !c.fluorescent() ? FluorescenceEmission()
+            : c.emissionMatrix
+                ? FluorescenceEmission(*c.emissionMatrix, c.antiStokes)
+                : FluorescenceEmission(c.emissionPeakNm, c.emissionFwhmNm, c.antiStokes));
     }
     mGreyCoefficients = greyAll;
     if (!(sigmaMax <= kMaxSigma))

@@ -134,11 +134,16 @@ private:
     float mG, mK;
 };
 
-// The Mie lobes of hazy and murky air (Nishita et al. 1987; as used by Jarosz 2008, thesis):
-//     p(θ) ∝ 1 + c x^n,  x = (1 + cosθ)/2,  (c, n) = (9, 8) hazy, (50, 32) murky.
-// ∫ dμ over [−1, 1] is 2 + 2c/(n + 1), so p = (1 + c x^n) / (2π (2 + 2c/(n + 1))). Sampled
-// exactly as the mixture it is: the constant, with probability 2 / (2 + 2c/(n + 1)), uniform
-// in μ; else the peak, whose density in x ∝ x^n inverts to x = u^(1/(n + 1)).
+// The Mie lobes of hazy and murky air (Nishita et al. 1987; as published in Jarosz 2008,
+// thesis, chapter 4, and in Gutierrez's thesis, equation 4.24):
+//     p(θ) = (1/4π) (1/2 + (c/2) x^n),  x = (1 + cosθ)/2,  (c, n) = (9, 8) hazy, (33, 32) murky,
+// normalised over the sphere as published (c = n + 1 makes ∫ (1/2 + (c/2) x^n) dμ = 2), with
+// mean cosines c n / ((n + 2)(n + 1 + c)) = 2/5 hazy and 8/17 ≈ 0.47 murky. (The murky
+// 1 + 50 x^32 seen elsewhere is not normalised and, renormalised, has a mean cosine of 0.57.)
+// Written for any (c, n) as p ∝ 1 + c x^n: ∫ dμ over [−1, 1] is 2 + 2c/(n + 1), so
+// p = (1 + c x^n) / (2π (2 + 2c/(n + 1))). Sampled exactly as the mixture it is: the constant,
+// with probability 2 / (2 + 2c/(n + 1)), uniform in μ; else the peak, whose density in x ∝ x^n
+// inverts to x = u^(1/(n + 1)).
 class MiePhase {
 public:
     MiePhase(float c, int n) : mC(c), mN(n) {
@@ -147,7 +152,7 @@ public:
         mPUniform = 2.f / area;
     }
     static MiePhase hazy() { return MiePhase(9.f, 8); }
-    static MiePhase murky() { return MiePhase(50.f, 32); }
+    static MiePhase murky() { return MiePhase(33.f, 32); }
     float eval(float cosTheta) const {
         float x = 0.5f * (1.f + cosTheta);
         return mNorm * (1.f + mC * std::pow(std::max(x, 0.f), float(mN)));

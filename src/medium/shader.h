@@ -6,11 +6,13 @@
 // σa·B(λ,T)). Shaders are written in TOML (shaders/*.toml) and parsed by scene/.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
+#include "medium/fluorescence.h"
 #include "medium/phase.h"
 #include "spectrum/spectrum.h"
 
@@ -48,11 +50,14 @@ struct MediumComponent {
 
     // Fluorescence (Gutierrez et al. 2005): a photon absorbed by this component is re-emitted
     // with probability Γ (a quantum yield: photons out per photon absorbed), isotropically, at a
-    // wavelength drawn from the Gaussian η(λ) of the given peak and FWHM, restricted to
-    // λ ≥ λ_absorbed (Stokes shift) unless antiStokes.
+    // wavelength drawn from the Gaussian η(λ) of the given peak and FWHM, or from the
+    // excitation–emission matrix, restricted to λ ≥ λ_absorbed (Stokes shift) unless antiStokes.
     float quantumEfficiency = 0;  // Γ, 0..1
     float emissionPeakNm = 685;   // chlorophyll a (Gutierrez et al. 2005; field data 683–687 nm)
     float emissionFwhmNm = 25;
+    // η as an excitation–emission matrix instead of the band (medium/fluorescence.h); null:
+    // the band.
+    std::shared_ptr<const EmissionMatrix> emissionMatrix;
     bool antiStokes = false;
     bool fluorescent() const { return quantumEfficiency > 0.f; }
 };

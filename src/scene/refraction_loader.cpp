@@ -61,6 +61,50 @@ std::shared_ptr<const IndexField> gridField(const TableReader& t,
     return std::make_shared<GridIndexField>(std::move(d), GridIndexSettings{});
 }
 
+// The value of a key that names one of `choices` (its index), `def` when absent.
+template <size_t N>
+size_t readChoice(const TableReader& t, const std::string& key, const char* const (&choices)[N],
+                  size_t def) {
+    const std::string value = t.getString(key, choices[def]);
+    std::string names;
+    for (size_t i = 0; i < N; ++i) {
+        if (value == choices[i]) return i;
+        names += std::string(i ? ", " : "") + "\"" + choices[i] + "\"";
+    }
+    t.fail(key, "unknown value '" + value + "'; expected one of " + names);
+}
+
+// One [[refraction.inversion]] layer.
+InversionLayer readInversion(const TableReader& l) {
+    static const char* const kEdges[] = {"smooth", "fermi"};
+    InversionLayer layer;
+    layer.base = l.getNumber("base");
+    layer.top = l.getNumber("top");
+    layer.deltaT = l.getNumber("delta_t", 0.0, -200.0, 2000.0);
+    layer.blend = l.getNumber("blend", 1.0, 1e-6, 1e6);
+    layer.edge = LayerEdge(readChoice(l, "edge", kEdges, 0));
+    if (!(layer.top > layer.base)) l.fail("top", "expected top > base");
+    l.finish();
+    return layer;
+}
+
+// profile = "atmosphere": the US Standard Atmosphere 1976, its layers, the Earth's shape and
+// the air's dispersion.
+AtmosphereSettings readAtmosphere(const TableReader& t) {
+    static const char* const kEarths[] = {"flat", "round"};
+    static const char* const kDispersions[] = {"cauchy", "edlen", "ciddor"};
+    AtmosphereSettings a;
+    a.groundHeight = t.getNumber("ground_height", 0.0, -1e7, 1e7);
+    a.earth = EarthShape(readChoice(t, "earth", kEarths, 0));
+    if (a.earth == EarthShape::Round) {
+        a.earthRadius = t.getNumber("earth_radius", air::kMeanEarthRadius, 1e3, 1e9);
+        a.shellDepth = t.getNumber("shell_depth", air::kShellDepth, 2 * air::kShellFade, 1e6);
+    }
+    a.dispersion = AirDispersion(readChoice(t, "dispersion", kDispersions, 0));
+    for (const TableReader& l : t.tables("inversion")) a.inversions.push_back(readInversion(l));
+    return a;
+}
+
 }  // namespace
 
 std::shared_ptr<const Refraction> readRefraction(const TableReader& t,
@@ -75,20 +119,13 @@ std::shared_ptr<const Refraction> readRefraction(const TableReader& t,
         std::snprintf(buf, sizeof buf, "linear profile n = %g + %g·y", n0, k);
         r->description = buf;
     } else if (profile == "atmosphere") {
-        AtmosphereSettings a;
-        a.groundHeight = t.getNumber("ground_height", 0.0, -1e7, 1e7);
-        for (const TableReader& l : t.tables("inversion")) {
-            InversionLayer layer;
-            layer.base = l.getNumber("base");
-            layer.top = l.getNumber("top");
-            layer.deltaT = l.getNumber("delta_t", 0.0, -200.0, 2000.0);
-            layer.blend = l.getNumber("blend", 1.0, 1e-6, 1e6);
-            if (!(layer.top > layer.base)) l.fail("top", "expected top > base");
-            l.finish();
-            a.inversions.push_back(layer);
-        }
-        std::snprintf(buf, sizeof buf, "US Standard Atmosphere 1976 with %zu inversion layer(s)",
-                      a.inversions.size());
+        const AtmosphereSettings a = readAtmosphere(t);
+        // The defaults (flat, the paper's Cauchy) say nothing more.
+        const bool cauchy = a.dispersion == AirDispersion::Cauchy;
+        std::snprintf(
+            buf, sizeof buf, "US Standard Atmosphere 1976 with %zu inversion layer(s)%s%s%s",
+            a.inversions.size(), a.earth == EarthShape::Round ? " on a round Earth" : "",
+            cauchy ? "" : ", dispersion of ", cauchy ? "" : airDispersionName(a.dispersion));
         r->description = buf;
         r->field = std::make_shared<AtmosphereIndexField>(a);
     } else if (profile == "grid") {

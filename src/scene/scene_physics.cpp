@@ -30,9 +30,15 @@ std::string spectralReason(const ShaderDesc& s) {
 
 std::string fluorescenceReason(const ShaderDesc& s, const MediumComponent& c) {
     char buf[160];
-    std::snprintf(buf, sizeof buf, "' re-emits with Γ = %g at %g nm (FWHM %g nm%s)",
-                  c.quantumEfficiency, c.emissionPeakNm, c.emissionFwhmNm,
-                  c.antiStokes ? ", anti-Stokes allowed" : "");
+    if (c.emissionMatrix)
+        std::snprintf(buf, sizeof buf,
+                      "' re-emits with Γ = %g by an excitation–emission matrix (%zu rows%s)",
+                      c.quantumEfficiency, c.emissionMatrix->rows.size(),
+                      c.antiStokes ? ", anti-Stokes allowed" : "");
+    else
+        std::snprintf(buf, sizeof buf, "' re-emits with Γ = %g at %g nm (FWHM %g nm%s)",
+                      c.quantumEfficiency, c.emissionPeakNm, c.emissionFwhmNm,
+                      c.antiStokes ? ", anti-Stokes allowed" : "");
     return "shader '" + s.name + "' component '" + c.name + buf +
            ": Γ roulette after absorption, re-emissions stored as isotropic photons, spectral "
            "transport";

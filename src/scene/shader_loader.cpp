@@ -7,6 +7,8 @@
 #include "core/path_check.h"
 #include "core/text.h"
 #include "medium/ocean_components.h"
+#include "medium/rayleigh_particles.h"
+#include "scene/emission_matrix_loader.h"
 #include "spectrum/ocean_spectra.h"
 
 namespace mirage {
@@ -111,12 +113,26 @@ MediumComponent readComponent(const TableReader& c, size_t index) {
                    "(covaries_with, Case-1 water) or from 'concentration', not both");
     } else if (kind == "chlorophyll") {
         makeChlorophyll(&mc, float(c.getNumber("g", kParticleG, -1.0, 1.0)));
+    } else if (kind == "rayleigh") {
+        const double diameter = c.getNumber("diameter_nm", 1.0, 1e-3, 100.0);
+        const double index = c.getNumber("particle_index", 1.33, 1.0, 10.0);
+        const double density = c.getNumber("number_density");
+        if (!(density >= 0 && density <= 1e35))
+            c.fail("number_density", "expected particles per m³ within [0, 1e35]");
+        makeRayleighParticles(&mc, diameter, index, density);
+        if (!(mc.sigmaS.maxValue() < 1e12f))
+            c.fail("number_density", "σs of these particles exceeds 1e12 1/m; expected fewer");
     } else {
-        c.fail("kind", "expected \"linear\", \"water\", \"cdom\" or \"chlorophyll\"");
+        c.fail("kind", "expected \"linear\", \"water\", \"cdom\", \"chlorophyll\" or \"rayleigh\"");
     }
     mc.quantumEfficiency = float(c.getNumber("quantum_efficiency", 0.0, 0.0, 1.0));
     mc.emissionPeakNm = float(c.getNumber("emission_peak_nm", 685.0, kLambdaMin, kLambdaMax));
     mc.emissionFwhmNm = float(c.getNumber("emission_fwhm_nm", 25.0, 1.0, 500.0));
+    mc.emissionMatrix = readEmissionMatrix(c, "emission_matrix");
+    if (mc.emissionMatrix && (c.has("emission_peak_nm") || c.has("emission_fwhm_nm")))
+        c.fail("emission_matrix",
+               "a component re-emits by its band (emission_peak_nm, "
+               "emission_fwhm_nm) or by its emission_matrix, not both");
     mc.antiStokes = c.getBool("anti_stokes", false);
     c.finish();
     return mc;

@@ -154,7 +154,8 @@ TEST(GalleryScenes, VolumeCausticConeGlowsGreen) {
 }
 
 TEST(GalleryScenes, SplitSunShowsTwoSeparatedBands) {
-    // 90 × 60 pixels over the scene's 1° of height (measured: sun rows 20–21 and 31, gap 9 rows).
+    // 90 × 60 pixels over the scene's 1° of height (measured on the round Earth: sun rows 16–24
+    // and 34–43, gap 9 rows).
     const Image im = renderShipped("split_sun.toml", "--resolution 90x60 --spp 4", "fog-sphere",
                                    "fog_sphere.vdb");
     ASSERT_EQ(im.height, 60);

@@ -120,8 +120,10 @@ TEST(SlabSpectral, GreyShaderSlabIsFlatAndMatchesTheGreySlab) {
 }
 
 TEST(SlabSpectral, ChlorophyllFluorescenceAddsLightOnlyInItsBand) {
+    // The CDOM's own fluorescence (a blue band) off: only chlorophyll's is measured.
     const std::string base = "--shader ocean --set chlorophyll=5 --spectral --photons 300000 "
-                             "--n 1.34 --set chlorophyll.quantum_efficiency=";
+                             "--n 1.34 --set cdom.quantum_efficiency=0 "
+                             "--set chlorophyll.quantum_efficiency=";
     std::string on = runSlab(base + "0.05"), off = runSlab(base + "0");
     auto lambda = array(on, "wavelength_nm"), rOn = array(on, "reflectance"),
          rOff = array(off, "reflectance");

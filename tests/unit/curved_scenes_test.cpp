@@ -1,16 +1,17 @@
 // The curved-light scenes shipped in assets/scenes/ load and render without ../shared (their
 // procedural caches made by `mirage make-asset` next to a copy of the scene), and the flattened
-// sun sits where Snell's invariant for a flat-layered atmosphere puts it: a true elevation e'
-// outside the air is seen at e with n(camera)·cos e = n(top)·cos e'.
+// sun sits where the astronomers' refraction on the round Earth puts it (Bennett 1982).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
+#include "core/math.h"
 #include "film/image_io.h"
-#include "medium/air_index.h"
+#include "refraction_tables.h"
 #include "test_support.h"
 
 namespace mirage {
@@ -48,7 +49,7 @@ TEST(CurvedScenes, EachRendersWithoutSharedData) {
     }
 }
 
-TEST(CurvedScenes, FlattenedSunSitsWhereSnellsInvariantPutsIt) {
+TEST(CurvedScenes, FlattenedSunSitsWhereTheRefractionTablesPutIt) {
     const std::string scene = sceneCopy("flattened_sun.toml", "fog-sphere", "fog_sphere.vdb");
     // 150×100 pixels over 3° × 2° (0.02° each; rows from +1.9° down), the fog off.
     std::string log;
@@ -72,23 +73,21 @@ TEST(CurvedScenes, FlattenedSunSitsWhereSnellsInvariantPutsIt) {
     const double degPerPixel = 2.0 / im.height;
     const double seenTop = 1.9 - top * degPerPixel, seenBottom = 1.9 - (bottom + 1) * degPerPixel;
     const double seenWidth = (right + 1 - left) * degPerPixel;
-    // The prediction: the sun's limbs at 0.5° ± 0.265° outside the air.
-    const AtmosphereIndexField air({});
-    const double nCam = air.index(Vec3d(0, 2, 0), 550), nTop = air.index(Vec3d(0, 84000, 0), 550);
-    auto seen = [&](double trueDeg) {
-        const double c = nTop * std::cos(trueDeg * kPi / 180) / nCam;
-        return std::acos(c) * 180 / kPi;
-    };
-    const double predictedTop = seen(0.765), predictedBottom = seen(0.235);
-    std::printf("sun seen %.3f°–%.3f° (predicted %.3f°–%.3f°), %.3f° wide\n", seenBottom, seenTop,
+    // The prediction: the sun's limbs at 0.5° ± 0.265° outside the air, seen through Bennett's
+    // refraction (0.685° and 1.152°).
+    const double predictedTop = test::apparentAltitude(0.765),
+                 predictedBottom = test::apparentAltitude(0.235);
+    std::printf("sun seen %.3f°–%.3f° (Bennett: %.3f°–%.3f°), %.3f° wide\n", seenBottom, seenTop,
                 predictedBottom, predictedTop, seenWidth);
     // Within two pixels (the sun is 1e8 m away: its parallax from the paths' 20–40 km height at
-    // 3000 km is ~0.01°).
+    // 700 km is ~0.01°; Bennett's formula and the standard atmosphere differ by < 1′ here).
     EXPECT_NEAR(seenTop, predictedTop, 2 * degPerPixel);
     EXPECT_NEAR(seenBottom, predictedBottom, 2 * degPerPixel);
     EXPECT_NEAR(seenWidth, 0.53, 2 * degPerPixel);
-    // Straight, it would be 0.53° tall at 0.235°–0.765°: here it is lifted and flattened.
-    EXPECT_GT((seenWidth) / (seenTop - seenBottom), 2.0);
+    // Straight, it would be 0.53° tall at 0.235°–0.765°: here it is lifted and flattened, its
+    // vertical diameter ~0.88 of its horizontal.
+    EXPECT_NEAR((seenTop - seenBottom) / seenWidth, (predictedTop - predictedBottom) / 0.53,
+                4 * degPerPixel / 0.53);
 }
 
 }  // namespace

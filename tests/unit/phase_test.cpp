@@ -222,6 +222,27 @@ TEST(PhaseLobe, ClosedFormsOfTheMeanCosine) {
     EXPECT_NEAR(mean(ComponentPhase(PhaseKind::MieHazy)), 0.4, 1e-4);
 }
 
+TEST(PhaseLobe, MieLobesAreThePublishedOnes) {
+    // Nishita et al. 1987's lobes as Jarosz 2008 (thesis, ch. 4) and Gutierrez's thesis
+    // (eq. 4.24) publish them, normalised over the sphere: (1/4π)(1/2 + (9/2) x⁸) hazy and
+    // (1/4π)(1/2 + (33/2) x³²) murky, x = (1 + cosθ)/2. Their mean cosines by quadrature of the
+    // published form: 2/5 and 8/17 = 0.4706 (the unnormalised 1 + 50x³² would give 0.567).
+    auto hazy = [](double mu) { return (0.5 + 4.5 * std::pow(0.5 * (1 + mu), 8)) / (4 * M_PI); };
+    auto murky = [](double mu) { return (0.5 + 16.5 * std::pow(0.5 * (1 + mu), 32)) / (4 * M_PI); };
+    EXPECT_NEAR(2.0 * M_PI * integrateMu(hazy), 1.0, 1e-9);
+    EXPECT_NEAR(2.0 * M_PI * integrateMu(murky), 1.0, 1e-9);
+    const double meanMurky = 2.0 * M_PI * integrateMu([&](double mu) { return mu * murky(mu); });
+    EXPECT_NEAR(meanMurky, 8.0 / 17.0, 1e-6);
+    const ComponentPhase mirageHazy(PhaseKind::MieHazy), mirageMurky(PhaseKind::MieMurky);
+    for (double mu : {-1.0, -0.5, 0.0, 0.5, 0.8, 0.9, 0.95, 0.99, 1.0}) {
+        EXPECT_NEAR(mirageHazy.eval(float(mu)), hazy(mu), 1e-5 * hazy(mu)) << mu;
+        EXPECT_NEAR(mirageMurky.eval(float(mu)), murky(mu), 1e-5 * murky(mu)) << mu;
+    }
+    const double mirageMean =
+        2.0 * M_PI * integrateMu([&](double mu) { return mu * mirageMurky.eval(float(mu)); });
+    EXPECT_NEAR(mirageMean, meanMurky, 1e-4);
+}
+
 TEST(PhaseLobe, ShaderKeysChooseTheLobe) {
     const ShaderDesc s = parseShader(
         parseTomlText("[[component]]\nsigma_s = 1.0\nphase = \"double_hg\"\ng = 0.8\ng2 = -0.3\n"

@@ -8,6 +8,7 @@
 #include <optional>
 #include <utility>
 
+#include "render/curved_transport.h"
 #include "render/path_recorder.h"
 #include "transport/curved_tracking.h"
 #include "transport/ray_optical_depth.h"
@@ -43,6 +44,11 @@ public:
                                                return geometry->surfaceDistance(o, d);
                                            });
         }
+        // The wrapped integrator's shadow rays and scattered paths bend on the same terms
+        // (render/curved_transport.h); the photon mapper's light has bent in its photon pass.
+        mTransport = mPhotonPart ? nullptr
+                                 : std::make_unique<CurvedTransport>(mRefraction->field, mPath,
+                                                                     mRefraction->maxArc, scene);
     }
     void beginPass(const RenderScene& scene, int pass) override { mInner->beginPass(scene, pass); }
     // The wrapped integrator's figures (its photon pass among them), and the camera rays whose
@@ -65,6 +71,7 @@ public:
         PathRecorder rec(&out, ts);
         const CameraSample sample{scene, w, sampler, ts, rec};
         CurvedRay r(*mRefraction->field, ray, w);
+        ts.curved = mTransport.get();
         // The photon part (XYZ, each photon at its own wavelength) is attenuated by the chords
         // before inside the estimate, through ts.photonView: T at the photon's wavelength.
         ts.photonView = ViewWeight();
@@ -186,7 +193,9 @@ private:
             return;
         }
         const float stretch = h / len;
-        auto marched = [&](float lambda) { return std::pow(depth.transmittance(len, lambda), stretch); };
+        auto marched = [&](float lambda) {
+            return std::pow(depth.transmittance(len, lambda), stretch);
+        };
         float mean = 0.f;
         for (float lambda : w.lambda) mean += marched(lambda) / float(kSpectrumSamples);
         prefix->scale(mean > 0.f ? chordT.average() / mean : 0.f);
@@ -199,12 +208,13 @@ private:
     mutable std::atomic<uint64_t> mCapped{0};
     bool mPhotonPart = false;  // the wrapped integrator returns a photon part (XYZ)
     std::unique_ptr<tbb::enumerable_thread_specific<RayOpticalDepth>> mDepth;
+    std::unique_ptr<const CurvedTransport> mTransport;  // null for the photon mapper
 };
 
 }  // namespace
 
-std::unique_ptr<Integrator> makeCurvedCameraIntegrator(std::unique_ptr<Integrator> inner,
-                                                       std::shared_ptr<const Refraction> refraction) {
+std::unique_ptr<Integrator> makeCurvedCameraIntegrator(
+    std::unique_ptr<Integrator> inner, std::shared_ptr<const Refraction> refraction) {
     return std::make_unique<CurvedCameraIntegrator>(std::move(inner), std::move(refraction));
 }
 

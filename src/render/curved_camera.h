@@ -8,8 +8,11 @@
 // A path stopped by the ODE step cap (CurvedPathSettings::maxSteps) also goes on straight, and
 // is counted in cappedPaths() (the render summary's and the EXR's capped paths).
 //
-// Paths scattered off the camera ray stay straight in the single and volpath integrators, and so
-// do their shadow rays. The photon integrator bends photons too (photon/photon_pass.h) and then
+// The wrapped single and volpath integrators bend the rest of their paths too: the decorator
+// hands them the field (render/curved_transport.h, through ThreadState::curved), and their
+// shadow rays towards lights at infinity (render/direct_light.cpp) and volpath's scattered
+// segments follow Fermat paths; shadow rays towards lamps at a finite distance stay straight
+// (direct_light.cpp says why). The photon integrator bends photons (photon/photon_pass.h) and
 // takes direct light from the photon maps, as Gutierrez et al. 2005 do where paths curve.
 #pragma once
 
@@ -29,7 +32,7 @@ struct Refraction {
     std::string description;  // for `mirage info`
 };
 
-std::unique_ptr<Integrator> makeCurvedCameraIntegrator(std::unique_ptr<Integrator> inner,
-                                                       std::shared_ptr<const Refraction> refraction);
+std::unique_ptr<Integrator> makeCurvedCameraIntegrator(
+    std::unique_ptr<Integrator> inner, std::shared_ptr<const Refraction> refraction);
 
 }  // namespace mirage

@@ -2,6 +2,9 @@
 // contribution is attenuated by a ratio-tracked shadow ray. Surfaces block shadow rays (an
 // Embree occlusion test first, which is far cheaper than tracking); glass blocks them too, since
 // light through specular surfaces is not reachable by a shadow ray (photons carry caustics).
+// Where a [refraction] field bends light (ThreadState::curved), shadow rays towards lights at
+// infinity follow Fermat paths to where they leave the scene; direct_light.cpp says how, and
+// why lamps at a finite distance keep straight ones.
 #pragma once
 
 #include "render/integrator.h"

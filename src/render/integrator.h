@@ -22,6 +22,7 @@
 namespace mirage {
 
 class CameraRayData;
+class CurvedTransport;
 struct PhotonIntegratorSettings;
 
 // What an integrator returns for one camera sample. Its passes and deep record go to the
@@ -61,6 +62,10 @@ struct ThreadState {
     std::vector<SampledSpectrum> lightSplit;
     // A photon estimate's parts per light-group slot (XYZ, photon/photon_groups.h), likewise.
     std::vector<Vec3> lightSplitXyz;
+    // Where a [refraction] field bends light: the field and walks the wrapped integrator bends
+    // its shadow rays and scattered segments with (render/curved_transport.h), set by the curved
+    // camera for each sample; null where light is straight.
+    const CurvedTransport* curved = nullptr;
     // Zeroes the parts for the estimate about to be made; null when the render does not split.
     // Blackbody emission is filmed in its exact colour (render/achromatic_film.h): the recorder
     // adds each emission event's XYZ instead of its radiance at the sample's wavelengths.

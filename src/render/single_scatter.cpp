@@ -18,6 +18,10 @@
 // to kMaxSpecularBounces), so the first diffuse or medium event may be seen through glass. A
 // dispersive dielectric keeps the hero wavelength only, as in volpath.cpp. A ray that leaves the
 // scene sees the lights at infinity (the dome), which no next-event estimate has counted on it.
+//
+// Curved light: behind the curved camera (render/curved_camera.h) the camera ray is a chord of
+// its Fermat path, and the shadow rays towards lights at infinity bend too
+// (render/direct_light.cpp); a mirror's or glass's continuation stays straight.
 #include <memory>
 
 #include "render/camera_path.h"

@@ -15,6 +15,12 @@
 // A path ends by absorption (probability P_a), by leaving every medium, by roulette, or at the
 // depth cap (counted in the summary: a capped path is a bias, however rare).
 //
+// Curved light: behind the curved camera (render/curved_camera.h), where a [refraction] field
+// bends light, every segment after the camera's chord follows its Fermat path (flyCurved) and
+// the shadow rays towards lights at infinity bend too (render/direct_light.cpp), as the photon
+// pass bends photons; radiance keeps L/n² along them (the n² law). Lobe walks and the lamps'
+// distance sampling along a segment are straight: where light bends, neither is drawn.
+//
 // Lights at infinity (the dome) are sampled by NEE like the others, so a path that leaves the
 // scene scores them only where no NEE has: on the camera ray and after mirrors and glass.
 //
@@ -41,6 +47,7 @@
 
 #include "render/camera_path.h"
 #include "render/camera_ray_data.h"
+#include "render/curved_transport.h"
 #include "render/direct_light.h"
 #include "render/inelastic_light.h"
 #include "render/integrator.h"
@@ -66,6 +73,13 @@ struct Flight {
     Vec3 wi;               // Reemitted: the direction the light was re-emitted in
 };
 
+// The tentative collisions along a straight ray over (0, tEnd), for VolPathIntegrator::fly.
+auto straightTrack(ThreadState& ts, const Ray& ray, float tEnd, Sampler& sampler) {
+    return [&ts, ray, tEnd, &sampler](auto&& visit) {
+        return trackCollisions(ts.tracking, ray, tEnd, sampler, visit);
+    };
+}
+
 class VolPathIntegrator : public Integrator {
 public:
     explicit VolPathIntegrator(int maxDepth) : mMaxDepth(maxDepth) {}
@@ -77,20 +91,26 @@ public:
         RadianceSample out;
         PathRecorder rec(&out, ts);
         CameraPath path(cameraRay, w);
-        path.guided = guidesPaths(scene);  // render/light_lobes.h
+        // Lobe walks (render/light_lobes.h) are straight: where paths bend, none is drawn.
+        path.guided = !ts.curved && guidesPaths(scene);
         if (path.guided) path.walkStart = lobeWalkStart(scene);
         // Lobe walks weigh next-event estimation against themselves; lamps and the lights at
         // infinity draw their own points only where they do not (render/lamp_sampling.h).
         const bool towardsLamps = !path.guided && samplesLamps(scene);
         const bool towardsSky = !path.guided && samplesSky(scene);
         for (;; ++path.depth) {
-            const SurfaceAhead ahead = surfaceAhead(scene, path.ray);
+            // Where paths bend, every segment after the camera's (a chord the curved camera
+            // hands over) follows its Fermat path.
+            const bool bends = ts.curved && path.depth > 0;
+            SurfaceAhead ahead = bends ? SurfaceAhead() : surfaceAhead(scene, path.ray);
             // The camera ray also draws a point per medium for the lights at infinity.
             const bool sky = path.depth == 0 && towardsSky;
-            LampSampling lamps(scene, path.ray, ahead.tEnd, towardsLamps, sampler,
+            LampSampling lamps(scene, path.ray, ahead.tEnd, towardsLamps && !bends, sampler,
                                sky ? &ts.tracking : nullptr);
             const SampledSpectrum betaAtStart = path.throughput.beta;
-            const Flight f = fly(ahead.tEnd, lamps, sampler, ts, path, rec);
+            const Flight f = bends ? flyCurved(scene, lamps, sampler, ts, path, rec, &ahead)
+                                   : fly(straightTrack(ts, path.ray, ahead.tEnd, sampler), lamps,
+                                         sampler, ts, path, rec);
             if (!lamps.empty()) lamps.gather(scene, betaAtStart, sampler, ts, rec);
             // What the camera sees through the flight: the plate, past nothing or a holdout.
             const bool plate = f.end == Flight::End::Escaped &&
@@ -130,45 +150,87 @@ public:
     }
 
 private:
-    // The flight along the path's ray over (0, tEnd): emission scored at every tentative
-    // collision, then the event chosen there (transport/path_vertex.h), or in a fluorescent
-    // medium first the inelastic one (fluoresce). A holdout medium the camera sees only
-    // attenuates: no emission, and a real event in it ends the path with nothing. The lamps'
-    // points on the segment read their transmittance off the flight (render/lamp_sampling.h).
-    static Flight fly(float tEnd, LampSampling& lamps, Sampler& sampler, ThreadState& ts,
+    // The flight along the path's ray, its tentative collisions handed over by `track` (true
+    // when the ray got through): emission scored at every tentative collision, then the event
+    // chosen there (transport/path_vertex.h), or in a fluorescent medium first the inelastic
+    // one (fluoresce). A holdout medium the camera sees only attenuates: no emission, and a
+    // real event in it ends the path with nothing. The lamps' points on the segment read their
+    // transmittance off the flight (render/lamp_sampling.h).
+    template <typename Tracker>
+    static Flight fly(Tracker&& track, LampSampling& lamps, Sampler& sampler, ThreadState& ts,
                       CameraPath& path, PathRecorder& rec) {
         Flight f;
         CameraRayData* data = rec.cameraRayData();
         PathThroughput& throughput = path.throughput;
-        const bool reached =
-            trackCollisions(ts.tracking, path.ray, tEnd, sampler, [&](const Collision& c) {
-                if (data) data->seen(c);
-                lamps.seen(c, ts.tracking);
-                const Medium& m = ts.tracking.medium(c.medium);
-                if (rec.holdout(size_t(c.medium))) {
-                    if (chooseEvent(c, throughput, sampler).event == MediumEvent::Null)
-                        return Track::Continue;
-                    f.end = Flight::End::HeldOut;
-                    return Track::Stop;
-                }
-                if (m.emissive()) {
-                    SampledSpectrum e;
-                    scoreEmission(c, m, throughput, &e);
-                    rec.emittedInMedium(e, c.t, c.mp.temperature);
-                }
-                if (m.fluorescent() && fluoresce(m, c, sampler, ts, throughput, &f))
-                    return Track::Stop;
-                const MediumEvent e = chooseEvent(c, throughput, sampler).event;
-                if (e == MediumEvent::Null) return Track::Continue;
-                if (e == MediumEvent::Scattered) {
-                    f.end = Flight::End::Scattered;
-                    f.at = c;
-                }
-                return Track::Stop;  // scattered, or absorbed for good
-            });
+        const bool reached = track([&](const Collision& c) {
+            if (data) data->seen(c);
+            lamps.seen(c, ts.tracking);
+            const Medium& m = ts.tracking.medium(c.medium);
+            if (rec.holdout(size_t(c.medium))) {
+                if (chooseEvent(c, throughput, sampler).event == MediumEvent::Null)
+                    return Track::Continue;
+                f.end = Flight::End::HeldOut;
+                return Track::Stop;
+            }
+            if (m.emissive()) {
+                SampledSpectrum e;
+                scoreEmission(c, m, throughput, &e);
+                rec.emittedInMedium(e, c.t, c.mp.temperature);
+            }
+            if (m.fluorescent() && fluoresce(m, c, sampler, ts, throughput, &f)) return Track::Stop;
+            const MediumEvent e = chooseEvent(c, throughput, sampler).event;
+            if (e == MediumEvent::Null) return Track::Continue;
+            if (e == MediumEvent::Scattered) {
+                f.end = Flight::End::Scattered;
+                f.at = c;
+            }
+            return Track::Stop;  // scattered, or absorbed for good
+        });
         if (reached) f.end = Flight::End::Escaped;
         lamps.flightEnded(reached);
         rec.cameraFlightEnded(reached);
+        return f;
+    }
+
+    // The flight along the curved (Fermat) path from the path's ray where a [refraction] field
+    // bends light (render/curved_transport.h), its collisions handled as fly's. Where it ends,
+    // path.ray becomes the chord it was on (the direction a scattering there sees it arrive
+    // from; the ray that met a surface) or, where it left the scene, the straight ray on; and β
+    // takes the n² law's factor from there back to the segment's start: radiance found at
+    // index n counts (n_start/n)² at the start. Emission along the segment is counted at the
+    // start's index (in air they differ by < 1e−4). A path that has walked the curved length
+    // (CurvedWalk::maxArc) without leaving the scene goes on straight, as camera rays do
+    // (render/curved_camera.h); cut by the stepper's cap, it is counted with the capped paths.
+    Flight flyCurved(const RenderScene& scene, LampSampling& lamps, Sampler& sampler,
+                     ThreadState& ts, CameraPath& path, PathRecorder& rec,
+                     SurfaceAhead* ahead) const {
+        using Kind = CurvedWalkEnd::Kind;
+        const CurvedTransport& curved = *ts.curved;
+        const float lambda = path.wavelengths.lambda[0];
+        const double nStart = curved.index(path.ray.o, lambda);
+        std::optional<SurfaceHit> hit;
+        const CurvedWalk walk = curved.flight(&hit);
+        CurvedWalkEnd end;
+        auto track = [&](auto&& visit) {
+            end = trackCurvedCollisions(ts.tracking, walk, path.ray, lambda, sampler,
+                                        [&](const Collision& c, float) { return visit(c); });
+            return end.kind != Kind::Stopped;
+        };
+        const Flight f = fly(track, lamps, sampler, ts, path, rec);
+        path.throughput.beta *= radianceIndexScale(curved.index(end.p, lambda), nStart);
+        if (end.kind == Kind::Reached || end.kind == Kind::Capped) {
+            if (end.kind == Kind::Capped) mCapped.fetch_add(1, std::memory_order_relaxed);
+            path.ray = Ray{end.p, end.direction, kInfinity};
+            *ahead = surfaceAhead(scene, path.ray);
+            return fly(straightTrack(ts, path.ray, ahead->tEnd, sampler), lamps, sampler, ts, path,
+                       rec);
+        }
+        if (end.kind == Kind::Left) {
+            path.ray = Ray{end.p, end.direction, kInfinity};
+            return f;
+        }
+        path.ray = Ray{end.chord.o, end.chord.d, kInfinity};
+        if (end.kind == Kind::Surface) *ahead = SurfaceAhead{hit, hit ? hit->t : 0.f};
         return f;
     }
 

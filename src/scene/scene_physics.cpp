@@ -133,8 +133,11 @@ PhysicsTerm curvedPathsTerm(const Scene& scene, const std::string& integrator) {
                            "photon maps (no shadow rays)"
                  : photonPass
                      ? "photons straight (the field is flat within the scene)"
-                     : "scattered paths and shadow rays stay straight (integrator '" +
-                           integrator + "'; 'photon' bends photons too)")};
+                 : integrator == "volpath"
+                     ? "scattered paths and shadow rays to lights at infinity bend too (shadow "
+                       "rays to lamps stay straight)"
+                     : "shadow rays to lights at infinity bend too (shadow rays to lamps stay "
+                       "straight)")};
 }
 
 }  // namespace

@@ -29,19 +29,30 @@ namespace mirage {
 // (0, tMax), or +∞ for none.
 using ChordSurfaceTest = std::function<float(const Ray& chord, float tMax)>;
 
+// A sphere a walk may be bound to: the scene's, beyond which light is straight
+// (curved_connection.h).
+struct SceneSphere {
+    Vec3 center;
+    float radius = 0.f;
+    bool contains(const Vec3& p) const { return length(p - center) <= radius; }
+};
+
 // A walk along curved paths as the trackers take it: the field and the stepper's settings
-// (curved_path.h), the arc length it may cover (m), and the surfaces it may meet (an empty
-// test: none). It starts from a ray's origin along its unit direction, on the path of one
-// wavelength.
+// (curved_path.h), the arc length it may cover (m), the surfaces it may meet (an empty test:
+// none), and the sphere it ends on leaving (null: none). It starts from a ray's origin along its
+// unit direction, on the path of one wavelength.
 struct CurvedWalk {
     const IndexField& field;
     const CurvedPathSettings& settings;
     float maxArc;
     ChordSurfaceTest surfaces;
+    const SceneSphere* bounds = nullptr;
 };
 
 struct CurvedWalkEnd {
-    enum class Kind { Reached, Surface, Stopped, Capped } kind = Kind::Reached;
+    // Reached: maxArc walked; Left: the chord that left `bounds` walked, `direction` the path's
+    // there.
+    enum class Kind { Reached, Surface, Stopped, Capped, Left } kind = Kind::Reached;
     Vec3 p;              // where the walk ended (world, m)
     Vec3 direction;      // unit path direction there (at a surface: the chord's direction)
     float arc = 0;       // arc length from the origin, m
@@ -100,6 +111,14 @@ CurvedWalkEnd walkCurvedChords(const CurvedWalk& walk, const Ray& start, float l
             end.direction = unit;
             end.arc = c.arcStart + tSurface * c.scale;
             end.chordT = tSurface;
+            return false;
+        }
+        if (walk.bounds && !walk.bounds->contains(pb)) {
+            end.kind = CurvedWalkEnd::Kind::Left;
+            end.p = pb;
+            end.direction = Vec3(b.direction());
+            end.arc = float(b.arc);
+            end.chordT = len;
             return false;
         }
         return true;

@@ -46,9 +46,10 @@ public:
         }
         // The wrapped integrator's shadow rays and scattered paths bend on the same terms
         // (render/curved_transport.h); the photon mapper's light has bent in its photon pass.
-        mTransport = mPhotonPart ? nullptr
-                                 : std::make_unique<CurvedTransport>(mRefraction->field, mPath,
-                                                                     mRefraction->maxArc, scene);
+        mTransport = mPhotonPart || !mRefraction->bendTransport
+                         ? nullptr
+                         : std::make_unique<CurvedTransport>(mRefraction->field, mPath,
+                                                             mRefraction->maxArc, scene);
     }
     void beginPass(const RenderScene& scene, int pass) override { mInner->beginPass(scene, pass); }
     // The wrapped integrator's figures (its photon pass among them), and the camera rays whose

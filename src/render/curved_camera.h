@@ -29,6 +29,9 @@ struct Refraction {
     std::shared_ptr<const IndexField> field;
     CurvedPathSettings path;  // tolerance, maxStep, …
     float maxArc = 1000.f;    // m of curved path per camera ray; straight beyond
+    // single and volpath: shadow rays to lights at infinity and scattered segments bend too
+    // (render/curved_transport.h); false: camera rays alone (the cheaper approximation).
+    bool bendTransport = true;
     std::string description;  // for `mirage info`
 };
 

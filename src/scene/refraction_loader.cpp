@@ -139,6 +139,7 @@ std::shared_ptr<const Refraction> readRefraction(const TableReader& t,
     r->path.maxSteps = t.getInt("max_steps", r->path.maxSteps, 1, int64_t(1e12));
     r->path.capNearSurfaces = t.getBool("surface_step_cap", true);
     r->maxArc = float(t.getNumber("max_distance", 1000.0, 1e-6, 1e9));
+    r->bendTransport = t.getBool("curved_transport", true);
     t.finish();
     return r;
 }

@@ -133,6 +133,9 @@ PhysicsTerm curvedPathsTerm(const Scene& scene, const std::string& integrator) {
                            "photon maps (no shadow rays)"
                  : photonPass
                      ? "photons straight (the field is flat within the scene)"
+                 : !refraction.bendTransport
+                     ? "shadow rays and scattered paths straight ([refraction] "
+                       "curved_transport = false)"
                  : integrator == "volpath"
                      ? "scattered paths and shadow rays to lights at infinity bend too (shadow "
                        "rays to lamps stay straight)"

@@ -61,6 +61,12 @@ TEST(RefractionScene, NoGradientRendersBitIdentically) {
     std::string info;
     ASSERT_EQ(test::runMirage("info '" + mirageScene(dir, kHotRoad) + "'", &info), 0) << info;
     EXPECT_NE(info.find("US Standard Atmosphere 1976 with 1 inversion"), std::string::npos) << info;
+    EXPECT_NE(info.find("shadow rays to lights at infinity bend too"), std::string::npos) << info;
+    // The cheaper approximation, by choice: camera rays alone bend.
+    std::string straight = kHotRoad;
+    straight.insert(straight.find("[[refraction.inversion]]"), "curved_transport = false\n");
+    ASSERT_EQ(test::runMirage("info '" + mirageScene(dir, straight) + "'", &info), 0) << info;
+    EXPECT_NE(info.find("curved_transport = false"), std::string::npos) << info;
 }
 
 TEST(RefractionScene, HotRoadShowsTheWallBelowTheHorizon) {

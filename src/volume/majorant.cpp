@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "volume/grid_lookup.h"
 #include "volume/index_map.h"
+#include "volume/stored_values.h"
 
 namespace mirage {
 
@@ -145,10 +146,11 @@ namespace {
 // tile) covering index coordinates [lo, hi] (inclusive) influences lookups in the open box
 // (lo - 1, hi + 1); that box, mapped to object space by the grid's affine map, bounds the
 // object-space region where any of its values can appear in a lookup.
+template <typename Grid>
 class Splatter {
 public:
-    Splatter(const nanovdb::FloatGrid& grid, const Bounds3& bounds, const int res[3],
-             const Vec3& cellSize, std::vector<float>& cells)
+    Splatter(const Grid& grid, const Bounds3& bounds, const int res[3], const Vec3& cellSize,
+             std::vector<float>& cells)
         : mGrid(grid), mBounds(bounds), mCells(cells) {
         for (int a = 0; a < 3; ++a) {
             mRes[a] = res[a];
@@ -233,7 +235,7 @@ private:
         return c >= float(mRes[a]) ? mRes[a] - 1 : int(c);
     }
 
-    const nanovdb::FloatGrid& mGrid;
+    const Grid& mGrid;
     const Bounds3& mBounds;
     std::vector<float>& mCells;
     int mRes[3];
@@ -263,24 +265,30 @@ void MajorantGrid::addGridMonotone(const FloatGrid& grid, const std::function<fl
 }
 
 std::vector<float> MajorantGrid::cellMaxima(const FloatGrid& grid) const {
-    const nanovdb::FloatGrid& g = *grid.grid();
+    return grid.visit([this](const auto& g) { return cellMaximaOf(g); });
+}
+
+template <typename Grid>
+std::vector<float> MajorantGrid::cellMaximaOf(const Grid& g) const {
     const auto& tree = g.tree();
 
     // Per-cell maximum of this grid first, then added: a sum of per-component maxima bounds
     // the maximum of the sum (σt = Σ scale_i · grid_i).
     std::vector<float> cells(mValues.size(), 0.f);
-    Splatter splatter(g, mBounds, mRes, mCellSize, cells);
+    Splatter<Grid> splatter(g, mBounds, mRes, mCellSize, cells);
 
-    // Leaves: all 512 values, inactive ones included (the sampler reads them); voxel by voxel
-    // where the map allows, else the leaf's maximum over the leaf's footprint.
-    const auto* leaf = tree.getFirstLeaf();
-    for (uint32_t i = 0; i < tree.nodeCount(0); ++i) {
-        const float* v = leaf[i].data()->mValues;
-        if (splatter.splatVoxels(leaf[i].origin(), v)) continue;
+    // Leaves: all 512 values, inactive ones included (the sampler reads them), as a lookup
+    // decodes them at a quantised precision (a bound of the floats would not bound what the
+    // lookups return); voxel by voxel where the map allows, else the leaf's maximum over the
+    // leaf's footprint.
+    float decoded[512];
+    forEachLeaf(tree, [&](const auto& leaf) {
+        const float* v = leafValues(leaf, decoded);
+        if (splatter.splatVoxels(leaf.origin(), v)) return;
         float m = 0.f;
         for (int k = 0; k < 512; ++k) m = std::max(m, v[k]);
-        splatter.splat(leaf[i].origin(), 8, m);
-    }
+        splatter.splat(leaf.origin(), 8, m);
+    });
     // Tiles of the lower (8³-voxel tiles) and upper (128³) internal nodes and of the root
     // (4096³). Inactive tiles count too: their value is what a lookup there returns.
     const auto* lower = tree.getFirstLower();

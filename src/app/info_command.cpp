@@ -35,18 +35,41 @@ void printGrids(const std::string& file, const VdbFileInfo& info) {
     }
 }
 
+// One row per loaded grid: its tree's bytes at each precision ([[volume]] precision), exact from
+// its leaf count (fpn at its widest, 16 bits).
+void printPrecisionTable(const std::vector<SlotInfo>& slots) {
+    if (slots.empty()) return;
+    std::printf("    %-20s %7s", "grid bytes at", "leaves");
+    for (GridPrecision p : kAllPrecisions)
+        std::printf(" %11s", p == GridPrecision::FpN ? "fpn (max)" : precisionName(p));
+    std::printf("\n");
+    for (const SlotInfo& g : slots) {
+        std::printf("    %-20s %7llu", ("'" + g.grid + "'").c_str(), (unsigned long long)g.leaves);
+        for (GridPrecision p : kAllPrecisions)
+            std::printf(" %11s",  // 0: unknown (from an fpn grid, whose leaves vary)
+                        g.bytesAt[size_t(p)] ? formatBytes(g.bytesAt[size_t(p)]).c_str() : "-");
+        std::printf("\n");
+    }
+}
+
 // The grids bound to the shader's slots, the expressions, and the grids left unloaded.
 void printGridUse(const VolumeInfo& v) {
     for (const SlotInfo& g : v.slots) {
         // The dense copy's size, or why lookups go through the tree (volume/dense_block.h).
-        const std::string dense = g.denseBytes ? "dense copy " + formatBytes(g.denseBytes)
-                                  : g.activeVoxels
-                                      ? std::string("no dense copy (over its memory budget)")
-                                      : std::string("empty");
-        std::printf("    slot '%s' ← grid '%s': %llu active voxels, NanoVDB %s, %s, max %g\n",
-                    g.slot.c_str(), g.grid.c_str(), (unsigned long long)g.activeVoxels,
-                    formatBytes(g.treeBytes).c_str(), dense.c_str(), g.maxValue);
+        std::string dense = "dense copy " + formatBytes(g.denseBytes);
+        if (!g.activeVoxels)
+            dense = "empty";
+        else if (!g.denseBytes)
+            dense = g.precision != GridPrecision::Float ? "no dense copy (quantised)"
+                                                        : "no dense copy (over its memory budget)";
+        std::printf(
+            "    slot '%s' ← grid '%s': %llu active voxels, NanoVDB %s at precision %s, "
+            "%s, max %g\n",
+            g.slot.c_str(), g.grid.c_str(), (unsigned long long)g.activeVoxels,
+            formatBytes(g.treeBytes).c_str(), precisionName(g.precision), dense.c_str(),
+            g.maxValue);
     }
+    printPrecisionTable(v.slots);
     for (const ExpressionRecord& e : v.expressions)
         std::printf(
             "    expression (%s, %s): %s; active voxels only; OpenVDB AX compile + "

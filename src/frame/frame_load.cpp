@@ -30,11 +30,12 @@ LoadOptions loadOptions(const FrameRequest& r) {
     if (shutterWidth >= 0) load.shutter = ShutterFrames{-0.5 * shutterWidth, 0.5 * shutterWidth};
     if (r.memoryBudget > 0)
         load.beforeGridLoad = [&r](const Scene& partial, const std::string& file,
-                                   const std::string& grid, uint64_t bytes) {
+                                   const std::string& grid, GridPrecision precision,
+                                   uint64_t bytes) {
             int w = partial.settings.width, h = partial.settings.height;
             if (!r.resolution.empty()) std::sscanf(r.resolution.c_str(), "%dx%d", &w, &h);
-            checkMemoryBudget(estimateBeforeGrid(file, grid, bytes, w, h), r.memoryBudget, r.input,
-                              "loading grid '" + grid + "' would need");
+            checkMemoryBudget(estimateBeforeGrid(file, grid, precision, bytes, w, h),
+                              r.memoryBudget, r.input, "loading grid '" + grid + "' would need");
         };
     return load;
 }

@@ -27,28 +27,26 @@ void bsplineWeights(double t, double w[4], double dw[4]) {
     dw[3] = t2 / 2;
 }
 
-}  // namespace
-
-DenseScalarGrid denseFromFloatGrid(const FloatGrid& grid, float background) {
-    const nanovdb::FloatGrid* g = grid.grid();
-    const nanovdb::CoordBBox box = grid.indexBounds();
+// The grid's active box as a dense array, at whichever precision it holds (decoded).
+template <typename Grid>
+DenseScalarGrid denseFrom(const Grid& g, const std::string& name, float background) {
+    const nanovdb::CoordBBox box = g.indexBBox();
     DenseScalarGrid d;
     d.nx = box.max()[0] - box.min()[0] + 1;
     d.ny = box.max()[1] - box.min()[1] + 1;
     d.nz = box.max()[2] - box.min()[2] + 1;
-    const nanovdb::Vec3d vs = g->voxelSize();
+    const nanovdb::Vec3d vs = g.voxelSize();
     if (std::abs(vs[0] - vs[1]) > 1e-9 * vs[0] || std::abs(vs[0] - vs[2]) > 1e-9 * vs[0])
-        throw MirageError("grid '" + grid.name() +
-                          "': an index field needs cubic voxels (uniform scale), got " +
-                          std::to_string(vs[0]) + " x " + std::to_string(vs[1]) + " x " +
-                          std::to_string(vs[2]));
+        throw MirageError(
+            "grid '" + name + "': an index field needs cubic voxels (uniform scale), got " +
+            std::to_string(vs[0]) + " x " + std::to_string(vs[1]) + " x " + std::to_string(vs[2]));
     d.voxelSize = vs[0];
-    const nanovdb::Vec3d o = g->indexToWorld(nanovdb::Vec3d(box.min()[0], box.min()[1],
-                                                            box.min()[2]));
+    const nanovdb::Vec3d o =
+        g.indexToWorld(nanovdb::Vec3d(box.min()[0], box.min()[1], box.min()[2]));
     d.origin = Vec3d(o[0], o[1], o[2]);
     d.background = background;
     d.values.resize(size_t(d.nx) * d.ny * d.nz);
-    auto acc = g->getAccessor();
+    auto acc = g.getAccessor();
     for (int k = 0; k < d.nz; ++k)
         for (int j = 0; j < d.ny; ++j)
             for (int i = 0; i < d.nx; ++i) {
@@ -57,6 +55,12 @@ DenseScalarGrid denseFromFloatGrid(const FloatGrid& grid, float background) {
                     acc.isActive(c) ? acc.getValue(c) : background;
             }
     return d;
+}
+
+}  // namespace
+
+DenseScalarGrid denseFromFloatGrid(const FloatGrid& grid, float background) {
+    return grid.visit([&](const auto& g) { return denseFrom(g, grid.name(), background); });
 }
 
 GridIndexField::GridIndexField(DenseScalarGrid grid, GridIndexSettings settings)

@@ -9,6 +9,7 @@
 #include "core/sampling.h"
 #include "core/spectral.h"
 #include "volume/grid_lookup.h"
+#include "volume/stored_values.h"
 
 namespace mirage {
 
@@ -51,16 +52,17 @@ void unpackCoord(uint64_t key, int* i, int* j, int* k) {
 // Calls f(i, j, k, value) for every voxel of the grid that stores a value for which
 // keep(value) holds: all 512 of each leaf (the sampler reads inactive leaf values too) and the
 // voxels of lower (8³) and upper (128³) node tiles. Root tiles (4096³ voxels) are not expanded.
-template <typename Keep, typename F>
-void forEachStoredVoxel(const nanovdb::FloatGrid& grid, Keep&& keep, F&& f) {
+// Leaf values as a lookup decodes them (any precision, volume/grid_precision.h).
+template <typename Grid, typename Keep, typename F>
+void forEachStoredVoxel(const Grid& grid, Keep&& keep, F&& f) {
     const auto& tree = grid.tree();
-    const auto* leaf = tree.getFirstLeaf();
-    for (uint32_t n = 0; n < tree.nodeCount(0); ++n) {
-        const nanovdb::Coord o = leaf[n].origin();
-        const float* v = leaf[n].data()->mValues;
+    float decoded[512];
+    forEachLeaf(tree, [&](const auto& leaf) {
+        const nanovdb::Coord o = leaf.origin();
+        const float* v = leafValues(leaf, decoded);
         for (int m = 0; m < 512; ++m)
             if (keep(v[m])) f(o[0] + ((m >> 6) & 7), o[1] + ((m >> 3) & 7), o[2] + (m & 7), v[m]);
-    }
+    });
     auto tiles = [&](const auto* nodes, uint32_t count, uint32_t tableSize, int dim) {
         for (uint32_t n = 0; n < count; ++n) {
             const auto* data = nodes[n].data();
@@ -118,7 +120,6 @@ MediumEmitter::MediumEmitter(const Medium& medium) : mMedium(&medium) {
     }
 
     // q at every emitting voxel centre of the temperature grid.
-    const nanovdb::FloatGrid& g = *tgrid.grid();
     std::vector<FloatGrid::Accessor> acc;
     for (const auto& grid : medium.binding().grids()) acc.push_back(grid.accessor());
     struct Corner {
@@ -128,28 +129,30 @@ MediumEmitter::MediumEmitter(const Medium& medium) : mMedium(&medium) {
     std::vector<uint64_t> keys;
     auto hot = [&](float v) { return v * e.temperatureScale + e.temperatureOffset > mTMin; };
     // Cell keys hold 21 bits per axis (packCoord): refuse a grid whose hot voxels lie beyond.
-    const nanovdb::CoordBBox box = g.indexBBox();
+    const nanovdb::CoordBBox box = tgrid.indexBounds();
     for (int a = 0; a < 3; ++a)
         if (std::abs(box.min()[a]) >= (1 << 20) - 16 || std::abs(box.max()[a]) >= (1 << 20) - 16)
             throw MirageError("temperature grid '" + tgrid.name() +
                               "': index coordinates beyond ±1048560 voxels; the emitter of "
                               "shader '" +
                               shader.name + "' expects smaller indices");
-    forEachStoredVoxel(g, hot, [&](int i, int j, int k, float v) {
-        const float T = v * e.temperatureScale + e.temperatureOffset;
-        nanovdb::Vec3f p = g.indexToWorldF(nanovdb::Vec3f(float(i), float(j), float(k)));
-        const double q = powerDensityAt(Vec3(p[0], p[1], p[2]), acc);
-        if (!(q > 0.0)) return;
-        corners[packCoord(i, j, k)] = Corner{float(q), T};
-        for (int d = 0; d < 8; ++d)
-            keys.push_back(packCoord(i - (d & 1), j - ((d >> 1) & 1), k - ((d >> 2) & 1)));
+    tgrid.visit([&](const auto& g) {
+        forEachStoredVoxel(g, hot, [&](int i, int j, int k, float v) {
+            const float T = v * e.temperatureScale + e.temperatureOffset;
+            nanovdb::Vec3f p = g.indexToWorldF(nanovdb::Vec3f(float(i), float(j), float(k)));
+            const double q = powerDensityAt(Vec3(p[0], p[1], p[2]), acc);
+            if (!(q > 0.0)) return;
+            corners[packCoord(i, j, k)] = Corner{float(q), T};
+            for (int d = 0; d < 8; ++d)
+                keys.push_back(packCoord(i - (d & 1), j - ((d >> 1) & 1), k - ((d >> 2) & 1)));
+        });
     });
     mEmittingVoxels = corners.size();
     std::sort(keys.begin(), keys.end());
     keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
 
     // A dual cell's volume in world space: the voxel's, through the volume's transform.
-    const nanovdb::Vec3d h = g.voxelSize();
+    const nanovdb::Vec3d h = tgrid.visit([](const auto& g) { return g.voxelSize(); });
     mCellVolume = h[0] * h[1] * h[2] * std::abs(medium.objectToWorld().linear.determinant());
     mCells.reserve(keys.size());
     mCdf.reserve(keys.size());
@@ -232,11 +235,13 @@ bool MediumEmitter::sample(Sampler& sampler, Medium::Context& ctx, PhotonEmissio
     if (!(cellPower > 0.0)) return false;
 
     // A uniform point of the dual cell (index space maps affinely to object and world space).
-    const nanovdb::FloatGrid& g =
-        *mMedium->binding().grids()[size_t(mMedium->binding().temperatureSlot())].grid();
+    const FloatGrid& tgrid =
+        mMedium->binding().grids()[size_t(mMedium->binding().temperatureSlot())];
     const float u0 = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
-    nanovdb::Vec3f po =
-        g.indexToWorldF(nanovdb::Vec3f(float(cell.i) + u0, float(cell.j) + u1, float(cell.k) + u2));
+    const nanovdb::Vec3f po = tgrid.visit([&](const auto& g) {
+        return g.indexToWorldF(
+            nanovdb::Vec3f(float(cell.i) + u0, float(cell.j) + u1, float(cell.k) + u2));
+    });
     const Vec3 pObject(po[0], po[1], po[2]);
 
     // λ from the hottest corner's Planck spectrum times the eye's importance, then the exact

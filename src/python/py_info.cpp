@@ -61,6 +61,10 @@ void addGridUse(const VolumeInfo& v, py::dict* d) {
         slot["tree_bytes"] = s.treeBytes;
         slot["dense_bytes"] = s.denseBytes;
         slot["max_value"] = s.maxValue;
+        slot["precision"] = precisionName(s.precision);
+        py::dict bytesAt;  // the tree at every precision (scene/scene_info.h)
+        for (GridPrecision p : kAllPrecisions) bytesAt[precisionName(p)] = s.bytesAt[size_t(p)];
+        slot["tree_bytes_at"] = bytesAt;
         slots.append(slot);
     }
     (*d)["slots"] = slots;

@@ -13,6 +13,7 @@
 #include "film/aov.h"
 #include "photon/photon_pass.h"
 #include "scene/scene.h"
+#include "volume/vdb_file.h"
 
 namespace mirage {
 
@@ -93,16 +94,22 @@ uint64_t passBytesPerPixel(const AovLayout& layout) {
     return uint64_t(layout.stride()) * kBytesPerPassSum + channels * kBytesPerPassChannel;
 }
 
-MemoryEstimate estimateFrameMemory(const Scene& scene, const std::string& integrator) {
-    MemoryEstimate e;
-    // Grids as loaded (NanoVDB buffers; a grid shared by two media counted once).
+LoadedGrids loadedGrids(const Scene& scene) {
+    LoadedGrids out;
     std::set<const void*> seen;
-    uint64_t grids = 0;
     for (const auto& m : scene.render.media)
         for (const FloatGrid& g : m->binding().grids())
-            if (g.valid() && seen.insert(g.treeId()).second) grids += g.memoryBytes();
+            if (g.valid() && seen.insert(g.treeId()).second) out.bytes += g.memoryBytes();
+    out.count = seen.size();
+    return out;
+}
+
+MemoryEstimate estimateFrameMemory(const Scene& scene, const std::string& integrator) {
+    MemoryEstimate e;
+    const LoadedGrids loaded = loadedGrids(scene);
+    const uint64_t grids = loaded.bytes;
     uint64_t resident = currentMemoryBytes();
-    e.items.push_back({"grids (" + std::to_string(seen.size()) + ", as loaded)", grids});
+    e.items.push_back({"grids (" + std::to_string(loaded.count) + ", as loaded)", grids});
     e.items.push_back({"program, libraries, surfaces and majorants (resident now)",
                        resident > grids ? resident - grids : 0});
 
@@ -148,10 +155,21 @@ MemoryEstimate estimateFrameMemory(const Scene& scene, const std::string& integr
     return e;
 }
 
+uint64_t gridBytesBeforeLoad(const GridInfo& grid, GridPrecision precision) {
+    const uint64_t asFloat = std::max(grid.memoryBytes, grid.activeVoxels * 4);
+    const uint64_t leaves = (grid.activeVoxels + 511) / 512;
+    const uint64_t saved =
+        leaves * (leafNodeBytes(GridPrecision::Float) - leafNodeBytes(precision));
+    return std::max(asFloat > saved ? asFloat - saved : 0, leaves * leafNodeBytes(precision));
+}
+
 MemoryEstimate estimateBeforeGrid(const std::string& file, const std::string& grid,
-                                  uint64_t gridBytes, int width, int height) {
+                                  GridPrecision precision, uint64_t gridBytes, int width,
+                                  int height) {
     MemoryEstimate e;
-    e.items.push_back({"grid '" + grid + "' of " + file + " (file metadata)", gridBytes});
+    e.items.push_back({"grid '" + grid + "' of " + file + " at precision " +
+                           precisionName(precision) + " (file metadata)",
+                       gridBytes});
     e.items.push_back({"resident now (program, grids so far)", currentMemoryBytes()});
     e.items.push_back(
         {"film (" + std::to_string(width) + "x" + std::to_string(height) + ")",

@@ -14,8 +14,11 @@
 #include <string>
 #include <vector>
 
+#include "volume/grid_precision.h"
+
 namespace mirage {
 
+struct GridInfo;
 class AovLayout;
 struct Scene;
 
@@ -55,14 +58,30 @@ constexpr uint64_t kDeepBytesPerPixel = 24 + kDeepSamplesPlanned * 24;
 // The bytes per pixel of the passes `layout` holds.
 uint64_t passBytesPerPixel(const AovLayout& layout);
 
+// The scalar grids a loaded scene holds: their NanoVDB buffers and dense copies, bytes (a grid
+// shared by two media counted once), and how many.
+struct LoadedGrids {
+    uint64_t bytes = 0;
+    size_t count = 0;
+};
+LoadedGrids loadedGrids(const Scene& scene);
+
 // Estimates the memory of rendering `scene` with `integrator` (its grids already loaded).
 // Runs a pilot photon pass for the photon integrator (a few thousand photons, well under 1 s).
 MemoryEstimate estimateFrameMemory(const Scene& scene, const std::string& integrator);
 
+// A grid's in-core bytes at `precision` from its file's metadata, before it is read: as float,
+// the larger of the size OpenVDB recorded and 4 bytes per active voxel; at a quantised
+// precision, that less what the leaves its active voxels need at the least (one 8³ leaf per 512)
+// save (volume/grid_precision.h). An upper bound for sparse leaves, which save more.
+uint64_t gridBytesBeforeLoad(const GridInfo& grid, GridPrecision precision);
+
 // Before a grid is read (LoadOptions::beforeGridLoad): what is resident now, the grid's in-core
-// size from its file's metadata, and a width × height film. The photon maps are not known yet.
+// size at its precision from its file's metadata, and a width × height film. The photon maps
+// are not known yet.
 MemoryEstimate estimateBeforeGrid(const std::string& file, const std::string& grid,
-                                  uint64_t gridBytes, int width, int height);
+                                  GridPrecision precision, uint64_t gridBytes, int width,
+                                  int height);
 
 // Throws MirageError when estimate.total() > budget, with the estimate and what dominates it:
 // "<where>: <what> an estimated <total> = <items>, more than --max-memory <budget>; …".

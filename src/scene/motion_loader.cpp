@@ -38,12 +38,6 @@ VectorGrid load(const std::string& file, const std::vector<std::string>& names,
 
 }  // namespace
 
-VectorGrid loadVelocityGrid(const std::string& file, const std::string& grid) {
-    std::vector<std::string> names;
-    for (const GridInfo& g : inspectVdbFile(file).grids) names.push_back(g.name);
-    return load(file, names, grid, nullptr);
-}
-
 ShutterFrames readShutter(const TableReader& camera) {
     ShutterFrames s;
     if (!camera.has("shutter")) return s;

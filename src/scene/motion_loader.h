@@ -52,10 +52,6 @@ VelocityRecord readVelocity(const TableReader& volume, const std::string& file,
 VelocityRecord findVelocity(const std::string& file, const std::vector<std::string>& grids,
                             bool load, GridCache* cache = nullptr);
 
-// Loads `grid` of `file` as a velocity: one vector grid of that name, else the three scalar
-// grids grid.x, grid.y, grid.z.
-VectorGrid loadVelocityGrid(const std::string& file, const std::string& grid);
-
 // One line describing the bound velocity (class, range of |v|), for reports.
 std::string describeVelocity(const VelocityRecord& v);
 

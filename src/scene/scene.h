@@ -16,6 +16,7 @@
 #include "render/renderer.h"
 #include "scene/motion_loader.h"
 #include "volume/grid_expression.h"
+#include "volume/grid_precision.h"
 
 namespace mirage {
 
@@ -49,6 +50,7 @@ struct VolumeRecord {
     // Grids in the file that no shader slot and no expression reads (not loaded).
     std::vector<std::string> unusedGrids;
     float densityScale = 1;
+    PrecisionSpec precision;  // precision, precision_tolerance: how its scalar grids are held
     VelocityRecord velocity;  // motion blur: the velocity grid bound, or why there is none
     std::vector<std::string> notes;  // a bare VDB: how its grids were bound, and why
 };
@@ -108,10 +110,11 @@ struct LoadOptions {
     int frame = 1;                        // substituted into $F patterns
     std::vector<std::string> overrides;   // --set key=value, applied before parsing
     // Called before each grid is read, with the scene so far (settings, media already built),
-    // the file, the grid and its in-core size from the file's metadata; may throw to stop the
-    // load (--max-memory refuses a grid that will not fit before reading it).
+    // the file, the grid, the precision it will be held in and its in-core size there from the
+    // file's metadata; may throw to stop the load (--max-memory refuses a grid that will not fit
+    // before reading it).
     std::function<void(const Scene&, const std::string& file, const std::string& grid,
-                       uint64_t bytes)>
+                       GridPrecision precision, uint64_t bytes)>
         beforeGridLoad = nullptr;
     // --shutter / --motion-blur: replaces the scene's [camera] shutter (and gives a bare VDB one).
     std::optional<ShutterFrames> shutter = std::nullopt;

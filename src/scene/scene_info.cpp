@@ -20,21 +20,22 @@ std::vector<SlotInfo> slotsOf(const VolumeRecord& v, const Medium& m) {
     std::vector<SlotInfo> slots;
     for (size_t b = 0; b < v.bindings.size(); ++b) {
         const FloatGrid& g = m.binding().grids()[b];
-        slots.push_back({v.bindings[b].first, v.bindings[b].second, g.activeVoxels(), g.treeBytes(),
-                         g.denseBytes(), g.maxValue()});
+        SlotInfo slot{v.bindings[b].first, v.bindings[b].second, g.activeVoxels(),
+                      g.treeBytes(),       g.denseBytes(),       g.maxValue(),
+                      g.precision(),       g.leafCount(),        {}};
+        for (GridPrecision p : kAllPrecisions) slot.bytesAt[size_t(p)] = g.treeBytesAt(p);
+        slots.push_back(slot);
     }
     return slots;
 }
 
-// Motion: the velocity grid (described even with the shutter closed, when the render does not
-// load it) and how far it moves the lookups; a keyed transform.
+// Motion: the velocity grid (named, with why it is unloaded, when the shutter is closed: a grid
+// the render does not read is not read for its description either) and how far it moves the
+// lookups; a keyed transform.
 void describeMotion(const VolumeRecord& v, const Medium& m, VolumeInfo* info) {
     info->transformMoves = m.motion().transformMoves();
     if (v.file.empty()) return;
-    VelocityRecord velocity = v.velocity;
-    if (!velocity.grid.empty() && !velocity.velocity.valid())
-        velocity.velocity = loadVelocityGrid(v.file, velocity.grid);
-    info->velocity = describeVelocity(velocity);
+    info->velocity = describeVelocity(v.velocity);
     info->moving = m.motion().moving();
     info->blurRadius = m.motion().blurRadius();
 }

@@ -19,11 +19,16 @@ namespace mirage {
 class ColorPipeline;
 
 // A grid bound to a shader slot, as loaded: the tree and, where the grid is small enough, the
-// dense copy its lookups read (volume/dense_block.h).
+// dense copy its lookups read (volume/dense_block.h); its precision, and its tree's bytes at
+// every precision, by index of GridPrecision (volume/grid_precision.h, treeBytesAt: exact
+// from its leaf count; fpn at its widest; 0, unknown, from a grid held at fpn).
 struct SlotInfo {
     std::string slot, grid;
     uint64_t activeVoxels = 0, treeBytes = 0, denseBytes = 0;
     double maxValue = 0;
+    GridPrecision precision = GridPrecision::Float;
+    uint64_t leaves = 0;
+    std::array<uint64_t, std::size(kAllPrecisions)> bytesAt = {};
 };
 
 // An emissive grid volume: what the photon pass emits from (photon/medium_emitter.h).
@@ -42,9 +47,9 @@ struct VolumeInfo {
     std::vector<SlotInfo> slots;
     std::vector<ExpressionRecord> expressions;
     std::vector<std::string> unusedGrids;  // read by no slot or expression: not loaded
-    std::string velocity;   // describeVelocity, even with the shutter closed; "" without a file
-    bool moving = false;    // lookups advected within the shutter
-    double blurRadius = 0;  // m: how far they move, and the majorant's dilation
+    std::string velocity;  // describeVelocity (unloaded with the shutter closed); "" without a file
+    bool moving = false;   // lookups advected within the shutter
+    double blurRadius = 0;        // m: how far they move, and the majorant's dilation
     bool transformMoves = false;  // a keyed transform moves the volume within the shutter
     bool greyPath = false;        // every σ wavelength-independent, none fluoresces
     std::optional<EmissionInfo> emission;
@@ -93,8 +98,8 @@ struct SceneInfo {
     std::vector<PhysicsTerm> physics;
 };
 
-// The record of `scene`, loaded through `color`. Reads each volume file's grid list, and a
-// velocity grid the closed shutter left unloaded. Throws MirageError for a file gone bad.
+// The record of `scene`, loaded through `color`. Reads each volume file's grid list (metadata),
+// never a grid the load left unread. Throws MirageError for a file gone bad.
 SceneInfo describeScene(const Scene& scene, const ColorPipeline& color);
 
 }  // namespace mirage

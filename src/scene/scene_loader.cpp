@@ -15,13 +15,16 @@
 #include "scene/camera_loader.h"
 #include "scene/geometry_loader.h"
 #include "scene/light_loader.h"
+#include "scene/memory_budget.h"
 #include "scene/output_loader.h"
+#include "scene/precision_loader.h"
 #include "scene/pyro_binding.h"
 #include "scene/refraction_loader.h"
 #include "scene/scene.h"
 #include "scene/shader_loader.h"
 #include "scene/toml_reader.h"
 #include "volume/grid_cache.h"
+#include "volume/grid_quantise.h"
 #include "volume/vdb_file.h"
 
 namespace mirage {
@@ -182,8 +185,8 @@ static std::unique_ptr<Medium> buildMedium(const ShaderDesc& shader, VolumeRecor
             uint64_t bytes = 0;
             for (size_t i = 0; i < info.grids.size(); ++i)
                 if (info.grids[i].name == gridName || gridIndexName(i) == gridName)
-                    bytes = std::max(info.grids[i].memoryBytes, info.grids[i].activeVoxels * 4);
-            options.beforeGridLoad(scene, rec.file, gridName, bytes);
+                    bytes = gridBytesBeforeLoad(info.grids[i], rec.precision.precision);
+            options.beforeGridLoad(scene, rec.file, gridName, rec.precision.precision, bytes);
         }
     }
     std::vector<std::string> bound;
@@ -192,8 +195,9 @@ static std::unique_ptr<Medium> buildMedium(const ShaderDesc& shader, VolumeRecor
     for (const ExpressionRecord& e : rec.expressions) expressions.push_back(e.expression);
     std::vector<double> seconds;
     std::vector<FloatGrid> grids =
-        options.grids ? options.grids->loadFloatGrids(rec.file, bound, expressions, &seconds)
-                      : loadFloatGrids(rec.file, bound, expressions, &seconds);
+        options.grids
+            ? options.grids->loadFloatGrids(rec.file, bound, expressions, &seconds, rec.precision)
+            : quantiseGrids(loadFloatGrids(rec.file, bound, expressions, &seconds), rec.precision);
     for (size_t i = 0; i < seconds.size() && i < rec.expressions.size(); ++i)
         rec.expressions[i].seconds = seconds[i];
     try {
@@ -426,6 +430,7 @@ void readVolume(const TableReader& v, const Resolve& resolve, const std::string&
     rec.shader = v.getString("shader", "smoke");
     ShaderDesc shader = readVolumeShader(v, rec.shader, dir);
     rec.densityScale = float(v.getNumber("density_scale", 1.0, 0.0, 1e12));
+    rec.precision = readVolumePrecision(v, boxed);
     readEmissionIntensity(v, &shader);
     const auto bind = readBindings(v, shader);
     readExpressions(v, shader, boxed, &rec);

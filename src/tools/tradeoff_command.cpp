@@ -25,7 +25,8 @@
 // under relMSE of about its own relMSE: use more reference samples than the best setting.
 //
 // Output: <prefix>tradeoff.csv (setting, seconds, rmse, relmse, mean_bias, one column per
-// varied key), a table on stdout, and <prefix>tradeoff.png, relMSE against seconds on log-log
+// varied key, grid_bytes: the scalar grids as loaded, which `--vary volume.0.precision=float,fp8`
+// trades), a table on stdout, and <prefix>tradeoff.png, relMSE against seconds on log-log
 // axes with one polyline per value of the last varied key (in sweep order).
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -44,6 +45,7 @@
 #include "film/image_io.h"
 #include "frame/frame_settings.h"
 #include "frame/render_frame.h"
+#include "scene/memory_budget.h"
 #include "scene/scene.h"
 #include "tools/plot.h"
 #include "tools/tools.h"
@@ -167,6 +169,7 @@ struct Setting {
     std::vector<std::string> values;  // one per varied key (TOML text)
     std::string label;                // "photons=10000 k=16"
     double seconds = 0;
+    uint64_t gridBytes = 0;  // the scalar grids as loaded (scene/memory_budget.h)
     int spp = 0;
     Image image;
     double rmse = 0, relMse = 0, meanBias = 0;
@@ -289,6 +292,7 @@ void renderSweep(const Sweep& sweep, const Image* reference, std::vector<Setting
             Scene scene = sweep.load(sweep.overridesOf(s));
             if (reference) checkReferenceSize(sweep.o, *reference, scene);
             s.spp = scene.settings.spp;
+            s.gridBytes = loadedGrids(scene).bytes;
             RenderedFrame frame = renderFrame(scene, sweep.color);
             seconds.push_back(frame.seconds);
             if (r == 0) s.image = std::move(frame.image);
@@ -350,19 +354,19 @@ std::string writeTable(const TradeoffOptions& o, const std::vector<VariedKey>& k
                        const std::vector<Setting>& settings, const std::string& referencePath) {
     std::string csv = "setting,seconds,rmse,relmse,mean_bias";
     for (const auto& k : keys) csv += "," + k.name;
-    csv += "\n";
+    csv += ",grid_bytes\n";
     size_t labelWidth = 7;
     for (const auto& s : settings) labelWidth = std::max(labelWidth, s.label.size());
     std::printf("reference: %s\n", referencePath.c_str());
-    std::printf("%-*s %10s %12s %12s %11s\n", int(labelWidth), "setting", "seconds", "rmse",
-                "relmse", "mean_bias");
+    std::printf("%-*s %10s %12s %12s %11s %11s\n", int(labelWidth), "setting", "seconds", "rmse",
+                "relmse", "mean_bias", "grids");
     for (const auto& s : settings) {
         csv += s.label + "," + format("%.4f", s.seconds) + "," + format("%.6g", s.rmse) + "," +
                format("%.6g", s.relMse) + "," + format("%.6g", s.meanBias);
         for (const auto& v : s.values) csv += "," + plain(v);
-        csv += "\n";
-        std::printf("%-*s %10.3f %12.5g %12.5g %+11.4f\n", int(labelWidth), s.label.c_str(),
-                    s.seconds, s.rmse, s.relMse, s.meanBias);
+        csv += "," + std::to_string(s.gridBytes) + "\n";
+        std::printf("%-*s %10.3f %12.5g %12.5g %+11.4f %11s\n", int(labelWidth), s.label.c_str(),
+                    s.seconds, s.rmse, s.relMse, s.meanBias, formatBytes(s.gridBytes).c_str());
     }
     const std::string csvPath = o.prefix + "tradeoff.csv";
     createParentFolders(csvPath);

@@ -13,12 +13,60 @@ namespace {
 
 // The largest value a trilinear lookup can return. NanoVDB's node statistics cover active
 // values only, but the sampler also reads inactive voxels of a leaf and inactive tiles, so
-// every stored value counts: all leaf values, all tile values of the internal and root nodes,
-// and the background (what lies outside every tile).
-float maxStoredValue(const nanovdb::FloatGrid& grid) {
+// every stored value counts: all leaf values (as decoded, at a quantised precision), all tile
+// values of the internal and root nodes, and the background (what lies outside every tile).
+template <typename Grid>
+float maxStoredValue(const Grid& grid) {
     float m = grid.tree().background();
-    forEachStoredValue(grid.tree(), [&m](const float& v, uint64_t) { m = std::max(m, v); });
+    forEachDecodedValue(grid.tree(), [&m](float v, uint64_t) { m = std::max(m, v); });
     return m;
+}
+
+// What the constructor reads of the NanoVDB grid, at whichever precision it holds.
+struct GridFacts {
+    Bounds3 objectBounds;
+    float minVoxelSize = 0.f, maxValue = 0.f;
+    uint64_t activeVoxels = 0, leaves = 0;
+};
+
+template <typename Grid>
+GridFacts gridFacts(const Grid& g) {
+    GridFacts f;
+    // A voxel at index i contributes to trilinear lookups in the open interval (i-1, i+1) on
+    // each axis, so the medium is non-zero only inside the active index bbox dilated by one
+    // voxel. Its 8 corners through the grid's affine index → object map bound it in object
+    // space.
+    const nanovdb::CoordBBox box = g.indexBBox();
+    if (!box.empty()) {
+        for (int c = 0; c < 8; ++c) {
+            nanovdb::Vec3d corner(c & 1 ? box.max()[0] + 1.0 : box.min()[0] - 1.0,
+                                  c & 2 ? box.max()[1] + 1.0 : box.min()[1] - 1.0,
+                                  c & 4 ? box.max()[2] + 1.0 : box.min()[2] - 1.0);
+            nanovdb::Vec3d p = g.indexToWorld(corner);
+            f.objectBounds.expand(Vec3(float(p[0]), float(p[1]), float(p[2])));
+        }
+    }
+    const nanovdb::Vec3d voxel = g.voxelSize();
+    f.minVoxelSize = float(std::min(voxel[0], std::min(voxel[1], voxel[2])));
+    f.activeVoxels = g.activeVoxelCount();
+    f.leaves = g.tree().nodeCount(0);
+    f.maxValue = maxStoredValue(g);
+    return f;
+}
+
+GridPrecision precisionOf(const nanovdb::GridHandle<nanovdb::HostBuffer>& handle) {
+    switch (handle.gridType()) {
+        case nanovdb::GridType::Fp16:
+            return GridPrecision::Half;
+        case nanovdb::GridType::Fp8:
+            return GridPrecision::Fp8;
+        case nanovdb::GridType::Fp4:
+            return GridPrecision::Fp4;
+        case nanovdb::GridType::FpN:
+            return GridPrecision::FpN;
+        default:
+            return GridPrecision::Float;
+    }
 }
 
 }  // namespace
@@ -28,28 +76,26 @@ FloatGrid::FloatGrid(nanovdb::GridHandle<nanovdb::HostBuffer> handle, std::strin
     : mHandle(std::make_shared<nanovdb::GridHandle<nanovdb::HostBuffer>>(std::move(handle))),
       mName(std::move(name)),
       mSanitized(sanitizedVoxels) {
-    const nanovdb::FloatGrid* g = grid();
-    MIRAGE_CHECK(g != nullptr);
-    mIndexMap = IndexMap(g->map());
+    mPrecision = precisionOf(*mHandle);
+    MIRAGE_CHECK(mPrecision != GridPrecision::Float || grid() != nullptr);
+    mIndexMap = visit([](const auto& g) { return IndexMap(g.map()); });
+    const GridFacts facts = visit([](const auto& g) { return gridFacts(g); });
+    mObjectBounds = facts.objectBounds;
+    mMinVoxelSize = facts.minVoxelSize;
+    mActiveVoxels = facts.activeVoxels;
+    mLeaves = facts.leaves;
+    mMaxValue = facts.maxValue;
+    // A quantised grid keeps no dense copy: a float copy of its box would undo the memory its
+    // precision saves, and a copy at its precision would cost the decode it spares.
+    if (mPrecision == GridPrecision::Float) mDense = DenseBlock::of(*grid(), treeBytes());
+}
 
-    // A voxel at index i contributes to trilinear lookups in the open interval (i-1, i+1) on
-    // each axis, so the medium is non-zero only inside the active index bbox dilated by one
-    // voxel. Its 8 corners through the grid's affine index → object map bound it in object space.
-    const nanovdb::CoordBBox box = g->indexBBox();
-    if (!box.empty()) {
-        for (int c = 0; c < 8; ++c) {
-            nanovdb::Vec3d corner(c & 1 ? box.max()[0] + 1.0 : box.min()[0] - 1.0,
-                                  c & 2 ? box.max()[1] + 1.0 : box.min()[1] - 1.0,
-                                  c & 4 ? box.max()[2] + 1.0 : box.min()[2] - 1.0);
-            nanovdb::Vec3d p = g->indexToWorld(corner);
-            mObjectBounds.expand(Vec3(float(p[0]), float(p[1]), float(p[2])));
-        }
-    }
-    const nanovdb::Vec3d voxel = g->voxelSize();
-    mMinVoxelSize = float(std::min(voxel[0], std::min(voxel[1], voxel[2])));
-    mActiveVoxels = g->activeVoxelCount();
-    mMaxValue = maxStoredValue(*g);
-    mDense = DenseBlock::of(*g, treeBytes());
+float FloatGrid::sampleQuantised(const Accessor& acc, const Vec3& pi) const {
+    const StencilCell c(pi);
+    return visit([&](const auto& g) {
+        using BuildT = typename std::decay_t<decltype(g)>::BuildType;
+        return sampleTree<BuildT>(acc.as<BuildT>(), c, pi);
+    });
 }
 
 uint64_t FloatGrid::treeBytes() const { return mHandle ? mHandle->size() : 0; }

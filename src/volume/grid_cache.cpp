@@ -3,6 +3,8 @@
 
 #include <filesystem>
 
+#include "volume/grid_quantise.h"
+
 namespace mirage {
 
 namespace {
@@ -50,15 +52,19 @@ GridCache::Entry GridCache::lookup(const std::string& key,
 std::vector<FloatGrid> GridCache::loadFloatGrids(const std::string& path,
                                                  const std::vector<std::string>& gridNames,
                                                  const std::vector<GridExpression>& expressions,
-                                                 std::vector<double>* expressionSeconds) {
+                                                 std::vector<double>* expressionSeconds,
+                                                 const PrecisionSpec& precision) {
     std::string key = fileStamp(path);
+    key += std::string("precision ") + precisionName(precision.precision) + ' ' +
+           std::to_string(precision.relativeTolerance) + '\n';
     for (const std::string& g : gridNames) key += "grid " + g + '\n';
     for (const GridExpression& e : expressions) {
         key += "expression " + e.code + '\n';
         for (const auto& [name, grid] : e.bindings) key += "  " + name + "=" + grid + '\n';
     }
     Entry entry = lookup(key, [&](Entry* e) {
-        e->grids = mirage::loadFloatGrids(path, gridNames, expressions, &e->seconds);
+        e->grids = quantiseGrids(mirage::loadFloatGrids(path, gridNames, expressions, &e->seconds),
+                                 precision);
     });
     if (expressionSeconds) *expressionSeconds = entry.seconds;
     return entry.grids;

@@ -11,18 +11,21 @@
 #include <string>
 #include <vector>
 
+#include "volume/grid_precision.h"
 #include "volume/vdb_file.h"
 
 namespace mirage {
 
 class GridCache {
 public:
-    // loadFloatGrids (vdb_file.h), or the grids of an earlier call with the same file, unchanged
-    // on disk, the same names and the same expressions (their code and bindings). Thread-safe.
+    // loadFloatGrids (vdb_file.h) held at `precision` (grid_quantise.h), or the grids of an
+    // earlier call with the same file, unchanged on disk, the same names, the same expressions
+    // (their code and bindings) and the same precision. Thread-safe.
     std::vector<FloatGrid> loadFloatGrids(const std::string& path,
                                           const std::vector<std::string>& gridNames,
                                           const std::vector<GridExpression>& expressions,
-                                          std::vector<double>* expressionSeconds = nullptr);
+                                          std::vector<double>* expressionSeconds = nullptr,
+                                          const PrecisionSpec& precision = {});
     // loadVectorGrid, or loadVectorGridFromScalars when `fromScalars` (vdb_file.h), cached
     // alike: a velocity grid of an unchanged file is read once.
     VectorGrid loadVectorGrid(const std::string& path, const std::string& gridName,

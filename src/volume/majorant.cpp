@@ -6,10 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "core/error.h"
 #include "volume/grid_lookup.h"
 #include "volume/index_map.h"
+#include "volume/stored_values.h"
 
 namespace mirage {
 
@@ -149,10 +151,11 @@ namespace {
 // tile) covering index coordinates [lo, hi] (inclusive) influences lookups in the open box
 // (lo - 1, hi + 1); that box, mapped to object space by the grid's affine map, bounds the
 // object-space region where any of its values can appear in a lookup.
+template <typename Grid>
 class Splatter {
 public:
-    Splatter(const nanovdb::FloatGrid& grid, const Bounds3& bounds, const int res[3],
-             const Vec3& cellSize, std::vector<float>& cells)
+    Splatter(const Grid& grid, const Bounds3& bounds, const int res[3], const Vec3& cellSize,
+             std::vector<float>& cells)
         : mGrid(grid), mBounds(bounds), mCells(cells) {
         for (int a = 0; a < 3; ++a) {
             mRes[a] = res[a];
@@ -237,7 +240,7 @@ private:
         return c >= float(mRes[a]) ? mRes[a] - 1 : int(c);
     }
 
-    const nanovdb::FloatGrid& mGrid;
+    const Grid& mGrid;
     const Bounds3& mBounds;
     std::vector<float>& mCells;
     int mRes[3];
@@ -267,41 +270,60 @@ void MajorantGrid::addGridMonotone(const FloatGrid& grid, const std::function<fl
 }
 
 std::vector<float> MajorantGrid::cellMaxima(const FloatGrid& grid) const {
-    const nanovdb::FloatGrid& g = *grid.grid();
+    return grid.visit([this](const auto& g) { return cellMaximaOf(g); });
+}
+
+template <typename Grid>
+std::vector<float> MajorantGrid::cellMaximaOf(const Grid& g) const {
     const auto& tree = g.tree();
 
     // Per-cell maximum of this grid first, then added: a sum of per-component maxima bounds
     // the maximum of the sum (σt = Σ scale_i · grid_i).
     std::vector<float> cells(mValues.size(), 0.f);
-    Splatter splatter(g, mBounds, mRes, mCellSize, cells);
+    Splatter<Grid> splatter(g, mBounds, mRes, mCellSize, cells);
 
-    // Leaves: all 512 values, inactive ones included (the sampler reads them); voxel by voxel
-    // where the map allows, else the leaf's maximum over the leaf's footprint. In parallel, each
-    // thread onto cells of its own, merged by maximum: exact, so the same cells for any thread
-    // count. A fine majorant grid (over kParallelCells cells) is splatted by one thread.
-    const auto* leaf = tree.getFirstLeaf();
-    auto splatLeaves = [&](Splatter& s, uint32_t begin, uint32_t end) {
-        for (uint32_t i = begin; i < end; ++i) {
-            const float* v = leaf[i].data()->mValues;
-            if (s.splatVoxels(leaf[i].origin(), v)) continue;
+    if constexpr (std::is_same_v<Grid, nanovdb::FloatGrid>) {
+        // Leaves: all 512 values, inactive ones included (the sampler reads them); voxel by voxel
+        // where the map allows, else the leaf's maximum over the leaf's footprint. In parallel, each
+        // thread onto cells of its own, merged by maximum: exact, so the same cells for any thread
+        // count. A fine majorant grid (over kParallelCells cells) is splatted by one thread.
+        const auto* leaf = tree.getFirstLeaf();
+        auto splatLeaves = [&](Splatter<Grid>& s, uint32_t begin, uint32_t end) {
+            for (uint32_t i = begin; i < end; ++i) {
+                const float* v = leaf[i].data()->mValues;
+                if (s.splatVoxels(leaf[i].origin(), v)) continue;
+                float m = 0.f;
+                for (int k = 0; k < 512; ++k) m = std::max(m, v[k]);
+                s.splat(leaf[i].origin(), 8, m);
+            }
+        };
+        constexpr size_t kParallelCells = size_t(1) << 24;
+        if (cells.size() > kParallelCells) {
+            splatLeaves(splatter, 0, tree.nodeCount(0));
+        } else {
+            tbb::enumerable_thread_specific<std::vector<float>> own(
+                [&] { return std::vector<float>(cells.size(), 0.f); });
+            tbb::parallel_for(tbb::blocked_range<uint32_t>(0, tree.nodeCount(0), 256),
+                              [&](const tbb::blocked_range<uint32_t>& r) {
+                                  Splatter<Grid> s(g, mBounds, mRes, mCellSize, own.local());
+                                  splatLeaves(s, r.begin(), r.end());
+                              });
+            for (const std::vector<float>& o : own)
+                for (size_t c = 0; c < cells.size(); ++c) cells[c] = std::max(cells[c], o[c]);
+        }
+    } else {
+        // Leaves: all 512 values, inactive ones included (the sampler reads them), as a lookup
+        // decodes them at a quantised precision (a bound of the floats would not bound what the
+        // lookups return); voxel by voxel where the map allows, else the leaf's maximum over the
+        // leaf's footprint.
+        float decoded[512];
+        forEachLeaf(tree, [&](const auto& leaf) {
+            const float* v = leafValues(leaf, decoded);
+            if (splatter.splatVoxels(leaf.origin(), v)) return;
             float m = 0.f;
             for (int k = 0; k < 512; ++k) m = std::max(m, v[k]);
-            s.splat(leaf[i].origin(), 8, m);
-        }
-    };
-    constexpr size_t kParallelCells = size_t(1) << 24;
-    if (cells.size() > kParallelCells) {
-        splatLeaves(splatter, 0, tree.nodeCount(0));
-    } else {
-        tbb::enumerable_thread_specific<std::vector<float>> own(
-            [&] { return std::vector<float>(cells.size(), 0.f); });
-        tbb::parallel_for(tbb::blocked_range<uint32_t>(0, tree.nodeCount(0), 256),
-                          [&](const tbb::blocked_range<uint32_t>& r) {
-                              Splatter s(g, mBounds, mRes, mCellSize, own.local());
-                              splatLeaves(s, r.begin(), r.end());
-                          });
-        for (const std::vector<float>& o : own)
-            for (size_t c = 0; c < cells.size(); ++c) cells[c] = std::max(cells[c], o[c]);
+            splatter.splat(leaf.origin(), 8, m);
+        });
     }
     // Tiles of the lower (8³-voxel tiles) and upper (128³) internal nodes and of the root
     // (4096³). Inactive tiles count too: their value is what a lookup there returns.

@@ -57,6 +57,8 @@ private:
     friend class Walk;
     // Per cell: the max of `grid` over the cell and the trilinear footprint of its voxels.
     std::vector<float> cellMaxima(const FloatGrid& grid) const;
+    template <typename Grid>  // a NanoVDB grid at any precision (majorant.cpp)
+    std::vector<float> cellMaximaOf(const Grid& grid) const;
 
     Bounds3 mBounds;
     int mRes[3] = {0, 0, 0};

@@ -16,6 +16,7 @@
 #include <openvdb/io/File.h>
 #include <openvdb/openvdb.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -40,6 +41,8 @@ namespace {
 using vdbformat::FileLayout;
 using vdbformat::Format;
 using vdbformat::GridRecord;
+
+std::atomic<uint64_t> gGridReads{0};
 
 [[noreturn]] void fail(const std::string& path, const std::string& msg) {
     throw MirageError(FileLoc{path}, msg);
@@ -127,7 +130,10 @@ openvdb::GridBase::Ptr readOpenVdbGrid(const std::string& path, const FileLayout
     const GridRecord& record = layout.grids[size_t(index)];
     const std::string label = vdbformat::gridLabel(layout, index);
     // The tree's counts and block sizes are checked before OpenVDB trusts them (vdb_tree.h).
-    if (mode != ReadMode::Metadata) vdbformat::checkOpenVdbTree(path, layout, index);
+    if (mode != ReadMode::Metadata) {
+        vdbformat::checkOpenVdbTree(path, layout, index);
+        ++gGridReads;
+    }
     initOpenVdb();
     try {
         openvdb::io::File file(path);
@@ -200,6 +206,7 @@ nanovdb::GridHandle<nanovdb::HostBuffer> readNanoVdbGrid(const std::string& path
     constexpr uint64_t kMinGridBytes = sizeof(nanovdb::NanoGrid<float>) +
                                        sizeof(nanovdb::NanoTree<float>) +
                                        sizeof(nanovdb::NanoRoot<float>);
+    ++gGridReads;
     if (record.nanoGridBytes < kMinGridBytes)
         fail(path, "corrupt: NanoVDB grid " + label + " claims only " +
                        std::to_string(record.nanoGridBytes) + " bytes");
@@ -381,6 +388,8 @@ FloatGrid finishGrid(const std::string& path, const FileLayout& layout, int inde
 }  // namespace
 
 void validateVdbFile(const std::string& path) { vdbformat::scanFile(path); }
+
+uint64_t gridReadCount() { return gGridReads; }
 
 VdbFileInfo inspectVdbFile(const std::string& path) {
     const FileLayout layout = vdbformat::scanFile(path);

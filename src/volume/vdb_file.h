@@ -82,4 +82,8 @@ std::vector<FloatGrid> loadFloatGrids(const std::string& path,
                                       const std::vector<GridExpression>& expressions,
                                       std::vector<double>* expressionSeconds = nullptr);
 
+// How many grids' voxels this process has read from files (metadata reads do not count): what
+// tests assert "this grid was never read" with.
+uint64_t gridReadCount();
+
 }  // namespace mirage

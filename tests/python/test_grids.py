@@ -113,6 +113,17 @@ def test_a_grid_places_its_voxels_by_offset_and_origin():
     assert np.allclose(box_a, [[0, 0, 0], [1, 1, 1]], atol=0.26)
 
 
+def test_a_volumes_precision_passes_through_the_dict():
+    """`precision` is a volume key like any other: the grids are held at it, and info() gives
+    the tree's bytes at every precision (docs/scene-file.md, "Grid precision")."""
+    values = np.linspace(0.0, 1.0, 16 ** 3, dtype=np.float32).reshape((16, 16, 16))
+    info = mirage.Scene.from_dict(with_file({"density": mirage.Grid(values, 0.1)},
+                                            precision="fp8")).info()
+    slot = info["volumes"][0]["slots"][0]
+    assert slot["precision"] == "fp8"
+    assert slot["tree_bytes"] == slot["tree_bytes_at"]["fp8"] < slot["tree_bytes_at"]["float"]
+
+
 def test_the_files_go_with_the_scene_and_the_dict_stays(fog_grid):
     before = set(glob.glob("/tmp/mirage-grids-*"))
     scene_dict = with_file({"density": fog_grid})

@@ -57,8 +57,8 @@ TEST(CliOutput, InfoOnASceneSaysWhichGridsHaveADenseCopy) {
     const std::string scene = test::writeFogSphereScene(dir, "resolution = [8, 8]\n", "");
     std::string info;
     ASSERT_EQ(test::runMirage("info '" + scene + "'", &info), 0) << info;
-    EXPECT_TRUE(std::regex_search(info, std::regex("slot 'density' .* NanoVDB [0-9.]+ [KMG]?i?B, "
-                                                   "dense copy [0-9.]+ [KMG]?i?B")))
+    EXPECT_TRUE(std::regex_search(info, std::regex("slot 'density' .* NanoVDB [0-9.]+ [KMG]?i?B at "
+                                                   "precision float, dense copy [0-9.]+ [KMG]?i?B")))
         << info;
 }
 

@@ -253,7 +253,7 @@ TEST(KilledRenderCli, MaxMemoryRefusesABillionPhotonsBeforeTracingThem) {
     rc = render("'" + scene + "' -q --max-memory 1k -o '" + dir + "/m.exr'", &out);
     EXPECT_EQ(rc, 1) << out;
     EXPECT_NE(out.find("loading grid 'density' would need an estimated"), std::string::npos) << out;
-    EXPECT_NE(out.find("fog.vdb (file metadata)"), std::string::npos) << out;
+    EXPECT_NE(out.find("fog.vdb at precision float (file metadata)"), std::string::npos) << out;
 
     // The same scene within budget renders; a malformed size is one clear error.
     EXPECT_EQ(render("'" + scene + "' -q --max-memory 4G -o '" + dir + "/m.exr'", &out), 0) << out;

@@ -12,6 +12,7 @@
 #include "test_support.h"
 #include "tools/asset_writer.h"
 #include "volume/grid_lookup.h"
+#include "volume/grid_quantise.h"
 #include "volume/vdb_file.h"
 
 namespace mirage {
@@ -134,6 +135,21 @@ TEST(Majorant, ConservativeWithTilesAndLoneVoxels) {
     MajorantGrid m(g.objectBounds(), 24);
     m.addGrid(g, 1.f);
     expectConservative(m, {&g}, {1.f}, 200000);
+}
+
+// A quantised grid's lookups read decoded values, which can lie above the floats they encode
+// (fp4's step is a fifteenth of a leaf's range): the majorant bounds the decoded ones.
+TEST(Majorant, ConservativeOverQuantisedGrids) {
+    const FloatGrid f = loadFloatGrid(makeSmoke(), "density");
+    for (GridPrecision p : {GridPrecision::Fp4, GridPrecision::FpN}) {
+        PrecisionSpec spec;
+        spec.precision = p;
+        spec.relativeTolerance = 0.05f;
+        const FloatGrid q = quantiseGrid(f, spec);
+        MajorantGrid m(q.objectBounds(), 32);
+        m.addGrid(q, 2.f);
+        expectConservative(m, {&q}, {2.f}, 100000);
+    }
 }
 
 // Cells of a few voxels hold the largest value near them, not their leaf's: one hot voxel at

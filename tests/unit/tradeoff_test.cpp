@@ -59,11 +59,11 @@ TEST(Tradeoff, ErrorFallsWithSamplesAndTheReferenceIsWrittenAndReused) {
     auto rows = readCsv(prefix + "tradeoff.csv");
     ASSERT_EQ(rows.size(), 3u);
     EXPECT_EQ(rows[0], (std::vector<std::string>{"setting", "seconds", "rmse", "relmse",
-                                                 "mean_bias", "spp"}));
+                                                 "mean_bias", "spp", "grid_bytes"}));
     EXPECT_EQ(rows[1][0], "spp=1");
     EXPECT_EQ(rows[2][0], "spp=16");
     EXPECT_EQ(rows[2][5], "16");
-    for (int r = 1; r <= 2; ++r) ASSERT_EQ(rows[r].size(), 6u);
+    for (int r = 1; r <= 2; ++r) ASSERT_EQ(rows[r].size(), 7u);
     const double rmse1 = std::stod(rows[1][2]), rmse16 = std::stod(rows[2][2]);
     EXPECT_GT(rmse1, 0.0);
     EXPECT_LT(rmse16, rmse1);
@@ -93,7 +93,7 @@ TEST(Tradeoff, ErrorFallsWithSamplesAndTheReferenceIsWrittenAndReused) {
         << out;
     auto product = readCsv(prefix3 + "tradeoff.csv");
     ASSERT_EQ(product.size(), 5u);
-    EXPECT_EQ(product[0].size(), 7u);
+    EXPECT_EQ(product[0].size(), 8u);
     EXPECT_EQ(product[0][6], "integrator");
     EXPECT_EQ(product[2][0], "spp=1 integrator=volpath");
     EXPECT_EQ(product[4][5], "2");
@@ -155,12 +155,12 @@ TEST(Tradeoff, PhotonCountAndEstimateSweepWithThePhotonIntegrator) {
         << out;
     auto rows = readCsv(prefix + "tradeoff.csv");
     ASSERT_EQ(rows.size(), 5u) << out;
-    ASSERT_EQ(rows[0].size(), 7u);
+    ASSERT_EQ(rows[0].size(), 8u);
     EXPECT_EQ(rows[0][5], "photons");
     EXPECT_EQ(rows[0][6], "estimate");
     std::map<std::string, double> rmse;
     for (size_t r = 1; r < rows.size(); ++r) {
-        ASSERT_EQ(rows[r].size(), 7u);
+        ASSERT_EQ(rows[r].size(), 8u);
         rmse[rows[r][6] + "/" + rows[r][5]] = std::stod(rows[r][2]);
     }
     for (const char* estimate : {"beam", "point"}) {

@@ -244,7 +244,7 @@ TEST(VolumeFile, NanoVdbLookupsAgreeWithOpenVdb) {
     FloatGrid grid = loadFloatGrid(path, "density");
     const nanovdb::FloatGrid* g = grid.grid();
     auto acc = grid.accessor();
-    auto trilinear = nanovdb::createSampler<1, FloatGrid::Accessor, false>(acc);
+    auto trilinear = nanovdb::createSampler<1, NanoAccessor<float>, false>(acc.as<float>());
 
     Sampler rng(5, 0, 0);
     std::vector<Vec3d> centres, points, world;

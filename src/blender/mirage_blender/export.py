@@ -391,6 +391,9 @@ def export(depsgraph, settings, folder, scene_camera=True):
     if dome is not None:
         lights.append(_grouped(dome, scene.world.lightgroup))
     if volumes:
+        if settings.grid_precision != "float":  # the Grid Precision setting, on every volume
+            for v in volumes:
+                v["precision"] = settings.grid_precision
         doc["volume"] = volumes
     _refraction(ex)
     shapes.into(doc)

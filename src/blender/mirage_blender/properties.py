@@ -8,6 +8,13 @@ INTEGRATORS = [
     ("volpath", "Path tracer", "The reference volumetric path tracer"),
     ("photon", "Photon mapping", "Volumetric photon mapping, progressive"),
 ]
+PRECISIONS = [
+    ("float", "Float", "32-bit floats: the grids as stored (docs/scene-file.md, \"Grid precision\")"),
+    ("half", "Half", "16 bits per voxel: error at most 1/131070 of a grid's maximum"),
+    ("fp8", "8-bit", "8 bits per voxel: error at most 1/510 of a grid's maximum"),
+    ("fp4", "4-bit", "4 bits per voxel: error at most 1/30 of a grid's maximum"),
+    ("fpn", "Adaptive", "1 to 16 bits per leaf, error at most 1/1000 of a grid's maximum"),
+]
 QUALITIES = [
     ("NONE", "None", "No preset: the samples and settings as given"),
     ("draft", "Draft", "--quality draft"),
@@ -31,6 +38,9 @@ class MirageRenderSettings(bpy.types.PropertyGroup):
         name="Noise Threshold", default=0.0, min=0.0, precision=4,
         description="Stop when the estimated relative error falls below it (0: off)")
     quality: bpy.props.EnumProperty(name="Quality", items=QUALITIES, default="NONE")
+    grid_precision: bpy.props.EnumProperty(
+        name="Grid Precision", items=PRECISIONS, default="float",
+        description="How the volumes' grids are held in memory ([[volume]] precision)")
     threads: bpy.props.IntProperty(name="Threads", default=0, min=0,
                                    description="Render threads (0: every core)")
 

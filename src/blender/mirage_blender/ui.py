@@ -41,6 +41,7 @@ class MIRAGE_PT_render(_MiragePanel, bpy.types.Panel):
         layout.prop(s, "integrator")
         layout.prop(s, "samples")
         layout.prop(s, "preview_samples")
+        layout.prop(s, "grid_precision")
         layout.prop(s, "seed")
         col = layout.column(heading="Stop")
         col.prop(s, "time_limit")

@@ -148,6 +148,19 @@ double quadrature(const Medium& medium, const Ray& ray, const Vec3& lamp, double
     return sum * (tb - ta) / n;
 }
 
+// A homogeneous haze over the box and a margin, bluer than red: σs falls linearly from `blue`
+// at 360 nm to `red` at 830 nm (closed-form transmittance, a coloured medium).
+void addHaze(RenderScene& scene, float sigmaA, float blue, float red) {
+    ShaderDesc haze = test::greyShader(0.f, 0.f);
+    haze.components[0].grid.clear();
+    haze.components[0].sigmaA = Spectrum(sigmaA);
+    haze.components[0].sigmaS = Spectrum::fromTable({360.f, 830.f}, {blue, red});
+    Bounds3 box;
+    box.lo = Vec3(-0.1f);
+    box.hi = Vec3(1.1f);
+    scene.media.push_back(std::make_unique<Medium>(haze, box, Transform(), 1.f));
+}
+
 RenderScene fogBox() {
     RenderScene scene;
     scene.media.push_back(
@@ -218,14 +231,7 @@ TEST(LampSampling, SmokeAndHazeKeepTheMeanPerWavelength) {
     RenderScene scene;
     scene.media.push_back(test::gridMedium([](int i, int, int) { return 0.2f + 0.05f * i; }, 0, 31,
                                            kH, 0.4f, 1.2f, 0.3f));
-    ShaderDesc haze = test::greyShader(0.f, 0.f);
-    haze.components[0].grid.clear();
-    haze.components[0].sigmaA = Spectrum(0.1f);
-    haze.components[0].sigmaS = Spectrum::fromTable({360.f, 830.f}, {3.f, 1.f});
-    Bounds3 box;
-    box.lo = Vec3(-0.1f);
-    box.hi = Vec3(1.1f);
-    scene.media.push_back(std::make_unique<Medium>(haze, box, Transform(), 1.f));
+    addHaze(scene, 0.1f, 3.f, 1.f);
     scene.lights.push_back(makePointLight(Vec3(0.5f, 0.5f, 0.5f), kPower, Spectrum(1.f)));
     const Ray ray{Vec3(-0.2f, 0.6f, 0.5f), Vec3(1, 0, 0), kInfinity};
     const auto volpath = makeVolPathIntegrator(16);
@@ -248,14 +254,7 @@ TEST(LampSampling, TheDomesPointsOnTheCameraRayKeepTheMeanAndLowerTheNoise) {
     RenderScene scene;
     scene.media.push_back(test::gridMedium([](int i, int, int) { return 0.02f + 0.004f * i; }, 0,
                                            31, kH, 0.02f, 0.1f, 0.6f));
-    ShaderDesc haze = test::greyShader(0.f, 0.f);
-    haze.components[0].grid.clear();
-    haze.components[0].sigmaA = Spectrum(0.01f);
-    haze.components[0].sigmaS = Spectrum::fromTable({360.f, 830.f}, {0.06f, 0.02f});
-    Bounds3 box;
-    box.lo = Vec3(-0.1f);
-    box.hi = Vec3(1.1f);
-    scene.media.push_back(std::make_unique<Medium>(haze, box, Transform(), 1.f));
+    addHaze(scene, 0.01f, 0.06f, 0.02f);
     DomeSettings hidden;
     hidden.cameraVisible = false;
     scene.lights.push_back(makeDomeLight(Spectrum(1.f), hidden));

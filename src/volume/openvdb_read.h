@@ -13,8 +13,10 @@
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "core/progress.h"
@@ -27,8 +29,15 @@ namespace mirage {
 // MirageError naming the file and grid when OpenVDB cannot read a leaf (corrupt compressed
 // data), with what it said. Such a leaf's
 // buffer is left by OpenVDB half loaded (allocated, yet marked as still in the file) and would
-// crash when freed: it is swapped for an empty buffer and the broken one is never freed (a
-// leak of one leaf per failure, on a corrupt file only).
+// crash when freed: it is swapped for an empty buffer and the broken one is parked for the
+// process's life (brokenLeafBuffers: one leaf per failure, on a corrupt file only; reachable,
+// so not a leak to LeakSanitizer).
+// Where broken leaf buffers are kept, never freed (readLeavesInParallel).
+inline std::vector<std::shared_ptr<void>>& brokenLeafBuffers() {
+    static auto* parked = new std::vector<std::shared_ptr<void>>();
+    return *parked;
+}
+
 template <typename GridT>
 void readLeavesInParallel(GridT& grid, uint64_t fileBytes, const std::string& path,
                           const std::string& gridLabel) {
@@ -50,8 +59,10 @@ void readLeavesInParallel(GridT& grid, uint64_t fileBytes, const std::string& pa
             try {
                 leaves.leaf(i).buffer().data();
             } catch (const std::exception& e) {
-                (new Buffer())->swap(leaves.leaf(i).buffer());
+                auto* broken = new Buffer();
+                broken->swap(leaves.leaf(i).buffer());
                 std::lock_guard<std::mutex> lock(errorMutex);
+                brokenLeafBuffers().emplace_back(broken, [](void*) {});
                 if (!failed.exchange(true)) error = e.what();
             }
         }

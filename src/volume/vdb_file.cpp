@@ -38,9 +38,12 @@ namespace mirage {
 
 namespace {
 
+using vdbformat::compressionName;
+using vdbformat::describeValueType;
 using vdbformat::FileLayout;
 using vdbformat::Format;
 using vdbformat::GridRecord;
+using vdbformat::nanoClassName;
 
 std::atomic<uint64_t> gGridReads{0};
 
@@ -78,30 +81,6 @@ std::string describeTransform(const openvdb::math::Transform& xform) {
     s += "voxel size " + fmt(xform.voxelSize()) + " m, index (0,0,0) at (" + fmt(m(3, 0)) + ", " +
          fmt(m(3, 1)) + ", " + fmt(m(3, 2)) + ") m";
     return s;
-}
-
-std::string compressionName(uint32_t flags, Format format) {
-    if (format == Format::NanoVdb) return flags == 2 ? "blosc" : (flags == 1 ? "zip" : "none");
-    if (flags & vdbformat::kCompressBlosc) return "blosc";
-    if (flags & vdbformat::kCompressZip) return "zip";
-    return flags & vdbformat::kCompressActiveMask ? "active mask" : "none";
-}
-
-std::string nanoClassName(uint32_t c) {
-    static const char* kNames[] = {"unknown",   "level set",    "fog volume",
-                                   "staggered", "point index",  "point data",
-                                   "topology",  "voxel volume", "index grid"};
-    return c < sizeof(kNames) / sizeof(kNames[0]) ? kNames[c] : "unknown";
-}
-
-// What a value type is, for "expected a scalar fog volume" messages.
-std::string describeValueType(const std::string& t) {
-    if (t == "vec3s" || t == "vec3d" || t == "vec3i" || t == "vec3f") return "3-vector (" + t + ")";
-    if (t == "bool" || t == "mask") return "boolean (" + t + ")";
-    if (t.compare(0, 3, "int") == 0 || t.compare(0, 4, "uint") == 0) return "integer (" + t + ")";
-    if (t.compare(0, 2, "fp") == 0) return "quantized (" + t + ")";
-    if (t.compare(0, 6, "ptdata") == 0) return "point (" + t + ")";
-    return "'" + t + "'";
 }
 
 int requireGrid(const std::string& path, const FileLayout& layout, const std::string& name) {
@@ -263,8 +242,7 @@ nanovdb::GridHandle<nanovdb::HostBuffer> readNanoVdbGrid(const std::string& path
     // node arrays by the counts and offsets the file states: bound those by the buffer before
     // it reads a byte through them (a corrupt table size sent it far past the buffer).
     if (!vdbformat::nanoLayoutFits(*grid, record.nanoGridBytes))
-        fail(path, "corrupt: NanoVDB grid " + label +
-                       " has node tables that do not fit in its " +
+        fail(path, "corrupt: NanoVDB grid " + label + " has node tables that do not fit in its " +
                        std::to_string(record.nanoGridBytes) + " bytes");
     // Checksum, then every node pointer against the buffer's extent.
     std::string problem = nanovdb::GridValidator<float>::check(*grid, /*detailed=*/true);
@@ -447,8 +425,8 @@ std::vector<FloatGrid> loadFloatGrids(const std::string& path,
     const FileLayout layout = vdbformat::scanFile(path);
     if (layout.format == Format::NanoVdb)
         throw MirageError(expressions[0].where,
-                          expressions[0].label + ": expressions run on OpenVDB grids, but " +
-                              path + " is a NanoVDB file; give the OpenVDB (.vdb) cache");
+                          expressions[0].label + ": expressions run on OpenVDB grids, but " + path +
+                              " is a NanoVDB file; give the OpenVDB (.vdb) cache");
 
     // Each grid is read once, by index, and carries the name AX will look it up by: its name
     // in the file, or "#N" when it has none.
@@ -480,10 +458,10 @@ std::vector<FloatGrid> loadFloatGrids(const std::string& path,
         for (const std::string& name : names) {
             const int index = vdbformat::findGrid(layout, name);
             if (index < 0)
-                throw MirageError(e.where, e.label + ": the expression names grid '" +
-                                               boundedMessage(name, 60) + "', but " + path +
-                                               " has no such grid (grids: " +
-                                               vdbformat::gridList(layout) + ")");
+                throw MirageError(
+                    e.where, e.label + ": the expression names grid '" + boundedMessage(name, 60) +
+                                 "', but " + path +
+                                 " has no such grid (grids: " + vdbformat::gridList(layout) + ")");
             if (seen.insert(index).second) inputs.push_back(read(index));
         }
         for (const std::string& name : access.writes)
@@ -507,8 +485,8 @@ std::vector<FloatGrid> loadFloatGrids(const std::string& path,
 }
 
 static VectorGrid finishVectorGrid(const std::string& path, const std::string& label,
-                            const openvdb::Vec3SGrid& grid, bool staggered,
-                            const std::string& name);
+                                   const openvdb::Vec3SGrid& grid, bool staggered,
+                                   const std::string& name);
 
 VectorGrid loadVectorGrid(const std::string& path, const std::string& gridName) {
     const FileLayout layout = vdbformat::scanFile(path);
@@ -541,16 +519,16 @@ VectorGrid loadVectorGrid(const std::string& path, const std::string& gridName) 
 
 // The common end of both vector loaders: background check, NanoVDB conversion, voxel rule.
 static VectorGrid finishVectorGrid(const std::string& path, const std::string& label,
-                            const openvdb::Vec3SGrid& grid, bool staggered,
-                            const std::string& name) {
+                                   const openvdb::Vec3SGrid& grid, bool staggered,
+                                   const std::string& name) {
     // Outside its active voxels a velocity field is still; a non-zero background would move
     // all of space.
     if (grid.background() != openvdb::Vec3s(0.f))
         fail(path, "grid " + label + " has a non-zero background vector, expected (0, 0, 0)");
     nanovdb::GridHandle<nanovdb::HostBuffer> handle;
     try {
-        handle = nanovdb::openToNanoVDB(grid, nanovdb::StatsMode::All,
-                                        nanovdb::ChecksumMode::Partial);
+        handle =
+            nanovdb::openToNanoVDB(grid, nanovdb::StatsMode::All, nanovdb::ChecksumMode::Partial);
     } catch (const std::exception& e) {
         fail(path, "could not convert grid " + label + " to NanoVDB: " + boundedMessage(e.what()));
     }
@@ -568,8 +546,9 @@ static VectorGrid finishVectorGrid(const std::string& path, const std::string& l
 VectorGrid loadVectorGridFromScalars(const std::string& path, const std::string& stem) {
     const FileLayout layout = vdbformat::scanFile(path);
     if (layout.format == Format::NanoVdb)
-        fail(path, "velocity '" + stem + "': vector grids are read from OpenVDB (.vdb) files "
-                   "only; give the OpenVDB cache");
+        fail(path, "velocity '" + stem +
+                       "': vector grids are read from OpenVDB (.vdb) files "
+                       "only; give the OpenVDB cache");
     // Each component is a signed scalar grid: read as stored (the fog-volume rule, which
     // zeroes negative values, would stop every particle moving towards −x).
     openvdb::FloatGrid::Ptr parts[3];
@@ -596,9 +575,8 @@ VectorGrid loadVectorGridFromScalars(const std::string& path, const std::string&
     openvdb::Vec3SGrid::Ptr grid = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.f));
     grid->setTransform(parts[0]->transform().copy());
     for (int a = 0; a < 3; ++a) grid->tree().topologyUnion(parts[a]->tree());
-    openvdb::FloatGrid::ConstAccessor acc[3] = {parts[0]->getConstAccessor(),
-                                                parts[1]->getConstAccessor(),
-                                                parts[2]->getConstAccessor()};
+    openvdb::FloatGrid::ConstAccessor acc[3] = {
+        parts[0]->getConstAccessor(), parts[1]->getConstAccessor(), parts[2]->getConstAccessor()};
     for (auto it = grid->beginValueOn(); it; ++it) {
         const openvdb::Coord c = it.getCoord();
         it.setValue(openvdb::Vec3s(acc[0].getValue(c), acc[1].getValue(c), acc[2].getValue(c)));

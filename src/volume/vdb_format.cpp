@@ -50,9 +50,9 @@ std::string labelOf(const GridRecord& g, size_t index) {
 // never checked. 0: the type is not a fixed-size one.
 uint32_t fixedMetadataBytes(const std::string& type) {
     static const std::pair<const char*, uint32_t> kTypes[] = {
-        {"bool", 1},   {"double", 8}, {"float", 4},  {"int32", 4},       {"int64", 8},
-        {"vec2i", 8},  {"vec2s", 8},  {"vec2d", 16}, {"vec3i", 12},      {"vec3s", 12},
-        {"vec3d", 24}, {"vec4i", 16}, {"vec4s", 16}, {"vec4d", 32},      {"mat4s", 64},
+        {"bool", 1},    {"double", 8},      {"float", 4},  {"int32", 4},  {"int64", 8},
+        {"vec2i", 8},   {"vec2s", 8},       {"vec2d", 16}, {"vec3i", 12}, {"vec3s", 12},
+        {"vec3d", 24},  {"vec4i", 16},      {"vec4s", 16}, {"vec4d", 32}, {"mat4s", 64},
         {"mat4d", 128}, {"ptdataidx32", 4}, {"ptidx32", 4}};
     for (const auto& [name, bytes] : kTypes)
         if (type == name) return bytes;
@@ -65,8 +65,7 @@ uint32_t fixedMetadataBytes(const std::string& type) {
 // bytes). OpenVDB sizes the arrays by the stored count before it reads them (4 GiB for a
 // corrupt count), so the count is bounded by the grid's bytes (a leaf takes at least 64) and
 // every part must fit in the item's stated size, which is what OpenVDB skips to afterwards.
-void checkDelayedLoadMetadata(Reader& r, const std::string& what, uint32_t bytes,
-                              uint64_t extent) {
+void checkDelayedLoadMetadata(Reader& r, const std::string& what, uint32_t bytes, uint64_t extent) {
     if (bytes == 0) return;
     const uint64_t start = r.pos(), end = start + bytes;
     auto corrupt = [&](const std::string& why) {
@@ -96,8 +95,8 @@ void checkDelayedLoadMetadata(Reader& r, const std::string& what, uint32_t bytes
             const bool padded = raw < 128 && nbytes == 128;
             if ((nbytes != raw && !padded) || cbytes != stored)
                 corrupt("a Blosc frame of " + num(stored) + " bytes claims " + num(cbytes) +
-                        " compressed and " + num(nbytes) + " uncompressed bytes for " +
-                        num(count) + " leaves");
+                        " compressed and " + num(nbytes) + " uncompressed bytes for " + num(count) +
+                        " leaves");
             r.skip(stored - sizeof(header), what);
         } else {
             r.skip(raw, what);
@@ -122,8 +121,8 @@ void skipMetadata(Reader& r, const std::string& owner, uint64_t extent) {
         r.require(bytes, what);
         const uint32_t fixed = fixedMetadataBytes(type);
         if (fixed != 0 && bytes != fixed)
-            r.fail("corrupt: " + what + " of type " + type + " at byte " + num(r.pos()) +
-                               " has " + num(bytes) + " bytes, expected " + num(fixed));
+            r.fail("corrupt: " + what + " of type " + type + " at byte " + num(r.pos()) + " has " +
+                   num(bytes) + " bytes, expected " + num(fixed));
         if (type == "__delayedload")
             checkDelayedLoadMetadata(r, what, bytes, extent);
         else
@@ -134,11 +133,13 @@ void skipMetadata(Reader& r, const std::string& owner, uint64_t extent) {
 // Bytes of an index → object map after its type name, as each map's read() takes them
 // (math/Maps.h): Vec3d members are 24 bytes, a Mat4d 128. A frustum holds a second, linear map.
 uint64_t mapBytes(Reader& r, const std::string& type, const std::string& what, bool nested) {
-    static const std::pair<const char*, uint64_t> kMaps[] = {
-        {"AffineMap", 128},         {"UnitaryMap", 128},
-        {"ScaleMap", 5 * 24},       {"UniformScaleMap", 5 * 24},
-        {"TranslationMap", 24},     {"ScaleTranslateMap", 6 * 24},
-        {"UniformScaleTranslateMap", 6 * 24}};
+    static const std::pair<const char*, uint64_t> kMaps[] = {{"AffineMap", 128},
+                                                             {"UnitaryMap", 128},
+                                                             {"ScaleMap", 5 * 24},
+                                                             {"UniformScaleMap", 5 * 24},
+                                                             {"TranslationMap", 24},
+                                                             {"ScaleTranslateMap", 6 * 24},
+                                                             {"UniformScaleTranslateMap", 6 * 24}};
     for (const auto& [name, bytes] : kMaps)
         if (type == name) return bytes;
     if (type == "NonlinearFrustumMap" && !nested) {
@@ -151,7 +152,7 @@ uint64_t mapBytes(Reader& r, const std::string& type, const std::string& what, b
         return 48 + 16 + 4 + second.size() + bytes;
     }
     r.fail("unsupported: " + what + " has map type '" + boundedMessage(type, 40) +
-                       "' (expected one of OpenVDB's registered maps)");
+           "' (expected one of OpenVDB's registered maps)");
 }
 
 void checkGridExtent(const std::string& path, const std::string& label, uint64_t end,
@@ -466,6 +467,30 @@ bool nanoLayoutFits(const nanovdb::FloatGrid& grid, uint64_t bytes) {
         if (!fits(first, uint64_t(data->mNodeCount[level]) * nodeBytes[level])) return false;
     }
     return true;
+}
+
+std::string compressionName(uint32_t flags, Format format) {
+    if (format == Format::NanoVdb) return flags == 2 ? "blosc" : (flags == 1 ? "zip" : "none");
+    if (flags & kCompressBlosc) return "blosc";
+    if (flags & kCompressZip) return "zip";
+    return flags & kCompressActiveMask ? "active mask" : "none";
+}
+
+std::string nanoClassName(uint32_t c) {
+    static const char* kNames[] = {"unknown",   "level set",    "fog volume",
+                                   "staggered", "point index",  "point data",
+                                   "topology",  "voxel volume", "index grid"};
+    return c < sizeof(kNames) / sizeof(kNames[0]) ? kNames[c] : "unknown";
+}
+
+// What a value type is, for "expected a scalar fog volume" messages.
+std::string describeValueType(const std::string& t) {
+    if (t == "vec3s" || t == "vec3d" || t == "vec3i" || t == "vec3f") return "3-vector (" + t + ")";
+    if (t == "bool" || t == "mask") return "boolean (" + t + ")";
+    if (t.compare(0, 3, "int") == 0 || t.compare(0, 4, "uint") == 0) return "integer (" + t + ")";
+    if (t.compare(0, 2, "fp") == 0) return "quantized (" + t + ")";
+    if (t.compare(0, 6, "ptdata") == 0) return "point (" + t + ")";
+    return "'" + t + "'";
 }
 
 }  // namespace mirage::vdbformat

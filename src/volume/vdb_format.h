@@ -21,11 +21,11 @@
 // This file does not include OpenVDB headers; its constants are those of file version 224.
 #pragma once
 
+#include <nanovdb/NanoVDB.h>
+
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include <nanovdb/NanoVDB.h>
 
 namespace mirage::vdbformat {
 
@@ -93,5 +93,11 @@ std::string nanoVersionString(uint32_t packed);
 // node array lie within the `bytes` of its buffer (a corrupt file's offsets, checked before any
 // NanoVDB accessor follows them).
 bool nanoLayoutFits(const nanovdb::FloatGrid& grid, uint64_t bytes);
+
+// Names of a grid's fields for `mirage info` and messages: its compression, a NanoVDB grid
+// class, and what a value type is ("expected a scalar fog volume").
+std::string compressionName(uint32_t flags, Format format);
+std::string nanoClassName(uint32_t gridClass);
+std::string describeValueType(const std::string& valueType);
 
 }  // namespace mirage::vdbformat

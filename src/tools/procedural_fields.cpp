@@ -73,17 +73,22 @@ private:
 };
 
 // Fractional Brownian motion: octaves of gradient noise at doubling frequency and halving
-// amplitude, normalised by the amplitude sum and clamped to [-1, 1].
+// amplitude, normalised by the amplitude sum and clamped to [-1, 1]. With `absolute`, octaves of
+// |noise| instead, in [0, 1]: Perlin's turbulence (Perlin 1985, "An image synthesizer"), whose
+// creases at the noise's zeros make the cusped, cauliflower billows of smoke when it displaces
+// a surface.
 class Fbm {
 public:
-    Fbm(uint64_t seed, uint64_t stream, int octaves) : mOctaves(std::min(octaves, 6)) {
+    Fbm(uint64_t seed, uint64_t stream, int octaves, bool absolute = false)
+        : mOctaves(std::min(octaves, 6)), mAbsolute(absolute) {
         for (int o = 0; o < mOctaves; ++o)
             mNoise[o] = GradientNoise(hashCombine(hashCombine(mix64(seed), stream), uint64_t(o)));
     }
     float operator()(const Vec3& p) const {
         float sum = 0.f, amp = 1.f, norm = 0.f, f = 1.f;
         for (int o = 0; o < mOctaves; ++o) {
-            sum += amp * mNoise[o](p.x * f, p.y * f, p.z * f);
+            const float n = mNoise[o](p.x * f, p.y * f, p.z * f);
+            sum += amp * (mAbsolute ? std::fabs(n) : n);
             norm += amp;
             amp *= 0.5f;
             f *= 2.f;
@@ -93,6 +98,7 @@ public:
 
 private:
     int mOctaves;
+    bool mAbsolute;
     GradientNoise mNoise[6];
 };
 
@@ -186,6 +192,46 @@ private:
     Fbm mWanderX, mWanderZ, mWarpX, mWarpZ, mBillow;
 };
 
+// Flames: a cone over a disc of radius rBase on the ground whose height varies across the base
+// (tongues, up to ±35 % of `height`) and whose surface is displaced by noise (flicker): by up
+// to `lift` m along y and `edge` m outwards. Returns the reaction intensity in [0, 1], highest
+// on the axis near the base. No flame above yMax (m) or beyond rBase + edge + 0.01 m.
+class Flames {
+public:
+    struct Shape {
+        float rBase, height, yMax, lift, edge;  // m
+    };
+    Flames(uint64_t seed, Shape shape)
+        : mShape(shape), mTongues(seed, 6, 3), mFlicker(seed, 7, 4) {}
+
+    float operator()(const Vec3& p) const {
+        const Shape& s = mShape;
+        const float base2 = p.x * p.x + p.z * p.z;
+        const float reach = s.rBase + s.edge + 0.01f;
+        if (p.y >= s.yMax || base2 >= reach * reach) return 0.f;
+        const float height = s.height * (1.f + 0.35f * mTongues(Vec3(p.x * 3.f, 0.f, p.z * 3.f)));
+        const float n = mFlicker(p * Vec3(4.f, 2.5f, 4.f));
+        const float yw = p.y + s.lift * n;
+        if (yw <= 0.f || yw >= height) return 0.f;
+        const float radius = s.rBase * (1.f - yw / height);
+        const float r = std::sqrt(base2) + s.edge * n;
+        const float r2 = r * r / (radius * radius);
+        if (r2 >= 1.f) return 0.f;
+        return clamp((1.f - r2) * (1.f - 0.5f * yw / height) * (0.9f + 0.6f * n), 0.f, 1.f) *
+               smoothstep(0.f, 0.04f, p.y);
+    }
+
+    // The reach of the flames: every flame lies below yMax within rBase + edge of the y axis.
+    bool mayCover(const Vec3& lo, const Vec3& hi) const {
+        const float reach = mShape.rBase + mShape.edge + 0.01f;
+        return lo.y < mShape.yMax && horizontalDistance2(lo, hi) < reach * reach;
+    }
+
+private:
+    Shape mShape;
+    Fbm mTongues, mFlicker;
+};
+
 AssetField smokeField(uint64_t seed) {
     auto plume = std::make_shared<Plume>(seed, 0.f, 0.12f, 0.27f);
     auto detail = std::make_shared<Fbm>(seed, 5, 4);
@@ -216,35 +262,16 @@ AssetField smokeField(uint64_t seed) {
 AssetField fireField(uint64_t seed) {
     auto plume = std::make_shared<Plume>(seed, 0.45f, 0.15f, 0.21f);
     auto detail = std::make_shared<Fbm>(seed, 5, 4);
-    auto tongues = std::make_shared<Fbm>(seed, 6, 3);
-    auto flicker = std::make_shared<Fbm>(seed, 7, 4);
+    auto flames = std::make_shared<Flames>(seed, Flames::Shape{0.3f, 0.9f, 1.3f, 0.12f, 0.05f});
     AssetField a;
     a.grids = {"density", "temperature", "flame"};
     a.units = {"unitless soot density (a shader scales it into sigma, 1/m)", "K",
                "unitless reaction intensity 0..1"};
     a.lo = Vec3(-0.5f, 0.f, -0.5f);
     a.hi = Vec3(0.5f, 2.f, 0.5f);
-    a.eval = [plume, detail, tongues, flicker](const Vec3& p, float* out) {
+    a.eval = [plume, detail, flames](const Vec3& p, float* out) {
         out[0] = out[1] = out[2] = 0.f;
-        // Flames: a cone over a 0.3 m radius base whose height varies across the base
-        // (tongues) and whose surface is displaced by noise (flicker).
-        float flame = 0.f;
-        const float rBase = 0.3f;
-        const float base2 = p.x * p.x + p.z * p.z;
-        if (p.y < 1.3f && base2 < (rBase + 0.06f) * (rBase + 0.06f)) {
-            const float height = 0.9f * (1.f + 0.35f * (*tongues)(Vec3(p.x * 3.f, 0.f, p.z * 3.f)));
-            const float n = (*flicker)(p * Vec3(4.f, 2.5f, 4.f));
-            const float yw = p.y + 0.12f * n;
-            if (yw > 0.f && yw < height) {
-                const float radius = rBase * (1.f - yw / height);
-                const float r = std::sqrt(base2) + 0.05f * n;
-                const float r2 = r * r / (radius * radius);
-                if (r2 < 1.f)
-                    flame = clamp((1.f - r2) * (1.f - 0.5f * yw / height) * (0.9f + 0.6f * n), 0.f,
-                                  1.f) *
-                            smoothstep(0.f, 0.04f, p.y);
-            }
-        }
+        const float flame = (*flames)(p);
         // Smoke above the flames.
         float r2;
         const float shape = plume->profile(p, &r2);
@@ -267,15 +294,84 @@ AssetField fireField(uint64_t seed) {
     };
     // Flames rise faster than the smoke they feed (buoyancy of ~1800 K gas).
     const auto smokeFlow = plumeFlow(0.45f, 0.15f, 0.21f, 1.5f, 0.2f, 0.25f);
-    // Flames only below 1.3 m within 0.36 m of the axis; smoke only inside the plume.
-    a.mayCover = [plume](const Vec3& lo, const Vec3& hi) {
-        const bool flames = lo.y < 1.3f && horizontalDistance2(lo, hi) < 0.37f * 0.37f;
-        return flames || plume->mayCover(lo, hi);
+    // Flames only below 1.3 m within 0.36 m of the axis; smoke only inside the column.
+    a.mayCover = [plume, flames](const Vec3& lo, const Vec3& hi) {
+        return flames->mayCover(lo, hi) || plume->mayCover(lo, hi);
     };
     a.velocity = [smokeFlow](const Vec3& p) {
         const Vec3 v = smokeFlow(p);
         return p.y < 1.f ? Vec3(v.x, v.y * (2.f - p.y), v.z) : v;
     };
+    return a;
+}
+
+// The demo's fire-and-smoke plume: flames licking up from a 0.44 m wide fire bed feed a column of
+// smoke that widens as it rises and rolls into a rounded cap. Its surface is pyroclastic — the
+// column's level set displaced by turbulence — so it breaks into the cusped billows of real
+// smoke, which a density merely modulated by noise (`smoke`, `fire`) does not show.
+//   `density`     unitless soot density ≤ 1, sharp-edged billows with softer wisps.
+//   `temperature` K: 300 + 1500 K × flame^0.3 in the flames, the smoke ~700 K just above them.
+//   `flame`       unitless reaction intensity 0..1.
+AssetField plumeField(uint64_t seed) {
+    struct Parts {
+        Flames flames;
+        Fbm wanderX, wanderZ, billow, wisps, turbulence;
+    };
+    auto parts = std::make_shared<Parts>(
+        Parts{Flames(seed, Flames::Shape{0.22f, 0.8f, 1.3f, 0.25f, 0.1f}), Fbm(seed, 12, 3),
+              Fbm(seed, 13, 3), Fbm(seed, 14, 2), Fbm(seed, 15, 4), Fbm(seed, 16, 5, true)});
+    // The column's radius (m): 0.1 m above the flames, widening, swelling under the cap.
+    const auto radius = [](float y) {
+        return 0.08f + 0.12f * y + 0.1f * std::exp(-8.f * (y - 1.4f) * (y - 1.4f));
+    };
+    // The cap's centre height and half-height (m): its displaced top stays below
+    // kTop + kReach · kCap = 1.94 m, inside the 2 m domain.
+    constexpr float kTop = 1.45f, kCap = 0.3f;
+    // The displaced edge's farthest, in radii: 1 + 0.55 × 0.8 + 0.18 (turbulence ≤ 1, billow ≤ 1);
+    // a point farther out has s < 0 below.
+    constexpr float kReach = 1.65f;
+    constexpr float kWander = 0.08f;  // the axis's largest offset (m)
+    AssetField a;
+    a.grids = {"density", "temperature", "flame"};
+    a.units = {"unitless soot density (a shader scales it into sigma, 1/m)", "K",
+               "unitless reaction intensity 0..1"};
+    a.lo = Vec3(-0.8f, 0.f, -0.8f);
+    a.hi = Vec3(0.8f, 2.f, 0.8f);
+    a.eval = [parts, radius](const Vec3& p, float* out) {
+        out[0] = out[1] = out[2] = 0.f;
+        const float flame = parts->flames(p);
+        float smoke = 0.f;
+        const float r = radius(p.y);
+        const float reach = kReach * r + 1.415f * kWander;
+        if (p.y > 0.4f && p.x * p.x + p.z * p.z < reach * reach) {
+            const float t = p.y / 2.f;
+            const float dx = p.x - kWander * t * parts->wanderX(Vec3(0.f, 0.8f * p.y, 0.f));
+            const float dz = p.z - kWander * t * parts->wanderZ(Vec3(0.f, 0.8f * p.y, 3.1f));
+            // Distance from the axis in radii, and above the cap's centre in half-heights: the
+            // column's top is the upper half of an ellipsoid, not the box's lid.
+            const float above = std::max(0.f, (p.y - kTop) / kCap);
+            const float d = std::sqrt((dx * dx + dz * dz) / (r * r) + above * above);
+            // The surface moves out by turbulence and by a slow billow of the whole column.
+            const Vec3 q = p * Vec3(4.f, 3.f, 4.f);
+            const float s =
+                1.f - d + 0.55f * (parts->turbulence(q) - 0.2f) + 0.18f * parts->billow(p * 1.2f);
+            const float body = smoothstep(0.f, 0.22f, s) * (0.75f + 0.25f * parts->wisps(p * 9.f));
+            smoke = body * smoothstep(0.4f, 0.9f, p.y);
+        }
+        const float density = std::max(smoke, 0.08f * flame);
+        if (density < 1e-3f && flame < 1e-3f) return;
+        out[0] = density >= 1e-3f ? density : 0.f;
+        out[2] = flame >= 1e-3f ? flame : 0.f;
+        const float tSmoke = 300.f + 400.f * smoke * clamp(1.2f - p.y, 0.f, 1.f);
+        out[1] = std::max(300.f + 1500.f * std::pow(flame, 0.3f), tSmoke);
+    };
+    a.mayCover = [parts, radius](const Vec3& lo, const Vec3& hi) {
+        // The radius grows with height but for the cap's swell, which adds at most 0.1 m.
+        const float reach = kReach * (0.08f + 0.12f * hi.y + 0.1f) + 1.415f * kWander;
+        return parts->flames.mayCover(lo, hi) ||
+               (hi.y > 0.4f && horizontalDistance2(lo, hi) < reach * reach * 1.01f);
+    };
+    a.velocity = plumeFlow(0.4f, 0.13f, 0.42f, 1.5f, 0.2f, 0.25f);
     return a;
 }
 
@@ -368,13 +464,15 @@ AssetField pyroField(uint64_t seed) {
 }  // namespace
 
 const std::vector<std::string>& proceduralAssetKinds() {
-    static const std::vector<std::string> kinds = {"smoke", "fire", "fog-sphere", "ocean", "pyro"};
+    static const std::vector<std::string> kinds = {"smoke",      "fire",  "plume",
+                                                   "fog-sphere", "ocean", "pyro"};
     return kinds;
 }
 
 AssetField proceduralField(const std::string& kind, uint64_t seed) {
     if (kind == "smoke") return smokeField(seed);
     if (kind == "fire") return fireField(seed);
+    if (kind == "plume") return plumeField(seed);
     if (kind == "fog-sphere") return fogSphereField();
     if (kind == "ocean") return oceanField(seed);
     if (kind == "pyro") return pyroField(seed);

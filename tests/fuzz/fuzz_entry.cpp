@@ -2,9 +2,9 @@
 #include "fuzz_entry.h"
 
 #include <cstdlib>
-#include <stdexcept>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <system_error>
 
 #include "core/error.h"
@@ -37,6 +37,7 @@ struct Scratch {
         const fs::path d(dir);
         writeProceduralAsset("fog-sphere", (d / "fog_sphere.vdb").string(), kAssetResolution);
         writeProceduralAsset("smoke", (d / "demo_smoke.vdb").string(), kAssetResolution);
+        writeProceduralAsset("plume", (d / "demo_plume.vdb").string(), kAssetResolution);
         writeProceduralAsset("smoke", (d / "smoke1.vdb").string(), kAssetResolution);
         writeProceduralAsset("fire", (d / "fire_smoke.vdb").string(), kAssetResolution);
     }

@@ -16,6 +16,7 @@
 #include "film/partial_film.h"
 #include "frame/frame_output.h"
 #include "frame/frame_photons.h"
+#include "frame/frame_prefetch.h"
 #include "render/coarse_image.h"
 #include "scene/memory_budget.h"
 #include "volume/load_progress.h"
@@ -191,11 +192,12 @@ void printFrameSummary(const LoadedFrame& job, const RenderedFrame& rendered,
     const int spp = framePixelSamples(job.scene, rendered);
     double mlps = stats.seconds > 0 ? stats.mediumLookups / stats.seconds / 1e6 : 0;
     std::fprintf(stderr,
-                 "frame %d: %dx%d, %d spp, %llu samples | load %.2fs, render %.2fs, "
+                 "frame %d: %dx%d, %d spp, %llu samples | load %.2fs%s, render %.2fs, "
                  "write %.2fs | %.1f M medium lookups/s | non-finite dropped: %llu "
                  "samples, %llu photons | capped paths %llu | peak memory %s\n",
                  frame, s.width, s.height, spp, (unsigned long long)stats.samples, job.loadSeconds,
-                 stats.seconds, writeSeconds, mlps, (unsigned long long)stats.nonFiniteSamples,
+                 job.prefetched ? " (while the frame before rendered)" : "", stats.seconds,
+                 writeSeconds, mlps, (unsigned long long)stats.nonFiniteSamples,
                  (unsigned long long)dropped.nonFinitePhotons,
                  (unsigned long long)dropped.cappedPaths, formatBytes(peakMemoryBytes()).c_str());
     if (cp.partial.writes() > 0)
@@ -246,10 +248,9 @@ std::optional<int> writePhotonsOnly(const LoadedFrame& job) {
     return std::nullopt;
 }
 
-// Renders one frame and writes its preview and EXR; the exit code when the command must stop
-// (interrupted), nothing to go on.
-std::optional<int> renderFrameFiles(RenderSession& rs, int frame) {
-    std::optional<LoadedFrame> job = loadFrame(rs.request(frame), rs.color);
+// Renders one loaded frame and writes its preview and EXR; the exit code when the command must
+// stop (interrupted), nothing to go on. Nothing loaded: the frame was complete, skipped.
+std::optional<int> renderFrameFiles(RenderSession& rs, std::optional<LoadedFrame> job) {
     if (!job) {
         ++rs.framesSkipped;
         return std::nullopt;
@@ -257,7 +258,7 @@ std::optional<int> renderFrameFiles(RenderSession& rs, int frame) {
     if (job->request.photonsOnly) return writePhotonsOnly(*job);
     FrameCheckpoint cp(rs, *job);
     RenderedFrame rendered = renderFrame(job->scene, rs.color, cp.control(&rs.cancel));
-    if (rendered.stats.interrupted) return stopInterrupted(cp, rendered, frame);
+    if (rendered.stats.interrupted) return stopInterrupted(cp, rendered, job->request.frame);
 
     const auto tWrite = Clock::now();
     writeFrame(*job, rendered, rs.color);
@@ -284,9 +285,14 @@ int runRender(const RenderOptions& o) {
 
     const std::vector<int> frames = frameList(o);
     rs.sequence = frames.size() > 1;
-    for (int frame : frames) {
+    FramePrefetch next;  // the next frame's load, under way while this one renders
+    for (size_t i = 0; i < frames.size(); ++i) {
         if (rs.cancel.requested()) break;
-        if (std::optional<int> stop = renderFrameFiles(rs, frame)) return *stop;
+        std::optional<LoadedFrame> job =
+            next.holds(frames[i]) ? next.take() : loadFrame(rs.request(frames[i]), rs.color);
+        if (prefetchesFrames(rs.request(frames[i]), frames.size() - 1 - i))
+            next.start(rs.request(frames[i + 1]), rs.color);
+        if (std::optional<int> stop = renderFrameFiles(rs, std::move(job))) return *stop;
     }
     if (rs.cancel.requested()) {
         std::fprintf(stderr, "mirage: interrupted between frames; finished frames are complete\n");

@@ -24,6 +24,7 @@ struct LoadedFrame {
     std::string deep;        // the deep EXR; "" = none
     std::string preview;     // the display preview; "" = none
     double loadSeconds = 0;  // the load and the request's checks, wall
+    bool prefetched = false;  // loaded while the frame before rendered (frame_prefetch.h)
 };
 
 // Loads and applies `request` through `color`. Nothing when request.skipExisting finds the

@@ -10,7 +10,21 @@
 namespace mirage {
 
 void setGridLoadProgress(Progress::Mode mode);
+// The process's mode, or Quiet on a thread that holds a QuietGridLoads.
 Progress::Mode gridLoadProgress();
+
+// While it lives, loads on this thread draw no bar: the next frame of a sequence, read while
+// the current one renders (frame/frame_prefetch.h), beside the render's own bar.
+class QuietGridLoads {
+public:
+    QuietGridLoads();
+    ~QuietGridLoads();
+    QuietGridLoads(const QuietGridLoads&) = delete;
+    QuietGridLoads& operator=(const QuietGridLoads&) = delete;
+
+private:
+    bool mWasQuiet;
+};
 
 // Grids smaller than this in the file load without a bar: they take well under a second.
 constexpr uint64_t kLoadProgressBytes = uint64_t(64) << 20;

@@ -17,6 +17,7 @@
 #include "film/image_io.h"
 #include "frame/frame_load.h"
 #include "frame/frame_output.h"
+#include "frame/frame_prefetch.h"
 #include "frame/render_frame.h"
 #include "test_support.h"
 
@@ -269,4 +270,62 @@ TEST(FrameRequest, AFinishedFrameIsSkipped) {
     request.output.clear();  // known only once loaded: the scene's [output] path
     request.overrides = {"output.path=\"" + dir + "/frame.exr\""};
     EXPECT_FALSE(loadFrame(request, color));
+}
+
+// A sequence's next frame loads while the current one renders (frame/frame_prefetch.h): the
+// frame it gives renders to the same bits as one loaded in turn, its load's error comes out
+// when it is taken, and a memory budget or a last frame turns it off.
+TEST(FramePrefetch, APrefetchedFrameIsTheFrameLoadedInTurn) {
+    const std::string dir = test::tempDir();
+    const ColorPipeline color;
+    FramePrefetch next;
+    FrameRequest request = fogRequest(dir, dir + "/early.exr");
+    next.start(request, color);
+    EXPECT_TRUE(next.holds(request.frame));
+    EXPECT_FALSE(next.holds(request.frame + 1));
+    std::optional<LoadedFrame> early = next.take();
+    ASSERT_TRUE(early);
+    EXPECT_TRUE(early->prefetched);
+    RenderedFrame rendered = renderFrame(early->scene, color);
+    writeFrame(*early, rendered, color);
+    request.output = dir + "/in_turn.exr";
+    renderInCode(request, color);
+    EXPECT_TRUE(sameImage(readExr(dir + "/early.exr"), readExr(dir + "/in_turn.exr")));
+
+    request.input = dir + "/missing.toml";
+    next.start(request, color);
+    try {
+        next.take();
+        ADD_FAILURE() << "a missing scene loaded";
+    } catch (const MirageError& e) {
+        EXPECT_NE(std::string(e.what()).find("missing.toml"), std::string::npos) << e.what();
+    }
+
+    EXPECT_TRUE(prefetchesFrames(request, 1));
+    EXPECT_FALSE(prefetchesFrames(request, 0));
+    request.memoryBudget = uint64_t(1) << 30;
+    EXPECT_FALSE(prefetchesFrames(request, 1));
+}
+
+// `mirage render` over a sequence says which frames were read during the frame before.
+TEST(FramePrefetch, TheCommandReadsTheNextFrameDuringARender) {
+    const std::string dir = test::tempDir();
+    const std::string scene = fogRequest(dir, "").input;
+    std::string log;
+    ASSERT_EQ(0, test::runMirage("render '" + scene + "' -o '" + dir +
+                                     "/seq.####.exr' "
+                                     "--frames 1-2",
+                                 &log))
+        << log;
+    const std::string prefetched = "(while the frame before rendered)";
+    const size_t frame2 = log.find("frame 2: 24x24");
+    ASSERT_NE(frame2, std::string::npos) << log;
+    EXPECT_EQ(log.find(prefetched), log.find(prefetched, frame2)) << log;  // frame 2's alone
+    EXPECT_NE(log.find(prefetched), std::string::npos) << log;
+    ASSERT_EQ(0, test::runMirage("render '" + scene + "' -o '" + dir +
+                                     "/seq.####.exr' "
+                                     "--frames 1-2 --max-memory 8G",
+                                 &log))
+        << log;
+    EXPECT_EQ(log.find(prefetched), std::string::npos) << log;
 }

@@ -20,8 +20,14 @@ LAUNCHER=()
 if command -v ccache >/dev/null; then LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
 export ASAN_SYMBOLIZER_PATH=${ASAN_SYMBOLIZER_PATH:-$(command -v llvm-symbolizer || true)}
 # The tests exercising threads: same result on 1 and 2 threads (photon pass, photon map), the
-# tiled renderer's callbacks and resume, and the renders of the photon integrator.
-TSAN_TESTS=${TSAN_TESTS:-"PhotonPass|PhotonMap|Renderer|PhotonIntegrator|VolumeEstimate"}
+# tiled renderer's callbacks and resume, the volume estimate, the parallel leaf read and the
+# parallel majorant splat — suites of the program mirage_thread_tests (tests/CMakeLists.txt),
+# the only test sources compiled under TSan. TSAN_TESTS='\.' with TSAN_PROGRAM=mirage_unit_tests
+# runs the whole unit suite under TSan instead.
+TSAN_TESTS=${TSAN_TESTS:-"PhotonPass|PhotonMap|Renderer|VolumeEstimate|ParallelLoad|Majorant"}
+TSAN_PROGRAM=${TSAN_PROGRAM:-mirage_thread_tests}
+TSAN_LABEL=threads
+if [ "$TSAN_PROGRAM" = mirage_unit_tests ]; then TSAN_LABEL=unit; fi
 
 configure() {  # build-dir, extra cmake args…
   local dir=$1
@@ -55,9 +61,9 @@ if [ "$STAGE" = tsan ] || [ "$STAGE" = all ]; then
   TSAN_TBB=$(pipeline/tsan-tbb.sh build-tsan/onetbb | tail -1)
   echo "sanitize: tsan oneTBB took $(($(date +%s) - start)) s"
   configure build-tsan -DMIRAGE_TSAN=ON -DMIRAGE_TSAN_TBB_DIR="$TSAN_TBB"
-  timed "tsan build" ninja -C build-tsan -j "$JOBS" mirage_unit_tests race_canary
+  timed "tsan build" ninja -C build-tsan -j "$JOBS" "$TSAN_PROGRAM" race_canary
   # The run means something only if the tests (and the mirage they start) load that libtbb.
-  for bin in build-tsan/mirage build-tsan/tests/mirage_unit_tests build-tsan/tests/race_canary; do
+  for bin in build-tsan/mirage "build-tsan/tests/$TSAN_PROGRAM" build-tsan/tests/race_canary; do
     if ! grep -q "libtbb.so.12 => $TSAN_TBB/" <<<"$(ldd "$bin")"; then
       echo "sanitize: $bin does not load the TSan-built libtbb from $TSAN_TBB" >&2
       exit 1
@@ -84,7 +90,7 @@ if [ "$STAGE" = tsan ] || [ "$STAGE" = all ]; then
     status=1
   fi
   export TSAN_OPTIONS="$TSAN_BASE:log_path=$REPORTS/report"
-  timed "tsan tests" ctest --test-dir build-tsan -R "$TSAN_TESTS" -j 1 --timeout 900 \
+  timed "tsan tests" ctest --test-dir build-tsan -L "$TSAN_LABEL" -R "$TSAN_TESTS" -j 1 --timeout 900 \
     --output-on-failure || status=1
   if compgen -G "$REPORTS/report.*" >/dev/null; then
     echo "sanitize: ThreadSanitizer reports ($REPORTS):"

@@ -34,7 +34,7 @@ const std::map<std::string, std::string> kCaches = {
     {"fire_smoke.vdb", "fire --resolution 96 --seed 3"},
     {"fire_haze.vdb", "fire --resolution 64 --seed 3"},
     {"ocean_plume.vdb", "ocean"},
-    {"demo_smoke.vdb", "smoke --resolution 96 --seed 7"},
+    {"demo_plume.vdb", "plume --resolution 256 --seed 7"},
 };
 
 std::vector<std::string> shippedScenes() {

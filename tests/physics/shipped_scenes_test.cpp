@@ -46,7 +46,7 @@ TEST(ShippedScenes, EachRendersFiniteAndLitWithoutSharedData) {
         const char* args;
     };
     const Case cases[] = {
-        {"demo.toml", "smoke", "demo_smoke.vdb", "--resolution 24x24 --spp 2"},
+        {"demo.toml", "plume", "demo_plume.vdb", "--resolution 24x24 --spp 2"},
         {"fog_sphere.toml", "fog-sphere", "fog_sphere.vdb",
          "--resolution 24x24 --spp 2 --set render.photons=5000"},
         {"cornell_smoke.toml", "fog-sphere", "fog_sphere.vdb",

@@ -313,8 +313,9 @@ std::string readVolumeFile(const TableReader& v, const Resolve& resolve, int fra
     // how, since a fresh checkout has none of them.
     if (const std::string problem = pathProblem(file); !problem.empty())
         v.fail("file", "volume file " + problem + ": " + file +
-                           " (a procedural cache? `mirage make-asset smoke|fire|fog-sphere|"
-                           "ocean -o " + file + "` writes one; the scene's header "
+                           " (a procedural cache? `mirage make-asset KIND -o " + file +
+                           "` writes one, `mirage make-asset --help` lists the kinds; the "
+                           "scene's header "
                            "comment says which)");
     return file;
 }

@@ -290,7 +290,8 @@ int runRender(const RenderOptions& o) {
         if (rs.cancel.requested()) break;
         std::optional<LoadedFrame> job =
             next.holds(frames[i]) ? next.take() : loadFrame(rs.request(frames[i]), rs.color);
-        if (prefetchesFrames(rs.request(frames[i]), frames.size() - 1 - i))
+        if (prefetchesFrames(rs.request(frames[i]), frames.size() - 1 - i, currentMemoryBytes(),
+                             availableMemoryBytes()))
             next.start(rs.request(frames[i + 1]), rs.color);
         if (std::optional<int> stop = renderFrameFiles(rs, std::move(job))) return *stop;
     }

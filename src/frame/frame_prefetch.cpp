@@ -19,8 +19,9 @@ bool FramePrefetch::holds(int frame) const { return mLoad.valid() && mFrame == f
 
 std::optional<LoadedFrame> FramePrefetch::take() { return mLoad.get(); }
 
-bool prefetchesFrames(const FrameRequest& request, size_t framesLeft) {
-    return framesLeft > 0 && request.memoryBudget == 0;
+bool prefetchesFrames(const FrameRequest& request, size_t framesLeft, uint64_t resident,
+                      uint64_t available) {
+    return framesLeft > 0 && request.memoryBudget == 0 && available > resident + resident / 4;
 }
 
 }  // namespace mirage

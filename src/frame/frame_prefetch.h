@@ -6,8 +6,11 @@
 // (the render's bar is on screen), and its error, if any, is thrown when that frame's turn
 // comes, after the frames before it are written.
 //
-// Not under a memory budget (--max-memory): the budget is checked frame by frame, and two
-// frames' grids would be held at once.
+// Two frames' grids are held at once while the next loads, so it loads early only where they
+// fit: not under a memory budget (--max-memory, checked frame by frame), and only while the
+// memory the system can still give exceeds what this process holds now (the loaded frame, about
+// what the next one needs) by a quarter. A sequence of caches too big for two at once loads
+// each frame when it starts, as without prefetching.
 #pragma once
 
 #include <future>
@@ -32,7 +35,9 @@ private:
 };
 
 // Whether a sequence's next frame may load during the current frame's render: more frames to
-// come and no memory budget.
-bool prefetchesFrames(const FrameRequest& request, size_t framesLeft);
+// come, no memory budget, and available > 1.25 × resident (bytes; see above). The command
+// passes currentMemoryBytes() and availableMemoryBytes() (scene/memory_budget.h).
+bool prefetchesFrames(const FrameRequest& request, size_t framesLeft, uint64_t resident,
+                      uint64_t available);
 
 }  // namespace mirage

@@ -70,6 +70,18 @@ uint64_t currentMemoryBytes() {
     return n == 2 ? resident * uint64_t(::sysconf(_SC_PAGESIZE)) : 0;
 }
 
+uint64_t availableMemoryBytes() {
+    FILE* f = std::fopen("/proc/meminfo", "r");
+    if (!f) return 0;
+    char line[256];
+    unsigned long long kib = 0;
+    bool found = false;
+    while (!found && std::fgets(line, sizeof line, f))
+        found = std::sscanf(line, "MemAvailable: %llu kB", &kib) == 1;
+    std::fclose(f);
+    return found ? uint64_t(kib) * 1024 : 0;
+}
+
 namespace {
 
 // The float channels a pass develops into (film/film.cpp): alpha and depth one, a Cryptomatte

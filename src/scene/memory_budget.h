@@ -91,4 +91,8 @@ void checkMemoryBudget(const MemoryEstimate& estimate, uint64_t budget, const st
 // Resident memory of this process now, bytes (Linux /proc/self/statm; 0 if unavailable).
 uint64_t currentMemoryBytes();
 
+// Memory the system can give without swapping, bytes (Linux /proc/meminfo's MemAvailable; 0 if
+// unavailable).
+uint64_t availableMemoryBytes();
+
 }  // namespace mirage

@@ -274,7 +274,7 @@ TEST(FrameRequest, AFinishedFrameIsSkipped) {
 
 // A sequence's next frame loads while the current one renders (frame/frame_prefetch.h): the
 // frame it gives renders to the same bits as one loaded in turn, its load's error comes out
-// when it is taken, and a memory budget or a last frame turns it off.
+// when it is taken, and a memory budget, a last frame or too little free memory turns it off.
 TEST(FramePrefetch, APrefetchedFrameIsTheFrameLoadedInTurn) {
     const std::string dir = test::tempDir();
     const ColorPipeline color;
@@ -301,10 +301,12 @@ TEST(FramePrefetch, APrefetchedFrameIsTheFrameLoadedInTurn) {
         EXPECT_NE(std::string(e.what()).find("missing.toml"), std::string::npos) << e.what();
     }
 
-    EXPECT_TRUE(prefetchesFrames(request, 1));
-    EXPECT_FALSE(prefetchesFrames(request, 0));
-    request.memoryBudget = uint64_t(1) << 30;
-    EXPECT_FALSE(prefetchesFrames(request, 1));
+    const uint64_t GiB = uint64_t(1) << 30;
+    EXPECT_TRUE(prefetchesFrames(request, 1, 4 * GiB, 6 * GiB));
+    EXPECT_FALSE(prefetchesFrames(request, 0, 4 * GiB, 6 * GiB));  // the last frame
+    EXPECT_FALSE(prefetchesFrames(request, 1, 4 * GiB, 5 * GiB));  // two frames would not fit
+    request.memoryBudget = GiB;
+    EXPECT_FALSE(prefetchesFrames(request, 1, 4 * GiB, 6 * GiB));
 }
 
 // `mirage render` over a sequence says which frames were read during the frame before.

@@ -56,6 +56,7 @@ asset fire fire_smoke.vdb --resolution 96 --seed 3
 asset fire fire_haze.vdb --resolution 64 --seed 3
 asset ocean ocean_plume.vdb
 asset plume demo_plume.vdb --resolution 256 --seed 7
+asset smoke-sphere smoke_sphere.vdb --resolution 96 --seed 7
 
 # The [film] resolution a scene states, divided by the preset's scale.
 resolution() {

@@ -3,9 +3,12 @@
 //
 // The rules, in order, each a case where one method sees light the others miss or converges
 // faster (docs/performance.md, "The default integrator"):
-//  1. Light bends inside the scene ([refraction] with photonsCurve): straight shadow rays and
-//     straight scattered paths are no paths of light there; only photons follow Fermat paths
-//     (Gutierrez et al. 2005), so `photon`.
+//  1. Light bends inside the scene ([refraction] with photonsCurve): photons follow every
+//     Fermat path (Gutierrez et al. 2005), from lamps too. Behind the curved camera `single`
+//     and `volpath` bend their scattered paths and their shadow rays to lights at infinity (the
+//     sun, a dome; render/curved_transport.h), but a shadow ray to a lamp at a finite distance
+//     (point, spot, sphere, quad) stays straight, and `[refraction] curved_transport = false`
+//     keeps all of them straight; so `photon`.
 //  2. A mirror or glass surface and a light: light reaching a diffuse surface or a medium
 //     through a specular chain (caustics, L S+ D, and volume caustics) has no shadow ray and,
 //     the lights being delta or not hit by paths, no path from the camera either; the photon
@@ -130,8 +133,9 @@ IntegratorChoice chooseIntegrator(const Scene& scene) {
     const RenderScene& render = scene.render;
     if (scene.refraction && photonsCurve(scene.refraction->field.get(), render.bounds()))
         return {"photon",
-                "light bends inside the scene ([refraction]): only photons follow curved light "
-                "paths (straight shadow rays and scattered paths do not)"};
+                "light bends inside the scene ([refraction]): photons follow every curved "
+                "path, from lamps too; single and volpath bend shadow rays to the sun and a "
+                "dome only, those to lamps stay straight"};
     const bool lit = !render.lights.empty();
     if (lit && firstSpecularMaterial(render) >= 0)
         return {"photon",

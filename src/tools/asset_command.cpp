@@ -20,7 +20,9 @@ int runMakeAsset(const AssetOptions& o) {
 Command addMakeAssetCommand(CLI::App& app) {
     auto o = std::make_shared<AssetOptions>();
     auto* asset = app.add_subcommand("make-asset", "Write a procedural VDB cache");
-    asset->add_option("kind", o->kind, "smoke | fire | plume | fog-sphere | ocean | pyro")->required();
+    asset->add_option("kind", o->kind,
+                      "smoke | smoke-sphere | fire | plume | fog-sphere | ocean | pyro")
+        ->required();
     asset->add_option("-o,--output", o->output, "Output .vdb (written atomically)")->required();
     auto* resolution = asset->add_option("--resolution", o->resolution,
                                          "Voxels along the 2 m height, 8 to 4096 (default 64)");

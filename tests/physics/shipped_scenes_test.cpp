@@ -1,6 +1,7 @@
 // Every non-curved scene shipped in assets/scenes/ loads and renders without ../shared (its
 // procedural cache made by `mirage make-asset` beside a copy of the scene, at a small
-// resolution), to a finite, lit image; and the two scenes whose look is their point are
+// resolution; in place where it reads a mesh, IES profile or shader shipped in assets/), to a
+// finite, lit image; and the two scenes whose look is their point are
 // checked for it: the volume caustic's beam lights the fog around the glass ball, and the
 // Cornell water box turns green as chlorophyll rises (Gutierrez et al. 2005, figure 3).
 // The curved-light scenes have their own test (tests/unit/curved_scenes_test.cpp), and
@@ -26,16 +27,33 @@ double regionMean(const Image& im, int c, int x0, int x1, int y0, int y1) {
     return sum / double((x1 - x0) * (y1 - y0));
 }
 
-// Renders a scene copy quietly on two threads; the image, or a failed assertion.
-Image render(const std::string& scene, const std::string& args) {
+// Renders a scene quietly on two threads into `out` (default: beside the scene, a copy), its
+// preview beside it; the image, or a failed assertion.
+Image render(const std::string& scene, const std::string& args, std::string out = "") {
     std::string log;
-    const std::string out = scene + ".exr";
-    EXPECT_EQ(test::runMirage("render '" + scene + "' -o '" + out + "' --threads 2 --quiet " +
-                                  args,
+    if (out.empty()) out = scene + ".exr";
+    EXPECT_EQ(test::runMirage("render '" + scene + "' -o '" + out + "' --preview '" + out +
+                                  ".png' --threads 2 --quiet " + args,
                               &log),
               0)
         << log;
     return readExr(out);
+}
+
+// No pixel NaN or infinite, and the mean over the colour channels above 1e-4.
+void expectFiniteAndLit(const Image& im) {
+    ASSERT_GT(im.width, 0);
+    double sum = 0;
+    int nonFinite = 0;
+    for (int y = 0; y < im.height; ++y)
+        for (int x = 0; x < im.width; ++x)
+            for (int k = 0; k < 3; ++k) {
+                const float v = im.pixel(x, y)[k];
+                nonFinite += std::isfinite(v) ? 0 : 1;
+                sum += std::isfinite(v) ? v : 0.0;
+            }
+    EXPECT_EQ(nonFinite, 0);
+    EXPECT_GT(sum / (3.0 * im.width * im.height), 1e-4) << "a black image";
 }
 
 TEST(ShippedScenes, EachRendersFiniteAndLitWithoutSharedData) {
@@ -57,25 +75,26 @@ TEST(ShippedScenes, EachRendersFiniteAndLitWithoutSharedData) {
          "--resolution 18x24 --spp 2 --set render.photons=5000"},
         {"cornell_water.toml", "", "", "--resolution 16x16 --spp 4"},
         {"underwater.toml", "ocean", "ocean_plume.vdb", "--resolution 24x14 --spp 4"},
+        {"smoke_past_sphere.toml", "smoke-sphere", "smoke_sphere.vdb",
+         "--resolution 16x20 --spp 2"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.scene);
         const std::string scene = test::shippedSceneCopy(test::tempDir(), c.scene, c.asset, c.file);
         std::string info;
         ASSERT_EQ(test::runMirage("info '" + scene + "'", &info), 0) << info;
-        const Image im = render(scene, c.args);
-        ASSERT_GT(im.width, 0);
-        double sum = 0;
-        int nonFinite = 0;
-        for (int y = 0; y < im.height; ++y)
-            for (int x = 0; x < im.width; ++x)
-                for (int k = 0; k < 3; ++k) {
-                    const float v = im.pixel(x, y)[k];
-                    nonFinite += std::isfinite(v) ? 0 : 1;
-                    sum += std::isfinite(v) ? v : 0.0;
-                }
-        EXPECT_EQ(nonFinite, 0);
-        EXPECT_GT(sum / (3.0 * im.width * im.height), 1e-4) << "a black image";
+        expectFiniteAndLit(render(scene, c.args));
+    }
+}
+
+// The scenes that read a mesh, an IES profile or a shader shipped beside them in assets/
+// render in place (the output in a temporary folder), as `mirage render` runs them.
+TEST(ShippedScenes, ScenesWithFilesBesideThemRenderInPlace) {
+    const std::string dir = test::tempDir();
+    for (const char* name : {"sunken_boat", "lighthouse_fog", "headlights_fog"}) {
+        SCOPED_TRACE(name);
+        const std::string scene = test::shippedScene(std::string(name) + ".toml");
+        expectFiniteAndLit(render(scene, "--resolution 24x16 --spp 2", dir + "/" + name + ".exr"));
     }
 }
 
@@ -106,14 +125,14 @@ TEST(ShippedScenes, CornellWaterTurnsGreenWithChlorophyll) {
     const std::string dir = test::tempDir();
     const std::string scene = test::shippedSceneCopy(dir, "cornell_water.toml");
     auto greenOverBlue = [&](const char* chl) {
-        const Image im =
-            render(scene, std::string("--resolution 16x16 --spp 16 "
-                                      "--set volume.0.concentration.chlorophyll=") +
-                              chl);
+        const Image im = render(scene, std::string("--resolution 16x16 --spp 16 "
+                                                   "--set volume.0.concentration.chlorophyll=") +
+                                           chl);
         std::vector<double> ratios;
         for (int y = 0; y < 16; ++y)
             for (int x = 0; x < 16; ++x)
-                if (im.pixel(x, y)[2] > 0.f) ratios.push_back(im.pixel(x, y)[1] / im.pixel(x, y)[2]);
+                if (im.pixel(x, y)[2] > 0.f)
+                    ratios.push_back(im.pixel(x, y)[1] / im.pixel(x, y)[2]);
         EXPECT_GT(ratios.size(), 128u);
         std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
         return ratios.empty() ? 0.0 : ratios[ratios.size() / 2];

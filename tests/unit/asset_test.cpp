@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -10,6 +11,7 @@
 #include "core/error.h"
 #include "test_support.h"
 #include "tools/asset_writer.h"
+#include "tools/procedural_fields.h"
 #include "volume/grid_lookup.h"
 #include "volume/vdb_file.h"
 
@@ -115,6 +117,7 @@ TEST(Asset, KindsHaveTheDocumentedGridsAndRanges) {
         std::vector<std::string> grids;
     };
     const Expect expects[] = {{"smoke", {"density", "temperature", "vel"}},
+                              {"smoke-sphere", {"density", "temperature"}},
                               {"fire", {"density", "temperature", "flame", "vel"}},
                               {"plume", {"density", "temperature", "flame", "vel"}},
                               {"fog-sphere", {"density"}}};
@@ -153,7 +156,7 @@ TEST(Asset, KindsHaveTheDocumentedGridsAndRanges) {
         if (e.grids.size() > 1) {
             ValueRange t = activeRange(loadFloatGrid(path, "temperature"));
             EXPECT_GE(t.lo, 299.f);
-            if (std::string(e.kind) == "smoke") {
+            if (std::string(e.kind).rfind("smoke", 0) == 0) {
                 EXPECT_LE(t.hi, 900.f);
                 EXPECT_GT(t.hi, 750.f);
             } else {
@@ -196,6 +199,53 @@ TEST(Asset, FogSphereIsTheDocumentedSoftSphere) {
     EXPECT_EQ(g.sample(acc, Vec3(0.9f, 1.f, 0.9f)), 0.f);
 }
 
+// `smoke-sphere` is `smoke` deflected about a ball of radius a = 0.1 m at (0, 0.75, 0) by
+// potential flow: below the ball's equator each point reads the plume at the lateral offset its
+// streamline had upstream, the ρ∞ that keeps Stokes's stream function ψ = ½ U ρ² (1 − a³/r³)
+// (Lamb 1932, §96) at its value there; nothing inside the ball; above it the documented wake,
+// 1 − 0.85 e^(−h/0.45 m) of the deflected plume on the ball's axis at height h over its centre.
+TEST(Asset, SmokeSphereIsThePlumeDeflectedAboutTheBall) {
+    const AssetField past = proceduralField("smoke-sphere", 7), plume = proceduralField("smoke", 7);
+    const Vec3 c(0.f, 0.75f, 0.f);
+    const float a = 0.1f;
+    float out[2], ref[2];
+    for (const Vec3& p : {c, c + Vec3(0.06f, 0.04f, -0.03f), c + Vec3(0.f, -0.099f, 0.f)}) {
+        past.eval(p, out);
+        EXPECT_EQ(out[0], 0.f) << "inside the ball";
+    }
+    int compared = 0;
+    for (const Vec3& d :
+         {Vec3(0.16f, -0.02f, 0.f), Vec3(0.1f, -0.15f, 0.08f), Vec3(-0.2f, -0.1f, 0.1f),
+          Vec3(0.05f, -0.3f, -0.12f), Vec3(0.25f, -0.05f, 0.2f)}) {
+        const float r = length(d), rho2 = d.x * d.x + d.z * d.z;
+        const float rhoUp2 = rho2 * (1.f - a * a * a / (r * r * r));  // ψ(ρ∞, ∞) = ψ(ρ, r)
+        const float s = std::sqrt(rhoUp2 / rho2);
+        past.eval(c + d, out);
+        plume.eval(Vec3(d.x * s, c.y + d.y, d.z * s), ref);
+        EXPECT_NEAR(out[0], ref[0], 1e-5f) << d.x << " " << d.y << " " << d.z;
+        compared += ref[0] > 0.f ? 1 : 0;
+        // Pulled in towards the ball's axis: the deflected smoke reaches farther out.
+        EXPECT_LT(rhoUp2, rho2);
+    }
+    EXPECT_GE(compared, 3) << "most points read smoke";
+    for (const float h : {0.2f, 0.4f, 0.8f}) {
+        past.eval(c + Vec3(0.f, h, 0.f), out);
+        plume.eval(c + Vec3(0.f, h, 0.f), ref);  // on the axis ρ∞ = ρ = 0
+        if (ref[0] > 0.f) {
+            EXPECT_NEAR(out[0] / ref[0], 1.f - 0.85f * std::exp(-h / 0.45f), 1e-4f) << h;
+        }
+    }
+    // Every point holding smoke lies in a box the writer evaluates.
+    for (float x = -0.6f; x <= 0.6f; x += 0.05f)
+        for (float y = 0.3f; y <= 1.2f; y += 0.05f) {
+            const Vec3 p(x, y, 0.02f);
+            past.eval(p, out);
+            if (out[0] > 0.f) {
+                EXPECT_TRUE(past.mayCover(p - Vec3(0.01f), p + Vec3(0.01f))) << x << " " << y;
+            }
+        }
+}
+
 TEST(Asset, OceanIsAChlorophyllPlumeInMgPerCubicMetre) {
     const std::string path = test::tempDir() + "/ocean.vdb";
     writeProceduralAsset("ocean", path, 48, 1);
@@ -222,7 +272,7 @@ TEST(Asset, BadKindListsTheValidKinds) {
         ADD_FAILURE() << "no error";
     } catch (const MirageError& e) {
         EXPECT_NE(std::string(e.what()).find(
-                      "'smokey' (valid kinds: smoke, fire, plume, fog-sphere, ocean, pyro)"),
+                      "'smokey' (valid kinds: smoke, smoke-sphere, fire, plume, fog-sphere, ocean, pyro)"),
                   std::string::npos)
             << e.what();
     }

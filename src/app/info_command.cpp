@@ -165,6 +165,15 @@ void printFilm(const SceneInfo& info) {
     std::printf("integrator: %s\n", info.integratorWhy.empty()
                                         ? "named by [render] integrator or --set"
                                         : info.integratorWhy.c_str());
+    if (info.finalGather > 0)
+        std::printf(
+            "final gather: on, %d rays at the first diffuse surface ([render] "
+            "final_gather)\n",
+            info.finalGather);
+    else if (info.finalGather == 0)
+        std::printf(
+            "final gather: off, indirect light read straight from the global photon map "
+            "([render] final_gather = 0)\n");
 }
 
 // What the render writes beside the beauty: the passes and light groups, holdouts and deep

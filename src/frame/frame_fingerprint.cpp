@@ -141,6 +141,7 @@ FrameFingerprint frameFingerprint(const Scene& scene, const std::string& input,
     m["estimate"] = scene.photon.estimate == PhotonEstimate::Beam ? "beam" : "point";
     m["k"] = std::to_string(scene.photon.k);
     m["max_radius"] = std::to_string(scene.photon.maxRadius);
+    m["final_gather"] = std::to_string(scene.photon.finalGather);
     m["resolution"] = std::to_string(s.width) + "x" + std::to_string(s.height);
     // A partial file holds the sums of its region only; a region's EXR says which frame it is
     // a part of (the fingerprint without the region), for `mirage assemble`.

@@ -138,6 +138,7 @@ py::dict filmDict(const SceneInfo& info) {
     d["passes"] = info.passes.maxPasses;
     d["pass_spp"] = info.passes.sppPerPass;
     d["photon_map_per_pass"] = info.photonMapPerPass;
+    d["final_gather"] = info.finalGather;
     return d;
 }
 

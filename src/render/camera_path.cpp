@@ -4,7 +4,9 @@
 #include <cmath>
 
 #include "light/surface_light.h"
+#include "render/camera_ray_data.h"
 #include "render/direct_light.h"
+#include "transport/scatter_point.h"
 
 namespace mirage {
 
@@ -24,6 +26,25 @@ SurfaceAhead surfaceAhead(const RenderScene& scene, const Ray& ray) {
     if (scene.hasSurfaces()) ahead.hit = scene.geometry->intersect(ray);
     ahead.tEnd = ahead.hit ? ahead.hit->t : ray.tMax;
     return ahead;
+}
+
+bool scatterAlongFlight(const RenderScene& scene, const SurfaceAhead& ahead,
+                        const ScatterGuide* guide, bool nee, Sampler& sampler, ThreadState& ts,
+                        CameraPath& path, PathRecorder& rec) {
+    PathThroughput& throughput = path.throughput;
+    const ScatterPointWalk walk = chooseScatterPoints(
+        ts.tracking, path.ray, ahead.tEnd, sampler, rec.flightEmission(throughput.beta),
+        rec.cameraRayData(), guide, &scene.mediumHoldouts);
+    rec.cameraFlightEnded(walk.reachedEnd);
+    rec.recordFlightEmission();
+    for (int k = 0; walk.chosen && nee && k < kScatterPoints; ++k)
+        rec.litInMedium(throughput.beta * walk.weight[k],
+                        directLightMedium(scene, walk.collision[k], -path.ray.d, sampler, ts),
+                        walk.collision[k].t);
+    throughput.beta *= walk.T;
+    const bool plate = walk.reachedEnd && (!ahead.hit || rec.holdout(*scene.geometry, *ahead.hit));
+    rec.coverage(plate, walk.T.average(), walk.holdoutCoverage);
+    return walk.reachedEnd;
 }
 
 const Material& gatherAtSurface(const RenderScene& scene, const SurfaceHit& hit, bool nee,

@@ -10,6 +10,7 @@
 #include "render/integrator.h"
 #include "render/path_recorder.h"
 #include "transport/path_vertex.h"
+#include "transport/scatter_guide.h"
 
 namespace mirage {
 
@@ -40,6 +41,17 @@ struct SurfaceAhead {
     float tEnd = 0.f;
 };
 SurfaceAhead surfaceAhead(const RenderScene& scene, const Ray& ray);
+
+// The flight along the path's ray to the surface ahead (or out of the scene), followed to its
+// end (transport/scatter_point.h): emission at its every tentative collision, next-event
+// estimation (where `nee`) at the scattering points chosen along it, drawn by `guide` (null:
+// ∝ T σs), and on the camera ray the pixel's coverage (holdouts show the plate by T and take
+// their share of it). β then carries the flight's transmittance. True when the flight reached
+// its end. Single scattering walks every flight of its path so; the photon mapper's final
+// gather its gather rays' (render/photon_integrator.cpp).
+bool scatterAlongFlight(const RenderScene& scene, const SurfaceAhead& ahead,
+                        const ScatterGuide* guide, bool nee, Sampler& sampler, ThreadState& ts,
+                        CameraPath& path, PathRecorder& rec);
 
 // The light a camera path gathers at the surface its ray reached, before it goes on: the
 // surface's emission and, where it is diffuse and `nee`, next-event estimation to the lights

@@ -68,15 +68,29 @@
 // Surfaces. The single-scatter part follows mirrors and glass to the first diffuse surface or
 // medium event and adds direct light there (NEE). The photon part walks the same kind of
 // specular chain: along each segment the volume estimate (beam or point) up to the surface,
-// and at the first diffuse surface the surface estimates of photon/surface_estimate.h —
-// caustics from the caustic map (L S+ D) and indirect light straight from the global map (no
-// final gather: a direct global-map estimate, blurrier but cheap; its radius is the same
-// k-nearest disc). Each photon is weighted at its own wavelength by everything the chain puts
-// in front of it (photon/view_weight.h): the transmittance of the segments before, a tinted
-// mirror's reflectance, and, behind a dispersive glass, a kernel that keeps only light near
-// the hero wavelength whose direction the chain follows. A curved camera ray's earlier chords
-// reach the estimate the same way (ThreadState::photonView). Emissive surfaces are seen
-// (single-scatter part) but emit no photons.
+// and at the first diffuse surface x the surface estimates of photon/surface_estimate.h. Which
+// light each map holds (photon/photon_pass.cpp, straight paths): the caustic map L S+ x; the
+// global map every other path into x except L x (direct light, NEE's): its last vertex y a
+// diffuse surface, a medium or a mirror behind one, or fire; the volume map every medium event
+// but the first of light straight from a light. So at x (Jensen 2001, §9.1)
+//     L(x) = L_direct (NEE) + L_caustic (caustic map at x) + L_indirect,
+// and L_indirect, the global map's light, is either read straight from it at x
+// (final_gather = 0: cheap, blotchy: its k-nearest disc shows) or gathered (final gather,
+// Jensen 2001, §9.3.3): N rays drawn by x's BSDF (cosine-distributed, weight ρ/N each), each
+// followed through mirrors and glass to the diffuse surface y it lands on, bringing back
+//     T(x, y) [L_direct(y) (NEE) + caustic map(y) + global map(y)]
+//     + along its flights: emission and single scattering (NEE, the single-scatter estimators)
+//       and the volume estimate,
+// the global map's set of paths one vertex further from x: nothing counted twice. A gather ray
+// counts emission only where NEE does not sample the emitter, and never the lights at infinity
+// (NEE at x has them). Where photons curve the global map holds direct light at x too, which
+// no gather ray brings back: the gather is off.
+// Each photon is weighted at its own wavelength by everything the chain puts in front of it
+// (photon/view_weight.h): the transmittance of the segments before, a tinted mirror's
+// reflectance, and, behind a dispersive glass, a kernel that keeps only light near the hero
+// wavelength whose direction the chain follows. A curved camera ray's earlier chords reach the
+// estimate the same way (ThreadState::photonView). Emissive meshes and quads are lights
+// (light/surface_light.h): NEE samples them and they emit photons.
 #include "render/photon_integrator.h"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -326,11 +340,21 @@ private:
                           mPass + 1, double(mRadiusScale), kProgressiveAlpha);
             line += progressive;
         }
-        if (mGlobal && mCaustic && (mGlobal->size() + mCaustic->size()) > 0)
+        if (mGlobal && mCaustic && (mGlobal->size() + mCaustic->size()) > 0) {
             line += " | surface photons: " + std::to_string(mGlobal->size()) + " global, " +
                     std::to_string(mCaustic->size()) + " caustic";
+            line += gatherRays() > 0 ? ", final gather " + std::to_string(gatherRays()) + " rays"
+                                     : ", global map read directly";
+        }
         return line;
     }
+
+    bool hasVolumePhotons() const { return mPhotons && mPhotons->size() > 0; }
+    int surfaceK() const { return mSettings.k > 0 ? mSettings.k : 32; }
+    // Final gather rays per camera path (0: the global map read at the first diffuse surface).
+    // Where photons curve the global map holds the direct light too, which no gather ray
+    // brings back: the top of the file.
+    int gatherRays() const { return mCurved ? 0 : mSettings.finalGather; }
 
     // The volume photons' in-scattered radiance along `ray` over (0, tEnd), XYZ: beam or point
     // estimate; pt.depth has been marched along the ray.
@@ -346,19 +370,20 @@ private:
 
     // The photon part with surfaces (see the top of the file), XYZ, into the sample: the
     // volume estimates along each segment of the specular chain the camera ray starts, then at
-    // the first diffuse surface the surface maps'. Each photon is seen through the chain before
-    // it (its view weight), the curved camera's chords included (ts.photonView).
+    // the first diffuse surface the surface maps' (or the final gather). Each photon is seen
+    // through the chain before it (its view weight), the curved camera's chords included
+    // (ts.photonView); β, the chain's throughput at the sample's wavelengths with its media's
+    // transmittance, is what the final gather's spectral part is seen through.
     void photonsAlongSpecularChain(const RenderScene& scene, CameraPath chain, Sampler& sampler,
                                    ThreadState& ts, PathRecorder& rec) const {
         const float u = sampler.get1D();  // the point estimate's march jitter
         PhotonThreadState& pt = mThreads->local();
         auto t0 = Clock::now();
-        const bool volume = mPhotons && mPhotons->size() > 0;
         ViewWeight view = ts.photonView;
         for (; chain.depth <= kMaxSpecularBounces; ++chain.depth) {
             const SurfaceAhead ahead = surfaceAhead(scene, chain.ray);
             pt.depth.march(chain.ray, ahead.tEnd);
-            if (volume) {
+            if (hasVolumePhotons()) {
                 const PhotonGroups groups = rec.photonGroups(mSlotOfLight);
                 rec.photonsInMedium(volumeEstimate(chain.ray, ahead.tEnd, u, pt, view, groups));
             }
@@ -367,9 +392,13 @@ private:
             const SurfaceHit& hit = *ahead.hit;
             const Material& mat = scene.geometry->materialAt(hit);
             if (!mat.specular()) {
-                photonsAtSurface(hit, -chain.ray.d, mat, view, pt, rec);
+                if (gatherRays() > 0)
+                    finalGather(scene, chain, hit, mat, view, u, sampler, ts, pt, rec);
+                else
+                    photonsAtSurface(hit, -chain.ray.d, mat, view, pt, rec);
                 break;
             }
+            if (gatherRays() > 0) attenuateBeta(pt.depth, ahead.tEnd, &chain);
             attenuateView(pt.depth, ahead.tEnd, &view);
             BsdfSample bs;
             if (!continueAtSurface(mat, hit, chain.wavelengths, TransportMode::Radiance, sampler,
@@ -388,7 +417,7 @@ private:
     // the chain (view) and the media of the chain's last segment (pt.depth).
     void photonsAtSurface(const SurfaceHit& hit, const Vec3& wo, const Material& mat,
                           const ViewWeight& view, PhotonThreadState& pt, PathRecorder& rec) const {
-        const int k = mSettings.k > 0 ? mSettings.k : 32;
+        const int k = surfaceK();
         pt.neighbours.resize(size_t(k));
         auto T = [&](float lambda) { return pt.depth.transmittance(hit.t, lambda) * view(lambda); };
         const PhotonGroups groups = rec.photonGroups(mSlotOfLight);
@@ -399,6 +428,75 @@ private:
         rec.photonsAtSurface(caustic, global, hit.t);
     }
 
+    // Final gather at the first diffuse surface x (the top of the file): the caustic map at x,
+    // then N rays by x's BSDF, weight ρ(λ)/N each; their photons recorded as the global map's
+    // would be, their spectral part by a branch of the path that scattered at x.
+    void finalGather(const RenderScene& scene, const CameraPath& chain, const SurfaceHit& x,
+                     const Material& mat, ViewWeight view, float u, Sampler& sampler,
+                     ThreadState& ts, PhotonThreadState& pt, PathRecorder& rec) const {
+        const int k = surfaceK();
+        pt.neighbours.resize(size_t(k));
+        const PhotonGroups groups = rec.photonGroups(mSlotOfLight);
+        attenuateView(pt.depth, x.t, &view);
+        CameraPath atX = chain;
+        attenuateBeta(pt.depth, x.t, &atX);
+        estimateInBeta(false, &atX.throughput);
+        const Vec3 caustic = mCaustic->estimate(x.p, x.ng, -chain.ray.d, mat, k, mMaxRadius,
+                                                pt.neighbours.data(), view, groups);
+        const float perRay = 1.f / float(gatherRays());
+        view.scale(perRay);
+        view.multiply([&](float lambda) { return mat.albedo(lambda); });
+        PathRecorder branch = rec.branch();
+        branch.scatteredAtSurface(x.t);
+        Vec3 gathered(0.f);
+        for (int j = 0; j < gatherRays(); ++j) {
+            CameraPath g = atX;
+            if (!continueAtSurface(mat, x, g.wavelengths, TransportMode::Radiance, sampler, &g))
+                continue;
+            g.throughput.beta *= perRay;
+            g.specularChain = false;
+            PathRecorder rayRec = branch.branch();
+            gathered += gatherRay(scene, g, view, u, sampler, ts, pt, rayRec, groups);
+        }
+        rec.photonsAtSurface(caustic, gathered, x.t);
+    }
+
+    // One gather ray, through media, mirrors and glass to a diffuse surface y: the light it
+    // brings to x (the top of the file). Spectral, recorded through g's throughput by rec
+    // (render/camera_path.h's estimators); photons, returned in XYZ through `view`.
+    Vec3 gatherRay(const RenderScene& scene, CameraPath g, ViewWeight view, float u,
+                   Sampler& sampler, ThreadState& ts, PhotonThreadState& pt, PathRecorder& rec,
+                   const PhotonGroups& groups) const {
+        Vec3 xyz(0.f);
+        for (++g.depth; g.depth <= kMaxSpecularBounces; ++g.depth) {
+            const SurfaceAhead ahead = surfaceAhead(scene, g.ray);
+            if (!scatterAlongFlight(scene, ahead, nullptr, true, sampler, ts, g, rec)) break;
+            pt.depth.march(g.ray, ahead.tEnd);
+            if (hasVolumePhotons()) xyz += volumeEstimate(g.ray, ahead.tEnd, u, pt, view, groups);
+            if (!ahead.hit) break;  // the lights at infinity: next-event estimation's at x
+            const SurfaceHit& y = *ahead.hit;
+            const Material& mat = gatherAtSurface(scene, y, true, sampler, ts, g, rec);
+            attenuateView(pt.depth, y.t, &view);
+            if (!mat.specular()) {
+                const int k = surfaceK();
+                pt.neighbours.resize(size_t(k));
+                for (const SurfacePhotons* map : {mCaustic.get(), mGlobal.get()})
+                    xyz += map->estimate(y.p, y.ng, -g.ray.d, mat, k, mMaxRadius,
+                                         pt.neighbours.data(), view, groups);
+                break;
+            }
+            const bool heroBefore = g.throughput.heroOnly;
+            BsdfSample bs;
+            if (!continueAtSurface(mat, y, g.wavelengths, TransportMode::Radiance, sampler, &g,
+                                   &bs))
+                break;
+            estimateInBeta(heroBefore, &g.throughput);
+            weighSpecularVertex(mat, bs, g.wavelengths, &view);
+            if (view.zero()) break;
+        }
+        return xyz;
+    }
+
     // The media of a segment the chain leaves: their transmittance at every wavelength.
     static void attenuateView(const RayOpticalDepth& depth, float tEnd, ViewWeight* view) {
         if (depth.grey()) {
@@ -406,6 +504,20 @@ private:
             return;
         }
         view->multiply([&](float lambda) { return depth.transmittance(tEnd, lambda); });
+    }
+
+    // The same at the sample's wavelengths, into the chain's β (the final gather's spectral
+    // part).
+    static void attenuateBeta(const RayOpticalDepth& depth, float tEnd, CameraPath* chain) {
+        SampledSpectrum& beta = chain->throughput.beta;
+        for (int i = 0; i < kSpectrumSamples; ++i)
+            beta[i] *= depth.transmittance(tEnd, chain->wavelengths.lambda[i]);
+    }
+
+    // The gather records after the camera path's estimate was taken (rec.finish): a path that
+    // came to keep its hero wavelength alone carries that estimate's factor in β instead.
+    static void estimateInBeta(bool heroBefore, PathThroughput* t) {
+        if (t->heroOnly && !heroBefore) t->beta = t->estimate(t->beta);
     }
 
     // A mirror's reflectance at every wavelength; a glass's weight (1, or 1/η² for radiance

@@ -17,6 +17,10 @@ namespace mirage {
 
 enum class PhotonEstimate { Beam, Point };
 
+// [render] final_gather's default (docs/scene-file.md; measured in docs/performance.md).
+constexpr int kDefaultFinalGather = 4;
+constexpr int kMaxFinalGather = 4096;
+
 // Settings of the photon-map integrator (scene file: [render] photons, estimate, k,
 // max_radius). The photon pass's own settings are the base, set as a user asks for them: the
 // number of photons, the render seed (each pass derives its own from it), the bounce cap, the
@@ -32,6 +36,9 @@ struct PhotonIntegratorSettings : PhotonPassSettings {
     int k = 0;              // photons per estimate, ≥ 2; 0: 16 (beam radii), 32 (point)
     float maxRadius = 0.f;  // m; 0: a tenth of the diagonal of the media's bounds
     float marchStep = 0.f;  // m, point estimate; 0: half the median k-nearest radius
+    // Final gather rays at the camera path's first diffuse surface (photon_integrator.cpp); 0:
+    // indirect light read straight from the global map there.
+    int finalGather = kDefaultFinalGather;
     // --photons-file: the maps of this frame's pass, saved by `mirage photons`; preprocess()
     // builds its maps from them instead of tracing (the same photons, so the same bits).
     std::shared_ptr<const PhotonPassResult> savedPass;

@@ -25,12 +25,9 @@
 #include <memory>
 
 #include "render/camera_path.h"
-#include "render/camera_ray_data.h"
-#include "render/direct_light.h"
 #include "render/integrator.h"
 #include "render/scatter_guide_build.h"
 #include "transport/path_vertex.h"
-#include "transport/scatter_point.h"
 
 namespace mirage {
 
@@ -53,7 +50,8 @@ public:
         CameraPath path(cameraRay, w);
         for (;; ++path.depth) {
             const SurfaceAhead ahead = surfaceAhead(scene, path.ray);
-            if (!scatterAlongFlight(scene, ahead, sampler, ts, path, rec)) break;
+            if (!scatterAlongFlight(scene, ahead, mGuide.get(), mDirect, sampler, ts, path, rec))
+                break;
             if (!ahead.hit) {
                 escapeToDome(scene, path, rec);
                 break;
@@ -73,30 +71,6 @@ public:
     }
 
 private:
-    // The flight along the path's ray to the surface ahead (or out of the scene), followed to
-    // its end (transport/scatter_point.h): emission at its every tentative collision, next-event
-    // estimation at the scattering points chosen along it, and on the camera ray the pixel's
-    // coverage (holdouts show the plate by T and take their share of it). β then carries the
-    // flight's transmittance. True when the flight reached its end.
-    bool scatterAlongFlight(const RenderScene& scene, const SurfaceAhead& ahead, Sampler& sampler,
-                            ThreadState& ts, CameraPath& path, PathRecorder& rec) const {
-        PathThroughput& throughput = path.throughput;
-        const ScatterPointWalk walk = chooseScatterPoints(
-            ts.tracking, path.ray, ahead.tEnd, sampler, rec.flightEmission(throughput.beta),
-            rec.cameraRayData(), mGuide.get(), &scene.mediumHoldouts);
-        rec.cameraFlightEnded(walk.reachedEnd);
-        rec.recordFlightEmission();
-        for (int k = 0; walk.chosen && mDirect && k < kScatterPoints; ++k)
-            rec.litInMedium(throughput.beta * walk.weight[k],
-                            directLightMedium(scene, walk.collision[k], -path.ray.d, sampler, ts),
-                            walk.collision[k].t);
-        throughput.beta *= walk.T;
-        const bool plate =
-            walk.reachedEnd && (!ahead.hit || rec.holdout(*scene.geometry, *ahead.hit));
-        rec.coverage(plate, walk.T.average(), walk.holdoutCoverage);
-        return walk.reachedEnd;
-    }
-
     bool mDirect;
     std::unique_ptr<ScatterGuide> mGuide;  // null: points ∝ T σs
 };

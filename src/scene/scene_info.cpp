@@ -113,6 +113,8 @@ SceneInfo describeScene(const Scene& scene, const ColorPipeline& color) {
     info.passes = scene.passes;
     const IntegratorInfo& integrator = integratorInfo(scene.integrator);
     info.photonMapPerPass = integrator.photonPass;
+    if (integrator.photonPass && scene.render.hasSurfaces())
+        info.finalGather = scene.photon.finalGather;
     info.integrator = scene.integrator;
     info.integratorDescription = integrator.description;
     info.integratorWhy = scene.integratorWhy;

@@ -91,6 +91,9 @@ struct SceneInfo {
     RenderSettings film;
     PassSettings passes;
     bool photonMapPerPass = false;  // a render in passes whose integrator traces photons
+    // The photon integrator on a scene with surfaces: its final gather rays at the first diffuse
+    // surface (0: the global map read there); -1 for any other render.
+    int finalGather = -1;
     std::string integrator, integratorDescription;
     std::string integratorWhy;  // "" when the scene or --set named it
     std::string workingSpace, ocioConfig;

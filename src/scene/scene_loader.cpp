@@ -271,6 +271,8 @@ static void readSettings(const TableReader& top,
             r->fail("k", "expected 0 (the default for the estimate) or at least 2 photons: a "
                          "density from one neighbour has no finite mean");
         scene.photon.maxRadius = float(r->getNumber("max_radius", 0.0, 0.0, 1e12));
+        scene.photon.finalGather =
+            int(r->getInt("final_gather", kDefaultFinalGather, 0, kMaxFinalGather));
         r->finish();
     }
     if (auto o = top.optionalTable("output")) {

@@ -165,6 +165,7 @@ void printFilm(const SceneInfo& info) {
     std::printf("integrator: %s\n", info.integratorWhy.empty()
                                         ? "named by [render] integrator or --set"
                                         : info.integratorWhy.c_str());
+    if (!info.photons.empty()) std::printf("photons: %s\n", info.photons.c_str());
 }
 
 // What the render writes beside the beauty: the passes and light groups, holdouts and deep

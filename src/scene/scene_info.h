@@ -91,6 +91,9 @@ struct SceneInfo {
     RenderSettings film;
     PassSettings passes;
     bool photonMapPerPass = false;  // a render in passes whose integrator traces photons
+    // The photon pass's emission when the integrator traces photons (else ""): photons per map
+    // and whether projection maps aim a caustic stream, and why not where they do not.
+    std::string photons;
     std::string integrator, integratorDescription;
     std::string integratorWhy;  // "" when the scene or --set named it
     std::string workingSpace, ocioConfig;

@@ -271,6 +271,11 @@ static void readSettings(const TableReader& top,
             r->fail("k", "expected 0 (the default for the estimate) or at least 2 photons: a "
                          "density from one neighbour has no finite mean");
         scene.photon.maxRadius = float(r->getNumber("max_radius", 0.0, 0.0, 1e12));
+        // Projection maps (photon/projection_map.h): on wherever a light's mirrors and glass are
+        // a small part of what it lights; caustic_photons 0: as many as photons.
+        scene.photon.projection = r->getBool("projection", true);
+        scene.photon.causticPhotons =
+            uint64_t(r->getInt("caustic_photons", 0, 0, int64_t(1) << 40));
         r->finish();
     }
     if (auto o = top.optionalTable("output")) {

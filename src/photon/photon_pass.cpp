@@ -113,7 +113,8 @@ struct PhotonState : PathSegment {
     bool specularOnly;  // every interaction so far was a mirror or glass
     // Its light has a projection map, so its first event decides whether the path is this
     // stream's (projection_map.h); causticStream: it was emitted from that map.
-    bool projected = false, causticStream = false;
+    // lifted: a caustic photon past its first diffuse or medium event (liftToMainPower).
+    bool projected = false, causticStream = false, lifted = false;
     int bounces = 0;
 };
 
@@ -172,7 +173,7 @@ public:
                 goesOn = inMedium(ev, walk, &state, &path, out);
             else
                 goesOn = false;
-            if (!goesOn) return path;
+            if (!goesOn || !liftToMainPower(sampler, &state)) return path;
             if (++state.bounces >= mSettings.maxBounces) {
                 path.capped = true;
                 return path;
@@ -198,6 +199,19 @@ private:
         const bool specular =
             ev.end == FlightEnd::Escaped && hit && mGeometry->materialAt(*hit).specular();
         return specular == state.causticStream;
+    }
+
+    // A caustic photon is as dense as its projection makes it only up to its first diffuse or
+    // medium event, the one it was aimed for (stored: the caustic map's, or a volume caustic).
+    // Past it the light is no longer focused: a roulette with survival β/p lifts it to the main
+    // stream's power p (unbiased, as every roulette of the walk), so that a k-nearest estimate
+    // of the fog it diffuses into meets photons of one power, not a swarm of faint ones beside
+    // a few bright ones (whose mixture multiplies the estimate's noise), and the stream costs
+    // little past its caustic. False when the photon is absorbed.
+    bool liftToMainPower(Sampler& sampler, PhotonState* state) const {
+        if (!state->causticStream || state->specularOnly || state->lifted) return true;
+        state->lifted = true;
+        return state->throughput.keepPower(mMain.photonPower, sampler);
     }
 
     // Emission: a source ∝ power and a photon from it, of the stream photon `index` is in.
@@ -334,6 +348,10 @@ private:
 
 }  // namespace
 
+bool projectionWanted(const PhotonPassSettings& settings) {
+    return settings.projection == PhotonPassSettings::Projection::On && !settings.field;
+}
+
 void PhotonPassStats::add(const PhotonPassStats& pass) {
     emitted += pass.emitted;
     stored += pass.stored;
@@ -367,7 +385,7 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
     // Projection maps: not where light curves (straight-line cones and discs).
     const PhotonSources sources(
         lights, media, bounds,
-        planProjection(lights, geometry, bounds, settings.projection && !settings.field));
+        planProjection(lights, geometry, bounds, projectionWanted(settings)));
     local.mediumPower = sources.mediumPower;
     const LightChooser chooser(sources.powers());
     // Curved flights: the step cap near surfaces (surface_step_cap.h), so that a photon's hit

@@ -61,8 +61,13 @@ struct PhotonPassSettings {
     float shutterOpen = 0.f, shutterClose = 0.f;
     // Projection maps (projection_map.h): a second stream of causticPhotons photons emitted
     // towards the mirrors and glass, for the lights whose projection is narrow; 0: as many as
-    // `photons`. Never where light curves (field): the maps are straight-line geometry.
-    bool projection = true;
+    // `photons`. Never where light curves (field): the maps are straight-line geometry. Off by
+    // default: a k-nearest estimate's noise is set by k, not by the photons' density, so the
+    // caustic stream sharpens caustics more than it quietens them, and in media its faint,
+    // dense photons share the one volume map with the main stream's bright ones and multiply
+    // the noise (measured: docs/scene-file.md, "Projection maps").
+    enum class Projection { Off, On };
+    Projection projection = Projection::Off;
     uint64_t causticPhotons = 0;
     uint64_t causticPhotonsOrDefault() const {
         return causticPhotons > 0 ? causticPhotons : photons;
@@ -108,6 +113,9 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
                                const std::vector<const Medium*>& media,
                                const GeometryScene* geometry, const PhotonPassSettings& settings,
                                PhotonPassStats* stats);
+
+// Whether a pass with these settings traces projection maps: On, and not where light curves.
+bool projectionWanted(const PhotonPassSettings& settings);
 
 PhotonList tracePhotons(const std::vector<const Light*>& lights,
                         const std::vector<const Medium*>& media, const PhotonPassSettings& settings,

@@ -101,7 +101,8 @@ OutputInfo describeOutput(const Scene& scene) {
 
 // Why a scene's photon pass has no projection maps (photon/projection_map.h), "" when it has.
 std::string noProjection(const Scene& scene, bool curved, const ProjectionPlan& plan) {
-    if (!scene.photon.projection) return "[render] projection = false";
+    if (scene.photon.projection == PhotonPassSettings::Projection::Off)
+        return "[render] projection = \"off\", the default";
     if (curved) return "light curves in the [refraction] field";
     if (plan.targets == 0) return "no mirror or glass";
     if (!plan.any())
@@ -117,9 +118,11 @@ std::string describePhotons(const Scene& scene) {
     for (const auto& l : scene.render.lights) lights.push_back(l.get());
     const Bounds3 bounds = scene.render.bounds();
     const bool curved = photonsCurve(p.field.get(), bounds);
+    PhotonPassSettings pass = p;  // the field only where it bends light (photonsCurve)
+    if (!curved) pass.field = nullptr;
     const ProjectionPlan plan =
         planProjection(lights, scene.render.hasSurfaces() ? scene.render.geometry.get() : nullptr,
-                       bounds, p.projection && !curved);
+                       bounds, projectionWanted(pass));
     std::string s = std::to_string(p.photons) + " per map; projection maps: ";
     const std::string why = noProjection(scene, curved, plan);
     if (!why.empty()) return s + "off (" + why + ")";

@@ -271,9 +271,13 @@ static void readSettings(const TableReader& top,
             r->fail("k", "expected 0 (the default for the estimate) or at least 2 photons: a "
                          "density from one neighbour has no finite mean");
         scene.photon.maxRadius = float(r->getNumber("max_radius", 0.0, 0.0, 1e12));
-        // Projection maps (photon/projection_map.h): on wherever a light's mirrors and glass are
-        // a small part of what it lights; caustic_photons 0: as many as photons.
-        scene.photon.projection = r->getBool("projection", true);
+        // Projection maps (photon/projection_map.h): off (the default) or on; caustic_photons 0:
+        // as many as photons.
+        const std::string projection = r->getString("projection", "off");
+        if (projection != "on" && projection != "off")
+            r->fail("projection", "unknown projection '" + projection + "'; expected off or on");
+        scene.photon.projection = projection == "on" ? PhotonPassSettings::Projection::On
+                                                     : PhotonPassSettings::Projection::Off;
         scene.photon.causticPhotons =
             uint64_t(r->getInt("caustic_photons", 0, 0, int64_t(1) << 40));
         r->finish();

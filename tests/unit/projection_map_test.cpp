@@ -250,7 +250,8 @@ struct CausticScene {
         ps.photons = photons;
         ps.seed = 5;
         ps.progress = Progress::Mode::Quiet;
-        ps.projection = projection;
+        ps.projection =
+            projection ? PhotonPassSettings::Projection::On : PhotonPassSettings::Projection::Off;
         return tracePhotonMaps({light.get()}, {}, &geometry, ps, stats);
     }
 };

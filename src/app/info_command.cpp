@@ -174,6 +174,7 @@ void printFilm(const SceneInfo& info) {
         std::printf(
             "final gather: off, indirect light read straight from the global photon map "
             "([render] final_gather = 0)\n");
+    if (!info.photons.empty()) std::printf("photons: %s\n", info.photons.c_str());
 }
 
 // What the render writes beside the beauty: the passes and light groups, holdouts and deep

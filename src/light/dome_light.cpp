@@ -158,18 +158,10 @@ public:
         out->origin = b.center() + f.s * (rho * std::cos(phi)) + f.t * (rho * std::sin(phi)) +
                       d * (r * 1.001f);
         out->direction = -d;
-        const float uLambda = s.get1D();
-        if (!mDistribution.empty()) {
-            const size_t p = pixel(d);
-            const Vec3& c = mCoefficients[p];
-            out->lambda = sampleBasis(c, mPixelPower[p], uLambda);
-            out->weight = float(mPixelPower[p] / (pdf * mTotal));
-        } else {
-            out->lambda = mConstantLambda.sample(uLambda);
-            out->weight = 1.f;
-        }
+        colour(d, pdf, s.get1D(), out);
         return out->weight > 0.f && r > 0.f;
     }
+    std::unique_ptr<PhotonProjection> projection(const ProjectionTargets& t) const override;
 
     // A constant dome's colour is one spectrum everywhere (render/achromatic_film.h films it
     // exactly); an image's varies over directions.
@@ -189,6 +181,22 @@ public:
     }
 
 private:
+    friend class DomeProjection;
+
+    // A photon's wavelength, and its weight L̄(ω) / (p(ω) ∫ L̄), for the direction d towards the
+    // dome drawn with density pdf.
+    void colour(const Vec3& d, float pdf, float uLambda, PhotonEmission* out) const {
+        if (!mDistribution.empty()) {
+            const size_t p = pixel(d);
+            const Vec3& c = mCoefficients[p];
+            out->lambda = sampleBasis(c, mPixelPower[p], uLambda);
+            out->weight = float(mPixelPower[p] / (pdf * mTotal));
+        } else {
+            out->lambda = mConstantLambda.sample(uLambda);
+            out->weight = 1.f;
+        }
+    }
+
     // The row's solid angle per pixel, exactly: 2π/W (cos θ0 − cos θ1).
     double pixelSolidAngle(int row) const {
         return 2.0 * kPi / mWidth *
@@ -292,6 +300,41 @@ private:
     Distribution2D mDistribution;     // empty for the constant dome
     std::optional<LightLobe> mSun;    // findSun
 };
+
+// The dome's projection map: light from each direction crosses the targets' discs facing it
+// (DiscUnion). A photon draws its direction as the dome's own do, then a point of the discs'
+// union from their mixture (density c/Σ πR_k²), so that power() = Σ πR_k² ∫∫ L dω dλ with the
+// weight of the direction over the coverage c.
+class DomeProjection : public PhotonProjection {
+public:
+    DomeProjection(const DomeLight& dome, const ProjectionTargets& t)
+        : mDome(dome), mDiscs(t.spheres), mScene(t.scene) {}
+    double power() const override { return mDiscs.areaSum() * mDome.mTotal; }
+    bool emit(Sampler& s, PhotonEmission* out) const override {
+        const float u1 = s.get1D(), u2 = s.get1D();
+        float pdf;
+        const Vec3 d = mDome.sampleDirection(u1, u2, &pdf);
+        if (!(pdf > 0.f)) return false;
+        const float pick = s.get1D(), u3 = s.get1D(), u4 = s.get1D();
+        int coverage;
+        out->direction = -d;
+        out->origin = upstreamOfScene(
+            mScene, mDiscs.sample(out->direction, pick, u3, u4, &coverage), out->direction);
+        mDome.colour(d, pdf, s.get1D(), out);
+        out->weight /= float(coverage);
+        return out->weight > 0.f;
+    }
+
+private:
+    const DomeLight& mDome;
+    DiscUnion mDiscs;
+    Bounds3 mScene;
+};
+
+std::unique_ptr<PhotonProjection> DomeLight::projection(const ProjectionTargets& t) const {
+    if (t.spheres.empty() || t.scene.empty() || !(mTotal > 0.0)) return nullptr;
+    return std::make_unique<DomeProjection>(*this, t);
+}
 
 }  // namespace
 

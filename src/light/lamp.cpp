@@ -25,26 +25,31 @@ namespace mirage {
 
 namespace {
 
-// The cone of directions from a lamp at p of radius r that can reach anything inside the
-// scene's bounds: seen from outside their bounding sphere (centre c, radius R, at distance
-// d > R + r) a ray from the lamp's surface along ω meets that sphere only when the line
-// through p along ω passes within R + r of c, so the cone has half-angle asin((R + r)/d)
-// about c − p. A photon leaving outside it meets nothing, so lamps draw theirs inside (a
-// projection map of one cell: Jensen 2001, §5.1.3). From inside, or for empty bounds, there
-// is none (`valid` false) and the lamp emits over all its directions. Like the distant light's
-// disc, the cone is straight-line geometry: in a refractive-index field, light bent in from
-// outside it is not emitted.
-AimCone sceneCone(const Vec3& p, float lampRadius, const Bounds3& b) {
+// The cone of directions from a lamp at p of radius r that can reach anything inside a sphere
+// (centre c, radius R): the scene's bounding sphere (sceneCone), or a specular object's. Seen
+// from outside the sphere (at distance d > R + r) a ray from the lamp's surface along ω meets
+// it only when the line through p along ω passes within R + r of c, so the cone has half-angle
+// asin((R + r)/d) about c − p. A photon leaving outside the scene's cone meets nothing, so
+// lamps draw theirs inside (a projection map of one cell: Jensen 2001, §5.1.3). From inside,
+// or for empty bounds, there is none (`valid` false) and the lamp emits over all its directions.
+// Like the distant light's disc, the cone is straight-line geometry: in a refractive-index field,
+// light bent in from outside it is not emitted. The same cone about a specular object's sphere is
+// one cell of the lamp's projection map (LampProjection, below).
+AimCone coneTowards(const Vec3& p, float lampRadius, const Vec3& centre, float radius) {
     AimCone cone;
-    if (b.empty()) return cone;
-    const Vec3 toCentre = b.center() - p;
-    const float d = length(toCentre), r = 0.5f * length(b.diagonal()) + lampRadius;
+    const Vec3 toCentre = centre - p;
+    const float d = length(toCentre), r = radius + lampRadius;
     // A margin of 0.1 % keeps a light on the sphere from a degenerate, razor-thin cone.
     if (!(d > 1.001f * r) || !std::isfinite(d)) return cone;
     cone.axis = toCentre / d;
     cone.cosMax = std::sqrt((d - r) * (d + r)) / d;
     cone.valid = true;
     return cone;
+}
+
+AimCone sceneCone(const Vec3& p, float lampRadius, const Bounds3& b) {
+    if (b.empty()) return AimCone{};
+    return coneTowards(p, lampRadius, b.center(), 0.5f * length(b.diagonal()));
 }
 
 class LampLight : public Lamp {
@@ -79,17 +84,10 @@ public:
         const float u1 = s.get1D(), u2 = s.get1D();
         const bool lit =
             mProfile.sample(sceneCone(mP, mR, b), u1, u2, &out->direction, &out->weight);
-        out->origin = mP;
-        if (mR > 0.f) {
-            const float u3 = s.get1D(), u4 = s.get1D();
-            const float rho = mR * std::sqrt(u3), phi = 2.f * kPi * u4;
-            const Frame f(out->direction);
-            out->origin = mP + f.s * (rho * std::cos(phi)) + f.t * (rho * std::sin(phi)) +
-                          out->direction * safeSqrt(mR * mR - rho * rho);
-        }
-        out->lambda = mLambda.sample(s.get1D());
+        leave(s, out);
         return mPower > 0.f && lit;
     }
+    std::unique_ptr<PhotonProjection> projection(const ProjectionTargets& t) const override;
     std::string describe() const override {
         const char* kind = mProfile.spot() ? "spot" : "point";
         std::string s = std::string(mR > 0.f ? "sphere " : "") + kind + " light at " + vecStr(mP);
@@ -111,6 +109,43 @@ public:
         const float cosO = mProfile.cosCone();
         if (!(mR > 0.f && cosO > 0.f)) return mP;
         return mP - mProfile.axis() * (mR / safeSqrt(1.f - cosO * cosO));
+    }
+
+    // The origin of a photon leaving along out->direction, and its wavelength: the centre, or
+    // for a sphere a point where the flux along ω crosses the disc of radius r normal to ω
+    // uniformly (constant radiance over the projected area), lifted to the side facing ω.
+    void leave(Sampler& s, PhotonEmission* out) const {
+        out->origin = mP;
+        if (mR > 0.f) {
+            const float u3 = s.get1D(), u4 = s.get1D();
+            const float rho = mR * std::sqrt(u3), phi = 2.f * kPi * u4;
+            const Frame f(out->direction);
+            out->origin = mP + f.s * (rho * std::cos(phi)) + f.t * (rho * std::sin(phi)) +
+                          out->direction * safeSqrt(mR * mR - rho * rho);
+        }
+        out->lambda = mLambda.sample(s.get1D());
+    }
+    float power() const { return mPower; }
+    const EmissionProfile& profile() const { return mProfile; }
+    // The cell of the projection map that holds a target's sphere: the cone of directions that
+    // can reach it (coneTowards; every direction from inside it), narrowed to a spot's own cone
+    // where that is narrower, since the light outside either reaches nothing of the target.
+    // False where the spot's cone and the target's do not meet.
+    bool targetCone(const TargetSphere& t, Vec3* axis, float* cosMax) const {
+        const AimCone aim = coneTowards(mP, mR, t.centre, t.radius);
+        const float cosO = mProfile.cosCone();
+        if (!aim.valid) {
+            *axis = mProfile.axis();
+            *cosMax = cosO;
+            return true;
+        }
+        // Disjoint when the axes lie further apart than the two half-angles together.
+        const float apart = std::acos(clamp(dot(aim.axis, mProfile.axis()), -1.f, 1.f));
+        if (apart > std::acos(aim.cosMax) + std::acos(cosO)) return false;
+        const bool spotNarrower = cosO > aim.cosMax;
+        *axis = spotNarrower ? mProfile.axis() : aim.axis;
+        *cosMax = spotNarrower ? cosO : aim.cosMax;
+        return true;
     }
 
 private:
@@ -147,6 +182,42 @@ private:
     Spectrum mI;  // W/sr/nm per unit f
     SpectrumSampler mLambda;
 };
+
+// A lamp's projection map: the union of its targets' cones (LampLight::targetCone). A photon
+// drawn from the union's mixture, density c(ω)/Σ Ω_k (projection.h), carries the intensity
+// I(ω) = Φ f(ω)/Ω_f over that density; normalised by power() = Φ Σ Ω_k / Ω_f, its weight is
+// f(ω)/c(ω) ≤ 1.
+class LampProjection : public PhotonProjection {
+public:
+    LampProjection(const LampLight& lamp, ConeUnion cones)
+        : mLamp(lamp), mCones(std::move(cones)) {}
+    double power() const override {
+        return double(mLamp.power()) * mCones.solidAngleSum() / mLamp.profile().solidAngle();
+    }
+    bool emit(Sampler& s, PhotonEmission* out) const override {
+        const float pick = s.get1D(), u1 = s.get1D(), u2 = s.get1D();
+        int coverage;
+        out->direction = mCones.sample(pick, u1, u2, &coverage);
+        out->weight = mLamp.profile().eval(out->direction) / float(coverage);
+        mLamp.leave(s, out);
+        return out->weight > 0.f;
+    }
+
+private:
+    const LampLight& mLamp;
+    ConeUnion mCones;
+};
+
+std::unique_ptr<PhotonProjection> LampLight::projection(const ProjectionTargets& t) const {
+    ConeUnion cones;
+    for (const TargetSphere& target : t.spheres) {
+        Vec3 axis;
+        float cosMax;
+        if (targetCone(target, &axis, &cosMax)) cones.add(axis, cosMax);
+    }
+    if (cones.empty() || !(mPower > 0.f)) return nullptr;
+    return std::make_unique<LampProjection>(*this, std::move(cones));
+}
 
 }  // namespace
 

@@ -14,6 +14,7 @@
 #include "core/math.h"
 #include "core/rng.h"
 #include "core/spectral.h"
+#include "light/projection.h"
 #include "spectrum/spectrum.h"
 
 namespace mirage {
@@ -71,6 +72,13 @@ public:
     // Draws one photon. Returns false when the light emits nothing into the scene.
     virtual bool emitPhoton(const Bounds3& sceneBounds, Sampler& sampler,
                             PhotonEmission* out) const = 0;
+    // The light's projection map onto the specular objects (light/projection.h): what it emits
+    // towards them alone, for the caustic photons. Null where the light has none (quad and
+    // surface lights: their caustic photons come from their ordinary emission) or no target
+    // can receive its light.
+    virtual std::unique_ptr<PhotonProjection> projection(const ProjectionTargets&) const {
+        return nullptr;
+    }
     virtual std::string describe() const = 0;
     // Radiance seen along d by a ray that leaves the scene (W·m⁻²·sr⁻¹·nm⁻¹): 0 but for lights at
     // infinity (the dome). cameraRay: the ray is the camera's own, before any bounce, which a

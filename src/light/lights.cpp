@@ -74,9 +74,13 @@ public:
         out->weight = 1.f;
         return mE > 0.f && r > 0.f;
     }
+    std::unique_ptr<PhotonProjection> projection(const ProjectionTargets& t) const override;
     std::string describe() const override {
         return "distant light along " + vecStr(mDir) + ", " + std::to_string(mE) + " W/m²";
     }
+    float irradiance() const { return mE; }
+    const Vec3& direction() const { return mDir; }
+    float sampleLambda(float u) const { return mLambda.sample(u); }
 
     const Spectrum* spectrum() const override { return &mSpd; }
 
@@ -86,6 +90,36 @@ private:
     Spectrum mSpd;  // W/m²/nm
     SpectrumSampler mLambda;
 };
+
+// The distant light's projection map: the targets' discs facing its direction (DiscUnion), each
+// a uniform point of the union's mixture (density c/Σ πR_k²) started upstream of the scene,
+// so that power() = E Σ πR_k² and the weight is 1/c.
+class DistantProjection : public PhotonProjection {
+public:
+    DistantProjection(const DistantLight& light, const ProjectionTargets& t)
+        : mLight(light), mDiscs(t.spheres), mScene(t.scene) {}
+    double power() const override { return double(mLight.irradiance()) * mDiscs.areaSum(); }
+    bool emit(Sampler& s, PhotonEmission* out) const override {
+        const float pick = s.get1D(), u1 = s.get1D(), u2 = s.get1D();
+        int coverage;
+        out->direction = mLight.direction();
+        out->origin = upstreamOfScene(
+            mScene, mDiscs.sample(out->direction, pick, u1, u2, &coverage), out->direction);
+        out->lambda = mLight.sampleLambda(s.get1D());
+        out->weight = 1.f / float(coverage);
+        return true;
+    }
+
+private:
+    const DistantLight& mLight;
+    DiscUnion mDiscs;
+    Bounds3 mScene;
+};
+
+std::unique_ptr<PhotonProjection> DistantLight::projection(const ProjectionTargets& t) const {
+    if (t.spheres.empty() || t.scene.empty() || !(mE > 0.f)) return nullptr;
+    return std::make_unique<DistantProjection>(*this, t);
+}
 
 class QuadLight : public Light {
 public:

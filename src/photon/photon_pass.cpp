@@ -24,6 +24,7 @@
 #include "photon/medium_emitter.h"
 #include "photon/photon_blocks.h"
 #include "photon/photon_walk.h"
+#include "photon/projection_map.h"
 #include "transport/path_vertex.h"
 #include "transport/surface_step_cap.h"
 
@@ -31,19 +32,14 @@ namespace mirage {
 
 namespace {
 
-// Source choice ∝ emitted power: a discrete distribution by its cumulative sum over the
-// lights, then the emissive media (index lights.size() + e is emitter e).
+// Source choice ∝ power: a discrete distribution by its cumulative sum over the sources' powers
+// (W; negative counts as 0).
 class LightChooser {
 public:
-    LightChooser(const std::vector<const Light*>& lights, const Bounds3& bounds,
-                 const std::vector<MediumEmitter>& emitters) {
+    explicit LightChooser(const std::vector<double>& powers) {
         double sum = 0.0;
-        for (const Light* l : lights) {
-            sum += std::max(0.0, double(l->emittedPower(bounds)));
-            mCdf.push_back(sum);
-        }
-        for (const MediumEmitter& e : emitters) {
-            sum += e.tablePower();
+        for (double p : powers) {
+            sum += std::max(0.0, p);
             mCdf.push_back(sum);
         }
         mTotal = sum;
@@ -63,29 +59,44 @@ private:
 
 struct PhotonPath {
     bool capped = false;
-    bool fromMedium = false;  // emitted by an emissive medium
+    bool fromMedium = false;               // emitted by an emissive medium
     uint32_t light = Photon::kFromMedium;  // the light it left (Photon::light)
-    double power = 0.0;       // W the photon left its source with
-    bool nonFinite = false;  // a photon with non-finite power or position was dropped
+    double power = 0.0;                    // W the photon left its source with
+    bool nonFinite = false;                // a photon with non-finite power or position was dropped
 };
 
-// What photons start from: the lights, then the emissive media, chosen ∝ power.
+// What photons start from: the lights, then the emissive media, chosen ∝ power; and the
+// lights' projection maps, where the caustic stream starts.
 struct PhotonSources {
     const std::vector<const Light*>& lights;
     std::vector<MediumEmitter> emitters;
     std::vector<size_t> emitterMedium;  // index of each emitter's medium in the pass's media
     Bounds3 bounds;                     // of the media and surfaces: lights aim photons at it
     double mediumPower = 0.0;           // W, summed over the emitters' tables
+    ProjectionPlan projection;
 
     PhotonSources(const std::vector<const Light*>& l, const std::vector<const Medium*>& media,
-                  const Bounds3& b)
-        : lights(l), bounds(b) {
+                  const Bounds3& b, ProjectionPlan plan)
+        : lights(l), bounds(b), projection(std::move(plan)) {
         for (size_t i = 0; i < media.size(); ++i)
             if (media[i]->emissive() && !media[i]->homogeneous()) {
                 emitters.emplace_back(*media[i]);
                 emitterMedium.push_back(i);
                 mediumPower += emitters.back().tablePower();
             }
+    }
+    // The main stream's sources' powers: the lights' into the scene, then the media's.
+    std::vector<double> powers() const {
+        std::vector<double> p;
+        for (const Light* l : lights) p.push_back(double(l->emittedPower(bounds)));
+        for (const MediumEmitter& e : emitters) p.push_back(e.tablePower());
+        return p;
+    }
+    // The caustic stream's: each light's projection map's (0 for none).
+    std::vector<double> projectedPowers() const {
+        std::vector<double> p;
+        for (const auto& map : projection.maps) p.push_back(map ? map->power() : 0.0);
+        return p;
     }
 };
 
@@ -98,8 +109,12 @@ bool finitePhoton(const Photon& ph) {
 // Where a photon walk is, between two vertices: its ray, and its throughput, whose β[0] is the
 // photon's power (W; monochromatic).
 struct PhotonState : PathSegment {
-    bool direct;                // no interaction yet: light straight from the light
-    bool specularOnly;          // every interaction so far was a mirror or glass
+    bool direct;        // no interaction yet: light straight from the light
+    bool specularOnly;  // every interaction so far was a mirror or glass
+    // Its light has a projection map, so its first event decides whether the path is this
+    // stream's (projection_map.h); causticStream: it was emitted from that map.
+    // lifted: a caustic photon past its first diffuse or medium event (liftToMainPower).
+    bool projected = false, causticStream = false, lifted = false;
     int bounces = 0;
 };
 
@@ -116,15 +131,25 @@ bool storePhoton(Photon ph, const PhotonWalk& walk, PhotonList* list, PhotonPath
     return true;
 }
 
-// One photon pass's walk of its photons: the sources and their choice ∝ power, the power each
-// photon leaves with, the pass's settings and its surfaces (null: none).
+// A stream of photons: its sources' choice ∝ power, and the power each photon leaves with
+// before its source's weight (W: Φ/N of the stream).
+struct PhotonStream {
+    LightChooser chooser;
+    float photonPower;
+};
+
+// One photon pass's walk of its photons: the sources, the main stream (photon indices below
+// mainCount) and the caustic stream of the projection maps (the indices from mainCount on), the
+// pass's settings and its surfaces (null: none).
 class PhotonTracer {
 public:
-    PhotonTracer(const PhotonSources& sources, const LightChooser& chooser, float photonPower,
+    PhotonTracer(const PhotonSources& sources, const PhotonStream& main,
+                 const PhotonStream& caustic, uint64_t mainCount,
                  const PhotonPassSettings& settings, const GeometryScene* geometry)
         : mSources(sources),
-          mChooser(chooser),
-          mPhotonPower(photonPower),
+          mMain(main),
+          mCaustic(caustic),
+          mMainCount(mainCount),
           mSettings(settings),
           mGeometry(geometry) {}
 
@@ -136,10 +161,11 @@ public:
         if (mSettings.shutterClose != mSettings.shutterOpen)
             walk.tracking().setTimeOffset(shutterTime(index));
         PhotonState state;
-        if (!emit(sampler, walk, &path, &state)) return path;
+        if (!emit(index, sampler, walk, &path, &state)) return path;
         for (;;) {
             std::optional<SurfaceHit> hit;
             const FlightEvent ev = fly(sampler, walk, &state, &path, &hit);
+            if (state.direct && state.projected && !ownsFirstEvent(ev, hit, state)) return path;
             bool goesOn;
             if (ev.end == FlightEnd::Escaped && hit)
                 goesOn = atSurface(*hit, sampler, walk, &state, &path, out);
@@ -147,7 +173,7 @@ public:
                 goesOn = inMedium(ev, walk, &state, &path, out);
             else
                 goesOn = false;
-            if (!goesOn) return path;
+            if (!goesOn || !liftToMainPower(sampler, &state)) return path;
             if (++state.bounces >= mSettings.maxBounces) {
                 path.capped = true;
                 return path;
@@ -165,14 +191,44 @@ private:
                (mSettings.shutterClose - mSettings.shutterOpen) * stream.get1D();
     }
 
-    // Emission: a source ∝ power and a photon from it. False when it emits nothing.
-    bool emit(Sampler& sampler, PhotonWalk& walk, PhotonPath* path, PhotonState* state) const {
-        const size_t source = mChooser.choose(sampler.get1D());
+    // Projection maps split a projected light's paths by their first event: a hit on a mirror
+    // or glass is the caustic stream's, anything else (a medium event, a diffuse surface, an
+    // escape) the main stream's.
+    bool ownsFirstEvent(const FlightEvent& ev, const std::optional<SurfaceHit>& hit,
+                        const PhotonState& state) const {
+        const bool specular =
+            ev.end == FlightEnd::Escaped && hit && mGeometry->materialAt(*hit).specular();
+        return specular == state.causticStream;
+    }
+
+    // A caustic photon is as dense as its projection makes it only up to its first diffuse or
+    // medium event, the one it was aimed for (stored: the caustic map's, or a volume caustic).
+    // Past it the light is no longer focused: a roulette with survival β/p lifts it to the main
+    // stream's power p (unbiased, as every roulette of the walk), so that a k-nearest estimate
+    // of the fog it diffuses into meets photons of one power, not a swarm of faint ones beside
+    // a few bright ones (whose mixture multiplies the estimate's noise), and the stream costs
+    // little past its caustic. False when the photon is absorbed.
+    bool liftToMainPower(Sampler& sampler, PhotonState* state) const {
+        if (!state->causticStream || state->specularOnly || state->lifted) return true;
+        state->lifted = true;
+        return state->throughput.keepPower(mMain.photonPower, sampler);
+    }
+
+    // Emission: a source ∝ power and a photon from it, of the stream photon `index` is in.
+    // False when it emits nothing.
+    bool emit(uint64_t index, Sampler& sampler, PhotonWalk& walk, PhotonPath* path,
+              PhotonState* state) const {
+        state->causticStream = index >= mMainCount;
+        const PhotonStream& stream = state->causticStream ? mCaustic : mMain;
+        const size_t source = stream.chooser.choose(sampler.get1D());
         PhotonEmission em;
         // Light from a medium is never direct light of the render pass (no NEE to media): its
         // first scattering and its first diffuse surface are stored, in the global map.
         const bool fromMedium = source >= mSources.lights.size();
-        if (fromMedium) {
+        if (state->causticStream) {
+            if (!mSources.projection.maps[source]->emit(sampler, &em)) return false;
+            path->light = uint32_t(source);
+        } else if (fromMedium) {
             const size_t e = source - mSources.lights.size();
             path->fromMedium = true;
             if (!mSources.emitters[e].sample(
@@ -183,10 +239,11 @@ private:
         } else {
             path->light = uint32_t(source);
         }
-        const float power = mPhotonPower * em.weight;
+        state->projected = !fromMedium && mSources.projection.maps[source];
+        const float power = stream.photonPower * em.weight;
         if (!std::isfinite(power)) path->nonFinite = true;
         if (!(power > 0.f) || path->nonFinite) return false;
-        path->power = power;
+        if (!state->causticStream) path->power = power;
         walk.setWavelength(em.lambda);
         state->ray = Ray{em.origin, em.direction, kInfinity};
         state->throughput.beta = SampledSpectrum(power);
@@ -282,13 +339,18 @@ private:
     }
 
     const PhotonSources& mSources;
-    const LightChooser& mChooser;
-    float mPhotonPower;  // W: Φ/N, every photon's power before its source's weight
+    const PhotonStream& mMain;
+    const PhotonStream& mCaustic;
+    uint64_t mMainCount;
     const PhotonPassSettings& mSettings;
     const GeometryScene* mGeometry;
 };
 
 }  // namespace
+
+bool projectionWanted(const PhotonPassSettings& settings) {
+    return settings.projection == PhotonPassSettings::Projection::On && !settings.field;
+}
 
 void PhotonPassStats::add(const PhotonPassStats& pass) {
     emitted += pass.emitted;
@@ -320,45 +382,52 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
     Bounds3 bounds;
     for (const Medium* m : media) bounds.expand(m->worldBounds());
     if (geometry) bounds.expand(geometry->bounds());
-    const PhotonSources sources(lights, media, bounds);
+    // Projection maps: not where light curves (straight-line cones and discs).
+    const PhotonSources sources(
+        lights, media, bounds,
+        planProjection(lights, geometry, bounds, projectionWanted(settings)));
     local.mediumPower = sources.mediumPower;
-    LightChooser chooser(lights, bounds, sources.emitters);
+    const LightChooser chooser(sources.powers());
     // Curved flights: the step cap near surfaces (surface_step_cap.h), so that a photon's hit
     // on a surface it meets at a shallow angle, or grazes, is its path's.
     PhotonPassSettings curved = settings;
     if (settings.field && geometry && settings.curvedPath.capNearSurfaces) {
-        curved.curvedPath.stepCap =
-            surfaceStepCap(settings.field.get(), settings.curvedPath.tolerance,
-                           [geometry](const Vec3d& o, const Vec3d& d) {
-                               return geometry->surfaceDistance(o, d);
-                           });
+        curved.curvedPath.stepCap = surfaceStepCap(
+            settings.field.get(), settings.curvedPath.tolerance,
+            [geometry](const Vec3d& o, const Vec3d& d) { return geometry->surfaceDistance(o, d); });
     }
     const uint64_t n = settings.photons;
     // Nothing to do without photons, light, media or surfaces: a photon that meets nothing
     // stores nothing.
     if (n > 0 && (!media.empty() || geometry) && chooser.totalPower() > 0.0) {
-        const float photonPower = float(chooser.totalPower() / double(n));
-        const uint64_t blocks = photonBlockCount(n);
+        const PhotonStream main{chooser, float(chooser.totalPower() / double(n))};
+        const uint64_t nCaustic = sources.projection.any() ? settings.causticPhotonsOrDefault() : 0;
+        const LightChooser causticChooser(sources.projectedPowers());
+        const PhotonStream caustic{causticChooser, float(causticChooser.totalPower() /
+                                                         double(std::max<uint64_t>(nCaustic, 1)))};
+        const uint64_t total = n + nCaustic;
+        const uint64_t blocks = photonBlockCount(total);
         std::vector<PhotonMapLists> blockPhotons(blocks);
         std::vector<uint64_t> blockCapped(blocks, 0), blockFromMedia(blocks, 0),
             blockNonFinite(blocks, 0);
         std::vector<double> blockPower(blocks, 0.0);
-        Progress progress("photons", n, "photons", settings.progress);
-        const PhotonTracer tracer(sources, chooser, photonPower, curved, geometry);
+        Progress progress("photons", total, "photons", settings.progress);
+        const PhotonTracer tracer(sources, main, caustic, n, curved, geometry);
 
-        forEachPhotonBlock(
-            n, media, progress, /*stopOnInterrupt=*/true,
-            [&](PhotonWalk& walk, uint64_t b, uint64_t first, uint64_t last) {
-                for (uint64_t i = first; i < last; ++i) {
-                    const uint64_t flightsCut = walk.tracking().cappedFlights;
-                    const PhotonPath path = tracer.trace(i, walk, &blockPhotons[b]);
-                    // A flight cut at the collision cap (tracking.h) caps the path too.
-                    blockCapped[b] += path.capped || walk.tracking().cappedFlights != flightsCut;
-                    blockNonFinite[b] += path.nonFinite;
-                    blockFromMedia[b] += path.fromMedium;
-                    blockPower[b] += path.power;
-                }
-            });
+        forEachPhotonBlock(total, media, progress, /*stopOnInterrupt=*/true,
+                           [&](PhotonWalk& walk, uint64_t b, uint64_t first, uint64_t last) {
+                               for (uint64_t i = first; i < last; ++i) {
+                                   const uint64_t flightsCut = walk.tracking().cappedFlights;
+                                   const PhotonPath path = tracer.trace(i, walk, &blockPhotons[b]);
+                                   // A flight cut at the collision cap (tracking.h) caps the path
+                                   // too.
+                                   blockCapped[b] +=
+                                       path.capped || walk.tracking().cappedFlights != flightsCut;
+                                   blockNonFinite[b] += path.nonFinite;
+                                   blockFromMedia[b] += path.fromMedium;
+                                   blockPower[b] += path.power;
+                               }
+                           });
         progress.finish();
 
         // Concatenated in block order: the lists are the same for any thread count.
@@ -381,7 +450,7 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
             local.emittedPower += blockPower[b];
             local.nonFinite += blockNonFinite[b];
         }
-        local.emitted = n;
+        local.emitted = total;
         local.interrupted = interruptRequested();
     }
     local.stored = maps.volume.size() + maps.surfaceGlobal.size() + maps.surfaceCaustic.size();

@@ -17,6 +17,10 @@
 // interaction of the photon (NEE computes that one) — light → glass → fog (a volume caustic) is
 // stored, since no shadow ray passes through glass.
 //
+// Projection maps (projection_map.h): where a light's mirrors and glass are a small part of
+// what it lights, its caustic paths — first event a specular hit — come from a stream of photons
+// emitted towards them alone, and its ordinary photons end at such a hit.
+//
 // Fluorescence: a re-emission (photon_walk.h) is stored as a volume photon at the new
 // wavelength, with the power after it and the absorbed wavelength as its flag (Photon::
 // lambdaIn), first interaction or not: it is the inelastic source term of the transfer
@@ -40,7 +44,7 @@ namespace mirage {
 struct PhotonPassSettings {
     uint64_t photons = 100000;  // photons emitted, over all lights
     uint64_t seed = 0;
-    int maxBounces = 10000;     // cap on scattering events per photon (capped paths counted)
+    int maxBounces = 10000;  // cap on scattering events per photon (capped paths counted)
     // When the render pass computes single scattering by shadow rays, the first interaction
     // of each photon must not be stored, or direct light would be counted twice.
     bool storeFirstInteraction = false;
@@ -55,17 +59,33 @@ struct PhotonPassSettings {
     // Motion blur: each photon draws its time uniformly in [shutterOpen, shutterClose] (seconds
     // relative to the frame) and meets every medium as it is then; equal: the frame's time.
     float shutterOpen = 0.f, shutterClose = 0.f;
+    // Projection maps (projection_map.h): a second stream of causticPhotons photons emitted
+    // towards the mirrors and glass, for the lights whose projection is narrow; 0: as many as
+    // `photons`. Never where light curves (field): the maps are straight-line geometry. Off by
+    // default: a k-nearest estimate's noise is set by k, not by the photons' density, so the
+    // caustic stream sharpens caustics more than it quietens them, and in media its faint,
+    // dense photons share the one volume map with the main stream's bright ones and multiply
+    // the noise (measured: docs/scene-file.md, "Projection maps").
+    enum class Projection { Off, On };
+    Projection projection = Projection::Off;
+    uint64_t causticPhotons = 0;
+    uint64_t causticPhotonsOrDefault() const {
+        return causticPhotons > 0 ? causticPhotons : photons;
+    }
 };
 
 struct PhotonPassStats {
+    // Photons traced: both streams where projection maps split them (projection_map.h).
     uint64_t emitted = 0, stored = 0;
     // Cut at maxBounces or at the collision cap of one flight, or a curved flight stopped by
     // the ODE step cap (CurvedPathSettings::maxSteps) and continued straight.
     uint64_t cappedPaths = 0;
-    uint64_t nonFinite = 0;    // photons dropped for a non-finite power/position (path ended)
-    uint64_t fromMedia = 0;    // photons emitted by emissive media (fire)
-    double mediumPower = 0;    // W over 360–830 nm, the media emitters' tabulated power
-    double emittedPower = 0;   // W, Σ of every photon's power as it left its source
+    uint64_t nonFinite = 0;  // photons dropped for a non-finite power/position (path ended)
+    uint64_t fromMedia = 0;  // photons emitted by emissive media (fire)
+    double mediumPower = 0;  // W over 360–830 nm, the media emitters' tabulated power
+    // W, Σ of the main stream's photons' power as they left their sources (the caustic stream's
+    // stand for part of the same power).
+    double emittedPower = 0;
     double seconds = 0;
     // An interrupt (core/interrupt.h) stopped the pass between blocks of photons: the maps hold
     // only the blocks that finished, and the render that follows stops before its first tile.
@@ -93,6 +113,9 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
                                const std::vector<const Medium*>& media,
                                const GeometryScene* geometry, const PhotonPassSettings& settings,
                                PhotonPassStats* stats);
+
+// Whether a pass with these settings traces projection maps: On, and not where light curves.
+bool projectionWanted(const PhotonPassSettings& settings);
 
 PhotonList tracePhotons(const std::vector<const Light*>& lights,
                         const std::vector<const Medium*>& media, const PhotonPassSettings& settings,

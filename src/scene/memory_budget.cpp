@@ -150,6 +150,11 @@ MemoryEstimate estimateFrameMemory(const Scene& scene, const std::string& integr
         pilot.maxBounces = scene.photon.maxBounces;
         pilot.storeFirstInteraction = false;
         pilot.progress = Progress::Mode::Quiet;
+        // The caustic stream of projection maps in the same proportion to the main one.
+        pilot.projection = scene.photon.projection;
+        pilot.causticPhotons = std::max<uint64_t>(
+            1, uint64_t(double(pilot.photons) * double(scene.photon.causticPhotonsOrDefault()) /
+                        double(scene.photon.photons)));
         PhotonPassStats stats;
         PhotonMapLists lists = tracePhotonMaps(
             lights, scene.render.mediaPointers(),
@@ -157,11 +162,13 @@ MemoryEstimate estimateFrameMemory(const Scene& scene, const std::string& integr
         double stored =
             double(lists.volume.size() + lists.surfaceGlobal.size() + lists.surfaceCaustic.size());
         double perEmitted = stats.emitted > 0 ? stored / double(stats.emitted) : 0;
-        double photons = double(scene.photon.photons) * perEmitted;
+        // Emitted per map: the main stream, and the caustic one where the pilot traced it.
+        const double emitted =
+            double(scene.photon.photons) * double(stats.emitted) / double(pilot.photons);
+        double photons = emitted * perEmitted;
         char what[160];
         std::snprintf(what, sizeof what, "photon maps (%.3g emitted x %.2f stored each x %llu B)",
-                      double(scene.photon.photons), perEmitted,
-                      (unsigned long long)kBytesPerStoredPhoton);
+                      emitted, perEmitted, (unsigned long long)kBytesPerStoredPhoton);
         e.items.push_back({what, uint64_t(photons * double(kBytesPerStoredPhoton))});
     }
     return e;

@@ -6,6 +6,7 @@
 #include "film/color.h"
 #include "film/cryptomatte.h"
 #include "photon/medium_emitter.h"
+#include "photon/projection_map.h"
 
 namespace mirage {
 
@@ -98,6 +99,41 @@ OutputInfo describeOutput(const Scene& scene) {
     return out;
 }
 
+// Why a scene's photon pass has no projection maps (photon/projection_map.h), "" when it has.
+std::string noProjection(const Scene& scene, bool curved, const ProjectionPlan& plan) {
+    if (scene.photon.projection == PhotonPassSettings::Projection::Off)
+        return "[render] projection = \"off\", the default";
+    if (curved) return "light curves in the [refraction] field";
+    if (plan.targets == 0) return "no mirror or glass";
+    if (!plan.any())
+        return "every light's mirrors and glass take half its emission or more: its own photons "
+               "are caustic photons";
+    return "";
+}
+
+// Photons per map and the projection maps: how many caustic photons from which lights.
+std::string describePhotons(const Scene& scene) {
+    const PhotonIntegratorSettings& p = scene.photon;
+    std::vector<const Light*> lights;
+    for (const auto& l : scene.render.lights) lights.push_back(l.get());
+    const Bounds3 bounds = scene.render.bounds();
+    const bool curved = photonsCurve(p.field.get(), bounds);
+    PhotonPassSettings pass = p;  // the field only where it bends light (photonsCurve)
+    if (!curved) pass.field = nullptr;
+    const ProjectionPlan plan =
+        planProjection(lights, scene.render.hasSurfaces() ? scene.render.geometry.get() : nullptr,
+                       bounds, projectionWanted(pass));
+    std::string s = std::to_string(p.photons) + " per map; projection maps: ";
+    const std::string why = noProjection(scene, curved, plan);
+    if (!why.empty()) return s + "off (" + why + ")";
+    size_t projected = 0;
+    for (const auto& m : plan.maps) projected += bool(m);
+    return s + "on, " + std::to_string(p.causticPhotonsOrDefault()) +
+           " caustic photons per map from " + std::to_string(projected) + " of " +
+           std::to_string(lights.size()) + " lights towards " + std::to_string(plan.targets) +
+           " mirror and glass shapes";
+}
+
 }  // namespace
 
 SceneInfo describeScene(const Scene& scene, const ColorPipeline& color) {
@@ -115,6 +151,7 @@ SceneInfo describeScene(const Scene& scene, const ColorPipeline& color) {
     info.photonMapPerPass = integrator.photonPass;
     if (integrator.photonPass && scene.render.hasSurfaces())
         info.finalGather = scene.photon.finalGather;
+    if (integrator.photonPass) info.photons = describePhotons(scene);
     info.integrator = scene.integrator;
     info.integratorDescription = integrator.description;
     info.integratorWhy = scene.integratorWhy;

@@ -94,6 +94,9 @@ struct SceneInfo {
     // The photon integrator on a scene with surfaces: its final gather rays at the first diffuse
     // surface (0: the global map read there); -1 for any other render.
     int finalGather = -1;
+    // The photon pass's emission when the integrator traces photons (else ""): photons per map
+    // and whether projection maps aim a caustic stream, and why not where they do not.
+    std::string photons;
     std::string integrator, integratorDescription;
     std::string integratorWhy;  // "" when the scene or --set named it
     std::string workingSpace, ocioConfig;

@@ -273,6 +273,15 @@ static void readSettings(const TableReader& top,
         scene.photon.maxRadius = float(r->getNumber("max_radius", 0.0, 0.0, 1e12));
         scene.photon.finalGather =
             int(r->getInt("final_gather", kDefaultFinalGather, 0, kMaxFinalGather));
+        // Projection maps (photon/projection_map.h): off (the default) or on; caustic_photons 0:
+        // as many as photons.
+        const std::string projection = r->getString("projection", "off");
+        if (projection != "on" && projection != "off")
+            r->fail("projection", "unknown projection '" + projection + "'; expected off or on");
+        scene.photon.projection = projection == "on" ? PhotonPassSettings::Projection::On
+                                                     : PhotonPassSettings::Projection::Off;
+        scene.photon.causticPhotons =
+            uint64_t(r->getInt("caustic_photons", 0, 0, int64_t(1) << 40));
         r->finish();
     }
     if (auto o = top.optionalTable("output")) {

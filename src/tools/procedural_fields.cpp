@@ -299,16 +299,35 @@ AssetField smokePastSphereField(uint64_t seed) {
     return a;
 }
 
-AssetField fireField(uint64_t seed) {
-    auto plume = std::make_shared<Plume>(seed, 0.45f, 0.15f, 0.21f);
-    auto detail = std::make_shared<Fbm>(seed, 5, 4);
-    auto flames = std::make_shared<Flames>(seed, Flames::Shape{0.3f, 0.9f, 1.3f, 0.12f, 0.05f});
+// A fire's grids over the box [lo, hi]: soot density, temperature (K) and reaction intensity.
+AssetField fireGrids(const Vec3& lo, const Vec3& hi) {
     AssetField a;
     a.grids = {"density", "temperature", "flame"};
     a.units = {"unitless soot density (a shader scales it into sigma, 1/m)", "K",
                "unitless reaction intensity 0..1"};
-    a.lo = Vec3(-0.5f, 0.f, -0.5f);
-    a.hi = Vec3(0.5f, 2.f, 0.5f);
+    a.lo = lo;
+    a.hi = hi;
+    return a;
+}
+
+// One voxel of a fire's grids from its smoke density, its flame's reaction intensity and the
+// smoke's own temperature (K). The flames hold a little soot (8 % of their intensity). 1800 K
+// at full reaction: the luminous zone of a sooty flame is hot nearly throughout (soot at
+// ~1300–1700 K), cooling only at its thin edge, so T rises as flame^0.3 (1520 K at half
+// reaction), not linearly, or most of the flame would glow 10 stops dimmer than its core.
+void writeFireVoxel(float smoke, float flame, float smokeKelvin, float* out) {
+    const float density = std::max(smoke, 0.08f * flame);
+    if (density < 1e-3f && flame < 1e-3f) return;
+    out[0] = density >= 1e-3f ? density : 0.f;
+    out[2] = flame >= 1e-3f ? flame : 0.f;
+    out[1] = std::max(300.f + 1500.f * std::pow(flame, 0.3f), smokeKelvin);
+}
+
+AssetField fireField(uint64_t seed) {
+    auto plume = std::make_shared<Plume>(seed, 0.45f, 0.15f, 0.21f);
+    auto detail = std::make_shared<Fbm>(seed, 5, 4);
+    auto flames = std::make_shared<Flames>(seed, Flames::Shape{0.3f, 0.9f, 1.3f, 0.12f, 0.05f});
+    AssetField a = fireGrids(Vec3(-0.5f, 0.f, -0.5f), Vec3(0.5f, 2.f, 0.5f));
     a.eval = [plume, detail, flames](const Vec3& p, float* out) {
         out[0] = out[1] = out[2] = 0.f;
         const float flame = (*flames)(p);
@@ -321,16 +340,8 @@ AssetField fireField(uint64_t seed) {
             smoke = shape * clamp(0.5f + 1.2f * n, 0.f, 1.f) * smoothstep(0.45f, 0.9f, p.y) *
                     (1.f - smoothstep(1.6f, 1.98f, p.y));
         }
-        const float density = std::max(smoke, 0.08f * flame);
-        if (density < 1e-3f && flame < 1e-3f) return;
-        out[0] = density >= 1e-3f ? density : 0.f;
-        out[2] = flame >= 1e-3f ? flame : 0.f;
-        // 1800 K at full reaction. The luminous zone of a sooty flame is hot nearly throughout
-        // (soot at ~1300–1700 K), cooling only at its thin edge: T rises as flame^0.3 (1520 K
-        // at half reaction), not linearly, or most of the flame would glow 10 stops dimmer
-        // than its core. The smoke cools from ~700 K above the flames to ambient.
-        const float tSmoke = 300.f + 400.f * shape * clamp(1.6f - p.y, 0.f, 1.f);
-        out[1] = std::max(300.f + 1500.f * std::pow(flame, 0.3f), tSmoke);
+        // The smoke cools from ~700 K above the flames to ambient.
+        writeFireVoxel(smoke, flame, 300.f + 400.f * shape * clamp(1.6f - p.y, 0.f, 1.f), out);
     };
     // Flames rise faster than the smoke they feed (buoyancy of ~1800 K gas).
     const auto smokeFlow = plumeFlow(0.45f, 0.15f, 0.21f, 1.5f, 0.2f, 0.25f);
@@ -371,12 +382,7 @@ AssetField plumeField(uint64_t seed) {
     // a point farther out has s < 0 below.
     constexpr float kReach = 1.65f;
     constexpr float kWander = 0.08f;  // the axis's largest offset (m)
-    AssetField a;
-    a.grids = {"density", "temperature", "flame"};
-    a.units = {"unitless soot density (a shader scales it into sigma, 1/m)", "K",
-               "unitless reaction intensity 0..1"};
-    a.lo = Vec3(-0.8f, 0.f, -0.8f);
-    a.hi = Vec3(0.8f, 2.f, 0.8f);
+    AssetField a = fireGrids(Vec3(-0.8f, 0.f, -0.8f), Vec3(0.8f, 2.f, 0.8f));
     a.eval = [parts, radius](const Vec3& p, float* out) {
         out[0] = out[1] = out[2] = 0.f;
         const float flame = parts->flames(p);
@@ -398,12 +404,7 @@ AssetField plumeField(uint64_t seed) {
             const float body = smoothstep(0.f, 0.22f, s) * (0.75f + 0.25f * parts->wisps(p * 9.f));
             smoke = body * smoothstep(0.4f, 0.9f, p.y);
         }
-        const float density = std::max(smoke, 0.08f * flame);
-        if (density < 1e-3f && flame < 1e-3f) return;
-        out[0] = density >= 1e-3f ? density : 0.f;
-        out[2] = flame >= 1e-3f ? flame : 0.f;
-        const float tSmoke = 300.f + 400.f * smoke * clamp(1.2f - p.y, 0.f, 1.f);
-        out[1] = std::max(300.f + 1500.f * std::pow(flame, 0.3f), tSmoke);
+        writeFireVoxel(smoke, flame, 300.f + 400.f * smoke * clamp(1.2f - p.y, 0.f, 1.f), out);
     };
     a.mayCover = [parts, radius](const Vec3& lo, const Vec3& hi) {
         // The radius grows with height but for the cap's swell, which adds at most 0.1 m.
@@ -504,8 +505,8 @@ AssetField pyroField(uint64_t seed) {
 }  // namespace
 
 const std::vector<std::string>& proceduralAssetKinds() {
-    static const std::vector<std::string> kinds = {"smoke", "smoke-sphere", "fire", "plume",
-                                                   "fog-sphere", "ocean", "pyro"};
+    static const std::vector<std::string> kinds = {"smoke",      "smoke-sphere", "fire", "plume",
+                                                   "fog-sphere", "ocean",        "pyro"};
     return kinds;
 }
 

@@ -21,10 +21,11 @@ if command -v ccache >/dev/null; then LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=cc
 export ASAN_SYMBOLIZER_PATH=${ASAN_SYMBOLIZER_PATH:-$(command -v llvm-symbolizer || true)}
 # The tests exercising threads: same result on 1 and 2 threads (photon pass, photon map), the
 # tiled renderer's callbacks and resume, the volume estimate, the parallel leaf read and the
-# parallel majorant splat — suites of the program mirage_thread_tests (tests/CMakeLists.txt),
+# parallel majorant splat, the next frame's load beside a render — suites of the program
+# mirage_thread_tests (tests/CMakeLists.txt),
 # the only test sources compiled under TSan. TSAN_TESTS='\.' with TSAN_PROGRAM=mirage_unit_tests
 # runs the whole unit suite under TSan instead.
-TSAN_TESTS=${TSAN_TESTS:-"PhotonPass|PhotonMap|Renderer|VolumeEstimate|ParallelLoad|Majorant"}
+TSAN_TESTS=${TSAN_TESTS:-"PhotonPass|PhotonMap|Renderer|VolumeEstimate|ParallelLoad|Majorant|FramePrefetch"}
 TSAN_PROGRAM=${TSAN_PROGRAM:-mirage_thread_tests}
 TSAN_LABEL=threads
 if [ "$TSAN_PROGRAM" = mirage_unit_tests ]; then TSAN_LABEL=unit; fi

@@ -17,6 +17,7 @@
 #include "scene/light_loader.h"
 #include "scene/memory_budget.h"
 #include "scene/output_loader.h"
+#include "scene/photon_keys.h"
 #include "scene/precision_loader.h"
 #include "scene/pyro_binding.h"
 #include "scene/refraction_loader.h"
@@ -246,42 +247,13 @@ static void readSettings(const TableReader& top,
             scene.statedPasses = int(r->getInt("passes", 1, 1, kMaxSamplesPerPixel));
             scene.passes.maxPasses = scene.statedPasses;
         }
-        const std::string sampler = r->getString("sampler", "sobol");
-        if (sampler != "sobol" && sampler != "random")
-            r->fail("sampler", "unknown sampler '" + sampler + "'; expected sobol or random");
-        scene.settings.sampler = sampler == "sobol" ? SamplerKind::Sobol : SamplerKind::Random;
-        const std::string lamps = r->getString("lamp_sampling", "equiangular");
-        if (lamps != "equiangular" && lamps != "distance")
-            r->fail("lamp_sampling",
-                    "unknown lamp sampling '" + lamps + "'; expected equiangular or distance");
-        scene.render.equiangular = lamps == "equiangular";
+        scene.settings.sampler = r->getChoice("sampler", "sobol", "random", "sampler")
+                                     ? SamplerKind::Sobol
+                                     : SamplerKind::Random;
+        scene.render.equiangular =
+            r->getChoice("lamp_sampling", "equiangular", "distance", "lamp sampling");
         scene.majorantResolution = int(r->getInt("majorant_resolution", 64, 1, 1024));
-        scene.photon.photons = uint64_t(r->getInt("photons", 100000, 0, int64_t(1) << 40));
-        if (r->has("photons")) scene.statedPhotons = scene.photon.photons;
-        scene.photon.firstPassPhotons =
-            uint64_t(r->getInt("first_pass_photons", 0, 0, int64_t(1) << 40));
-        scene.statedFirstPassPhotons = r->has("first_pass_photons");
-        std::string estimate = r->getString("estimate", "beam");
-        if (estimate != "beam" && estimate != "point")
-            r->fail("estimate",
-                    "unknown photon estimate '" + estimate + "'; expected beam or point");
-        scene.photon.estimate = estimate == "beam" ? PhotonEstimate::Beam : PhotonEstimate::Point;
-        scene.photon.k = int(r->getInt("k", 0, 0, 1 << 16));
-        if (scene.photon.k == 1)
-            r->fail("k", "expected 0 (the default for the estimate) or at least 2 photons: a "
-                         "density from one neighbour has no finite mean");
-        scene.photon.maxRadius = float(r->getNumber("max_radius", 0.0, 0.0, 1e12));
-        scene.photon.finalGather =
-            int(r->getInt("final_gather", kDefaultFinalGather, 0, kMaxFinalGather));
-        // Projection maps (photon/projection_map.h): off (the default) or on; caustic_photons 0:
-        // as many as photons.
-        const std::string projection = r->getString("projection", "off");
-        if (projection != "on" && projection != "off")
-            r->fail("projection", "unknown projection '" + projection + "'; expected off or on");
-        scene.photon.projection = projection == "on" ? PhotonPassSettings::Projection::On
-                                                     : PhotonPassSettings::Projection::Off;
-        scene.photon.causticPhotons =
-            uint64_t(r->getInt("caustic_photons", 0, 0, int64_t(1) << 40));
+        readPhotonKeys(*r, &scene);
         r->finish();
     }
     if (auto o = top.optionalTable("output")) {

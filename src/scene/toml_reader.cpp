@@ -110,6 +110,14 @@ std::string TableReader::getString(const std::string& key, const std::string& de
     return has(key) ? getString(key) : (node(key), def);
 }
 
+bool TableReader::getChoice(const std::string& key, const std::string& first,
+                            const std::string& second, const std::string& noun) const {
+    const std::string v = getString(key, first);
+    if (v != first && v != second)
+        fail(key, "unknown " + noun + " '" + v + "'; expected " + first + " or " + second);
+    return v == first;
+}
+
 std::vector<double> TableReader::getNumbers(const std::string& key, size_t minCount,
                                             size_t maxCount) const {
     const toml::node* n = node(key);

@@ -33,6 +33,10 @@ public:
     bool getBool(const std::string& key, bool def) const;
     std::string getString(const std::string& key) const;
     std::string getString(const std::string& key, const std::string& def) const;
+    // One of two words, `first` when the key is missing: true for `first`, false for `second`;
+    // anything else fails with "unknown <noun> '<value>'; expected <first> or <second>".
+    bool getChoice(const std::string& key, const std::string& first, const std::string& second,
+                   const std::string& noun) const;
     Vec3 getVec3(const std::string& key) const;
     Vec3 getVec3(const std::string& key, const Vec3& def) const;
     std::vector<double> getNumbers(const std::string& key, size_t minCount, size_t maxCount) const;

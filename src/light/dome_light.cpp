@@ -135,6 +135,7 @@ public:
         return radiance(d, w);
     }
     bool infinite() const override { return true; }
+    bool uniformRadiance() const override { return mDistribution.empty(); }
     std::optional<LightLobe> lobe() const override { return mSun; }
 
     float emittedPower(const Bounds3& b) const override {

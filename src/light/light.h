@@ -96,6 +96,10 @@ public:
     }
     // True for lights at infinity, which escaped rays see (escapedRadiance).
     virtual bool infinite() const { return false; }
+    // A light at infinity of one radiance from every direction (the constant dome): the phase
+    // function's or the BSDF's own samples of it score f/pdf × L, bounded, which its samples
+    // can only match (render/direct_light.cpp).
+    virtual bool uniformRadiance() const { return false; }
     // The spectral shape of everything the light sends (any scale) when sampleLi's Li is that
     // spectrum times a factor independent of λ: every light here. Null for a light whose
     // colour varies over directions or points (render/achromatic_film.h then samples colour).

@@ -52,6 +52,9 @@ const Material& gatherAtSurface(const RenderScene& scene, const SurfaceHit& hit,
                                 PathRecorder& rec) {
     const Material& mat = scene.geometry->materialAt(hit);
     const SampledSpectrum& beta = path.throughput.beta;
+    // Past a surface, escapes no longer see the lights at infinity for a medium vertex: its
+    // shadow rays could not have crossed glass, nor any surface.
+    path.escapePdf = 0.f;
     // An emitter next-event estimation samples was counted at the vertex before, unless the
     // path came straight from the camera or through mirrors and glass (no shadow ray there).
     if (mat.emissive() && (path.specularChain || !sampledEmitter(scene, hit.shape)))
@@ -68,10 +71,15 @@ const Material& gatherAtSurface(const RenderScene& scene, const SurfaceHit& hit,
     return mat;
 }
 
-void escapeToDome(const RenderScene& scene, const CameraPath& path, PathRecorder& rec) {
-    if (!path.specularChain || !std::isinf(path.ray.tMax)) return;
-    rec.escaped(path.throughput.beta *
-                escapedRadiance(scene, path.ray.d, path.wavelengths, path.depth == 0));
+void escapeToDome(const RenderScene& scene, const CameraPath& path, ThreadState& ts,
+                  PathRecorder& rec) {
+    if (!std::isinf(path.ray.tMax)) return;
+    if (path.specularChain)
+        rec.escaped(path.throughput.beta *
+                    escapedRadiance(scene, path.ray.d, path.wavelengths, path.depth == 0));
+    else if (path.escapePdf > 0.f)
+        rec.litByEscape(path.throughput.beta,
+                        skyAtEscape(scene, path.ray, path.escapePdf, path.wavelengths, ts));
 }
 
 }  // namespace mirage

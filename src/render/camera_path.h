@@ -26,6 +26,9 @@ struct CameraPath : PathSegment {
     bool reemitted = false;
     int depth = 0;              // vertices before the current ray (scattering and specular)
     bool specularChain = true;  // every vertex so far a mirror or glass: escapes see the dome
+    // The phase function's density of the ray's direction, where the medium vertex that drew
+    // it left the lights at infinity to the ray (MediumLights::SkyByEscape); 0 otherwise.
+    float escapePdf = 0.f;
     // Lobe walks (render/light_lobes.h, volpath.cpp): whether the path draws them, the
     // probability s that a medium vertex starts one (lobeWalkStart), and the sum
     // Σ_j s r_j q^(k−1−j) over the medium vertices of the run the current ray ends.
@@ -61,7 +64,9 @@ const Material& gatherAtSurface(const RenderScene& scene, const SurfaceHit& hit,
                                 PathRecorder& rec);
 
 // A path that leaves the scene sees the lights at infinity (the dome) where no next-event
-// estimate has counted them: on the camera ray and after mirrors and glass only.
-void escapeToDome(const RenderScene& scene, const CameraPath& path, PathRecorder& rec);
+// estimate has counted them: on the camera ray and after mirrors and glass, and after a medium
+// vertex that left them to it (escapePdf, render/direct_light.h: skyAtEscape).
+void escapeToDome(const RenderScene& scene, const CameraPath& path, ThreadState& ts,
+                  PathRecorder& rec);
 
 }  // namespace mirage

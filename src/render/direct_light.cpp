@@ -38,7 +38,6 @@ bool hitLight(const RenderScene& scene, const Light& light, const Vec3& o, const
     return out->pdf > 0.f;
 }
 
-
 // Lights at infinity along curved paths. Where a [refraction] field bends light
 // (ThreadState::curved), a shadow ray towards a light at infinity follows its Fermat path, and
 // the light is met where that path leaves the scene (transport/curved_connection.h), with the
@@ -194,9 +193,22 @@ private:
 // alone score rare directions along the lobe ~300 times the mean, the speckles of a lit water box;
 // phase samples take those directions at the lobe's own density. Both are shadow rays with the same
 // transmittance estimate, so the sum stays an unbiased estimate of ∫ T p L dω.
+//
+// The lights at infinity under MediumLights::SkyByEscape: the phase function's strategy is the
+// path's own continuation, which the path tracer flies anyway (pbrt-v4's volumetric path tracer
+// is built so, Pharr et al. 2023 §14.2.3). It scores the light where it leaves the scene with
+// the same power weight (skyAtEscape): delta tracking gets out with probability T, so its mean
+// is the shadow ray's, for no ray of its own. A uniform dome draws no sample of its own at all:
+// p L / (pdf of a uniform direction) is up to 4π p_max times the mean in a forward medium, where
+// the phase function's sample scores T L ≤ L. Measured on the sky-white regime (an albedo-0.99,
+// g 0.85 cloud under a white dome, docs/regimes.md; 16 samples, seeds 1 and 2): two shadow rays
+// per vertex, relative variance 0.149 for 4.06 CPU s; the continuation alone (this), 0.087 for
+// 1.85 s: 3.8× at equal time. Inside such a cloud most shadow rays are ratio-tracked through
+// tens of optical depths for a transmittance of ~0, while the continuation, the path itself,
+// carries the light of the many scatterings beyond.
 SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, const Vec3& wo,
                                   Sampler& sampler, ThreadState& ts, const LampSampling* lamps,
-                                  bool infiniteOnly) {
+                                  MediumLights which) {
     SampledSpectrum L(0.f);
     const Medium& m = ts.tracking.medium(c.medium);
     const SampledWavelengths& w = ts.tracking.wavelengths();
@@ -212,14 +224,17 @@ SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, 
     };
     for (size_t i = 0; i < scene.lights.size(); ++i) {
         const Light* light = scene.lights[i].get();
-        if (infiniteOnly && !light->infinite()) continue;
+        if (which == MediumLights::InfiniteOnly && !light->infinite()) continue;
         const float share = lamps ? lamps->scatterPointWeight(i, c) : 1.f;
         if (!(share > 0.f)) continue;
+        // A uniform dome is drawn by the phase function alone (above).
+        const bool phaseOnly = light->uniformRadiance() && !ts.curved;
+        if (phaseOnly && which == MediumLights::SkyByEscape) continue;
         float u1, u2;
         sampler.get2D(&u1, &u2);  // one pair of dimensions: stratified over the light
         SampledSpectrum term(0.f);
         LightSample ls;
-        const bool sampled = light->sampleLi(c.p, u1, u2, w, &ls);
+        const bool sampled = !phaseOnly && light->sampleLi(c.p, u1, u2, w, &ls);
         const bool curved = curvedConnection(ts, *light, sampled ? &ls : nullptr);
         if (curved) {
             term = curvedLightTerm(*light, sampled ? &ls : nullptr, PhaseLobe(m, c, wo), share,
@@ -231,7 +246,8 @@ SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, 
                 ls.pdf > 0.f ? powerHeuristic(ls.pdf, m.phasePdf(c.mp, -wo, ls.wi)) : share;
             if (!phase.isZero() && mis > 0.f) term += shadowed(ls) * phase * mis;
         }
-        if (!curved && ls.pdf > 0.f) {
+        const bool escapes = which == MediumLights::SkyByEscape && light->infinite();
+        if (!curved && !escapes && (phaseOnly || ls.pdf > 0.f)) {
             // The phase function's sample, for a light a direction can hit (its samples have a pdf)
             // that the point sees the emitting side of.
             SampledSpectrum weight;
@@ -240,9 +256,25 @@ SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, 
             const Vec3 wi = m.phaseSample(c.mp, -wo, uc, v1, v2, &weight, &pdf);
             LightSample hs;
             if (pdf > 0.f && hitLight(scene, *light, c.p, wi, w, &hs))
-                term += shadowed(hs) * weight * powerHeuristic(pdf, hs.pdf);
-            term *= share;
+                term += shadowed(hs) * weight * (phaseOnly ? 1.f : powerHeuristic(pdf, hs.pdf));
         }
+        if (!curved && (phaseOnly || ls.pdf > 0.f)) term *= share;
+        L += term;
+        if (split) split[scene.lightGroupSlot(i)] += term;
+    }
+    return L;
+}
+
+SampledSpectrum skyAtEscape(const RenderScene& scene, const Ray& ray, float phasePdf,
+                            const SampledWavelengths& w, ThreadState& ts) {
+    SampledSpectrum L(0.f);
+    SampledSpectrum* split = ts.startLightSplit();
+    for (size_t i = 0; i < scene.lights.size(); ++i) {
+        const Light& light = *scene.lights[i];
+        LightSample hs;
+        if (!light.infinite() || !light.hitLi(ray.o, ray.d, w, &hs)) continue;
+        const float mis = light.uniformRadiance() ? 1.f : powerHeuristic(phasePdf, hs.pdf);
+        const SampledSpectrum term = hs.Li * mis;
         L += term;
         if (split) split[scene.lightGroupSlot(i)] += term;
     }

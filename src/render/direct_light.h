@@ -13,15 +13,31 @@ namespace mirage {
 
 class LampSampling;
 
+// What a medium point's estimate covers.
+enum class MediumLights {
+    All,           // every light, by all of its strategies
+    InfiniteOnly,  // the lights at infinity alone (the estimate at a point drawn for them)
+    // Every light, but the lights at infinity leave their phase-function strategy to the path's
+    // own continuation: skyAtEscape scores them where it leaves the scene (direct_light.cpp).
+    SkyByEscape,
+};
+
 // Σ_lights p(−wi, wo) · Li · T(shadow ray). wo is the direction the light leaves towards the
 // viewer (the reverse of the incoming path direction). With `lamps`, the segment c lies on
 // draws points towards the point and spot lights and the lights at infinity too
 // (render/lamp_sampling.h), and each light's term here carries its weight against them (a
-// light of weight 0 draws no shadow ray). infiniteOnly: the lights at infinity alone (the
-// estimate at such a point).
+// light of weight 0 draws no shadow ray).
 SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, const Vec3& wo,
                                   Sampler& sampler, ThreadState& ts,
-                                  const LampSampling* lamps = nullptr, bool infiniteOnly = false);
+                                  const LampSampling* lamps = nullptr,
+                                  MediumLights which = MediumLights::All);
+
+// The lights at infinity seen by a path's continuation that left the scene along `ray` after a
+// medium point estimated with MediumLights::SkyByEscape, which drew the ray's direction with
+// density phasePdf: the phase function's strategy of those lights, weighed against their own
+// samples by the power heuristic, and its split by light group in ts.lightSplit.
+SampledSpectrum skyAtEscape(const RenderScene& scene, const Ray& ray, float phasePdf,
+                            const SampledWavelengths& w, ThreadState& ts);
 
 // Σ_lights f(wo, wi) |cos θi| · Li · T(shadow ray) at a diffuse surface point; wo (world, unit)
 // points towards the viewer. Light arriving from the other side of the surface than wo is not

@@ -3,9 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "render/direct_light.h"
-
 #include "light/lamp.h"
+#include "render/direct_light.h"
 
 namespace mirage {
 
@@ -181,8 +180,10 @@ void LampSampling::gatherSky(const RenderScene& scene, const SampledSpectrum& be
         const SampledSpectrum T = toPoint(sky.point, ts.tracking, sampler);
         if (T.isZero()) continue;
         const SampledSpectrum weight = beta * T * c.mp.sigmaS / sky.point.pdf;
-        rec.litInMedium(weight, directLightMedium(scene, c, -mRay.d, sampler, ts, nullptr, true),
-                        c.t);
+        rec.litInMedium(
+            weight,
+            directLightMedium(scene, c, -mRay.d, sampler, ts, nullptr, MediumLights::InfiniteOnly),
+            c.t);
     }
 }
 

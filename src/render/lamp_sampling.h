@@ -68,6 +68,8 @@ public:
     LampSampling(const RenderScene& scene, const Ray& ray, float tEnd, bool on, Sampler& sampler,
                  TrackingContext* sky = nullptr);
     bool empty() const { return mCount == 0 && mSkyCount == 0; }
+    // Whether points were drawn for the lights at infinity (the camera ray).
+    bool drewSky() const { return mSkyCount > 0; }
 
     // The path's flight along the segment, which estimates the transmittance to the points:
     // each of its tentative collisions in order of t, then its end (reached: it got through

@@ -71,6 +71,17 @@ public:
     void litAtSurface(const SampledSpectrum& beta, const SampledSpectrum& lit, float t) {
         gathered(beta, lit, t, true);
     }
+    // The lights at infinity `lit` met by a path's continuation where it left the scene, for
+    // the medium vertex before, which left them to it (render/direct_light.h: skyAtEscape):
+    // counted as that vertex's next-event estimate is, its groups in ts.lightSplit.
+    void litByEscape(const SampledSpectrum& beta, const SampledSpectrum& lit) {
+        const SampledSpectrum c = beta * lit;
+        mOut->L += c;
+        if (mDeep) mDeep->radiance.push_back({mFirst, c, Vec3(0.f)});
+        if (!mAov) return;
+        mAov->addPath(c, mHistory.emitted());
+        mAov->addGroups(beta, mTs->lightSplit);
+    }
     // The lights at infinity seen by a ray that leaves the scene: light seen straight from its
     // source, as emission is (docs/aovs.md).
     void escaped(const SampledSpectrum& c) {

@@ -53,7 +53,7 @@ public:
             if (!scatterAlongFlight(scene, ahead, mGuide.get(), mDirect, sampler, ts, path, rec))
                 break;
             if (!ahead.hit) {
-                escapeToDome(scene, path, rec);
+                escapeToDome(scene, path, ts, rec);
                 break;
             }
             // A holdout is seen as nothing: nothing of its own, nothing behind it.

@@ -21,8 +21,12 @@
 // pass bends photons; radiance keeps L/n² along them (the n² law). Lobe walks and the lamps'
 // distance sampling along a segment are straight: where light bends, neither is drawn.
 //
-// Lights at infinity (the dome) are sampled by NEE like the others, so a path that leaves the
-// scene scores them only where no NEE has: on the camera ray and after mirrors and glass.
+// Lights at infinity (the dome): the light's own samples by NEE, and the phase function's by the
+// path's continuation, which scores them where it leaves the scene (render/direct_light.cpp,
+// MediumLights::SkyByEscape), both weighed by the power heuristic; a uniform dome by the
+// continuation alone. Where lobe walks, the camera ray's points for the dome or bending weigh
+// against NEE, both strategies stay shadow rays. A path also scores them on the camera ray and
+// after mirrors and glass, where no NEE has.
 //
 // Surfaces: each free flight ends at the nearest surface (tracking over (0, t_hit)). There the
 // path scores the surface's emission (Lambertian emitters are found by rays only, never by
@@ -127,7 +131,7 @@ public:
                 reemit(scene, f, sampler, ts, path, rec);
                 goesOn = true;
             } else if (f.end == Flight::End::Escaped && !ahead.hit) {
-                escapeToDome(scene, path, rec);
+                escapeToDome(scene, path, ts, rec);
             } else if (f.end == Flight::End::Escaped && !plate) {
                 goesOn = scatterAtSurface(scene, *ahead.hit, sampler, ts, path, rec);
             }
@@ -241,16 +245,23 @@ private:
                          Sampler& sampler, ThreadState& ts, CameraPath& path,
                          PathRecorder& rec) const {
         const float ratios = path.lobeRatios;  // the run's sum on the segment that reached x
+        // The lights at infinity are left to the path's continuation where nothing else weighs
+        // against it: no lobe walk, no point drawn for them on the segment, no bending.
+        const bool escapes = !path.guided && !ts.curved && !lamps.drewSky();
         rec.litInMedium(
             path.throughput.beta / (1.f + ratios),
-            directLightMedium(scene, x, -path.ray.d, sampler, ts, lamps.empty() ? nullptr : &lamps),
+            directLightMedium(scene, x, -path.ray.d, sampler, ts, lamps.empty() ? nullptr : &lamps,
+                              escapes ? MediumLights::SkyByEscape : MediumLights::All),
             x.t);
         rec.scatteredInMedium(x.t);
         path.specularChain = false;  // a medium event: next-event estimation counted the dome
+        path.escapePdf = 0.f;
         const Medium& m = ts.tracking.medium(x.medium);
         if (!path.guided || path.depth + 1 >= mMaxDepth) {
+            float pdf = 0.f;
             path.ray =
-                Ray{x.p, samplePhase(m, x, path.ray.d, sampler, &path.throughput), kInfinity};
+                Ray{x.p, samplePhase(m, x, path.ray.d, sampler, &path.throughput, &pdf), kInfinity};
+            if (escapes) path.escapePdf = pdf;
             path.lobeRatios = 0.f;
             return;
         }
@@ -279,6 +290,7 @@ private:
         rec.scatteredInMedium(f.at.t);
         path.specularChain = false;
         path.lobeRatios = 0.f;  // no lobe walk crosses a re-emission
+        path.escapePdf = 0.f;
         path.ray = Ray{f.at.p, f.wi, kInfinity};
     }
 

@@ -238,6 +238,46 @@ TEST(DomeLight, WhiteFurnace) {
     }
 }
 
+// The white furnace again under a dome drawn from an image of one colour, rendered with and
+// without the camera ray's points for the dome. Such a dome is not uniform to the renderer
+// (Light::uniformRadiance): past the camera ray each medium vertex samples it by next-event
+// estimation and leaves the phase function's strategy to the path's continuation, which scores
+// it where it leaves the medium (render/direct_light.cpp, MediumLights::SkyByEscape). A power
+// weight that did not sum to 1 over the two, or an escape scored twice, moves the mean off the
+// dome's radiance at each sampled wavelength (the furnace holds per wavelength).
+TEST(DomeLight, WhiteFurnaceOfAnImageDomeOfOneColour) {
+    LatLongImage img;
+    img.width = 16;
+    img.height = 8;
+    img.rgb.assign(size_t(img.width) * img.height * 3, 1.f);
+    for (bool skyPoints : {true, false}) {
+        RenderScene scene;
+        scene.equiangular = skyPoints;
+        scene.lights.push_back(makeDomeLight(img, 1.f, kXyz, {}));
+        ASSERT_FALSE(scene.lights[0]->uniformRadiance());
+        scene.media.push_back(test::gridMedium([](int, int, int) { return 1.f; }, 0, 15, 0.125, 0.f,
+                                               8.f, 0.6f, Transform::translate(Vec3d(-1.0))));
+        auto volpath = makeVolPathIntegrator();
+        ThreadState ts(scene);
+        test::SampleMean ratio;
+        for (int i = 0; i < 20000; ++i) {
+            Sampler s(22, uint64_t(i), 0);
+            const SampledWavelengths w = SampledWavelengths::sampleVisible(s.get1D());
+            ts.tracking.setWavelengths(w);
+            const float u1 = s.get1D(), u2 = s.get1D();
+            const Vec3 target(0.8f * (2 * u1 - 1), 0.8f * (2 * u2 - 1), 0.f);
+            const Vec3 o(0.f, 0.f, 4.f);
+            const RadianceSample r =
+                volpath->Li(scene, Ray{o, normalize(target - o), kInfinity}, w, s, ts);
+            const float dome = scene.lights[0]->escapedRadiance(Vec3(0, 1, 0), w, false).average();
+            ratio.add(r.L.average() / dome);
+        }
+        const double mean = ratio.mean(), se = ratio.standardError();
+        EXPECT_NEAR(mean, 1.0, 4 * se + 2e-3) << "sky points " << skyPoints << " ± " << se;
+        EXPECT_EQ(volpath->stats().cappedPaths, 0u);
+    }
+}
+
 // A sun in the map: the direction of the power within 5° of the brightest pixel, where that
 // holds at least half of the dome's (Light::lobe). A bright patch of sky that does not, and a
 // constant dome, have none.

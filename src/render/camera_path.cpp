@@ -78,7 +78,7 @@ void escapeToDome(const RenderScene& scene, const CameraPath& path, ThreadState&
         rec.escaped(path.throughput.beta *
                     escapedRadiance(scene, path.ray.d, path.wavelengths, path.depth == 0));
     else if (path.escapePdf > 0.f)
-        rec.litByEscape(path.throughput.beta,
+        rec.litByEscape(path.throughput.beta * path.escapeShare,
                         skyAtEscape(scene, path.ray, path.escapePdf, path.wavelengths, ts));
 }
 

@@ -24,9 +24,10 @@
 // Lights at infinity (the dome): the light's own samples by NEE, and the phase function's by the
 // path's continuation, which scores them where it leaves the scene (render/direct_light.cpp,
 // MediumLights::SkyByEscape), both weighed by the power heuristic; a uniform dome by the
-// continuation alone. Where lobe walks, the camera ray's points for the dome or bending weigh
-// against NEE, both strategies stay shadow rays. A path also scores them on the camera ray and
-// after mirrors and glass, where no NEE has.
+// continuation alone; the escape carries the lobe walks' share of the vertex that drew it, as its
+// NEE does. Where the camera ray's points for the dome weigh against NEE, or a field bends the
+// paths, both strategies stay shadow rays. A path also scores them on the camera ray and after
+// mirrors and glass, where no NEE has.
 //
 // Surfaces: each free flight ends at the nearest surface (tracking over (0, t_hit)). There the
 // path scores the surface's emission (Lambertian emitters are found by rays only, never by
@@ -245,9 +246,10 @@ private:
                          Sampler& sampler, ThreadState& ts, CameraPath& path,
                          PathRecorder& rec) const {
         const float ratios = path.lobeRatios;  // the run's sum on the segment that reached x
-        // The lights at infinity are left to the path's continuation where nothing else weighs
-        // against it: no lobe walk, no point drawn for them on the segment, no bending.
-        const bool escapes = !path.guided && !ts.curved && !lamps.drewSky();
+        // The lights at infinity are left to the path's continuation where no point drawn for
+        // them on the segment weighs against next-event estimation and no field bends the path.
+        // Its escape then counts as x's estimate does, with the lobe walks' share 1/(1 + ratios).
+        const bool escapes = !ts.curved && !lamps.drewSky();
         rec.litInMedium(
             path.throughput.beta / (1.f + ratios),
             directLightMedium(scene, x, -path.ray.d, sampler, ts, lamps.empty() ? nullptr : &lamps,
@@ -261,7 +263,7 @@ private:
             float pdf = 0.f;
             path.ray =
                 Ray{x.p, samplePhase(m, x, path.ray.d, sampler, &path.throughput, &pdf), kInfinity};
-            if (escapes) path.escapePdf = pdf;
+            if (escapes) path.leaveSkyToEscape(pdf, 1.f / (1.f + ratios));
             path.lobeRatios = 0.f;
             return;
         }
@@ -270,6 +272,7 @@ private:
             walkFromMedium(scene, lobes, x, path, sampler, ts, rec);
         float pdf;
         const Vec3 dir = samplePhase(m, x, path.ray.d, sampler, &path.throughput, &pdf);
+        if (escapes) path.leaveSkyToEscape(pdf, 1.f / (1.f + ratios));
         // Walks from earlier vertices pass this one even where no light has a lobe (outside a
         // spot's cone): their share decays all the same.
         path.lobeRatios = kLobeWalkGoesOn * ratios +

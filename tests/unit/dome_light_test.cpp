@@ -13,6 +13,7 @@
 
 #include "chi_square.h"
 #include "render/integrator.h"
+#include "render/light_lobes.h"
 #include "test_support.h"
 
 using namespace mirage;
@@ -274,6 +275,46 @@ TEST(DomeLight, WhiteFurnaceOfAnImageDomeOfOneColour) {
         }
         const double mean = ratio.mean(), se = ratio.standardError();
         EXPECT_NEAR(mean, 1.0, 4 * se + 2e-3) << "sky points " << skyPoints << " ± " << se;
+        EXPECT_EQ(volpath->stats().cappedPaths, 0u);
+    }
+}
+
+// The white furnace of a forward medium (HG g 0.9, past the lobe walks' threshold) with a faint
+// lamp for the walks to aim at (render/light_lobes.h): the paths are guided, so each medium
+// vertex's estimates, its escape included, carry its share 1/(1 + ratios) against the walks that
+// could have drawn it. An escape that kept its whole weight would count those paths twice. The
+// lamp's 10⁻⁶ W adds ~10⁻⁸ to a radiance of 1. Under a constant dome and an image of one colour
+// (the two ways a vertex leaves the dome to its escape).
+TEST(DomeLight, WhiteFurnaceOfAForwardMediumWithLobeWalks) {
+    LatLongImage img;
+    img.width = 16;
+    img.height = 8;
+    img.rgb.assign(size_t(img.width) * img.height * 3, 1.f);
+    for (bool image : {false, true}) {
+        RenderScene scene;
+        scene.lights.push_back(image ? makeDomeLight(img, 1.f, kXyz, {})
+                                     : makeDomeLight(Spectrum(1.f), {}));
+        scene.lights.push_back(makePointLight(Vec3(0.f, 2.f, 0.f), 1e-6f, Spectrum(1.f)));
+        scene.media.push_back(test::gridMedium([](int, int, int) { return 1.f; }, 0, 15, 0.125, 0.f,
+                                               4.f, 0.9f, Transform::translate(Vec3d(-1.0))));
+        ASSERT_TRUE(guidesPaths(scene));
+        auto volpath = makeVolPathIntegrator();
+        ThreadState ts(scene);
+        test::SampleMean ratio;
+        for (int i = 0; i < 20000; ++i) {
+            Sampler s(23, uint64_t(i), 0);
+            const SampledWavelengths w = SampledWavelengths::sampleVisible(s.get1D());
+            ts.tracking.setWavelengths(w);
+            const float u1 = s.get1D(), u2 = s.get1D();
+            const Vec3 target(0.8f * (2 * u1 - 1), 0.8f * (2 * u2 - 1), 0.f);
+            const Vec3 o(0.f, 0.f, 4.f);
+            const RadianceSample r =
+                volpath->Li(scene, Ray{o, normalize(target - o), kInfinity}, w, s, ts);
+            const float dome = scene.lights[0]->escapedRadiance(Vec3(0, 1, 0), w, false).average();
+            ratio.add(r.L.average() / dome);
+        }
+        const double mean = ratio.mean(), se = ratio.standardError();
+        EXPECT_NEAR(mean, 1.0, 4 * se + 2e-3) << (image ? "image" : "constant") << " ± " << se;
         EXPECT_EQ(volpath->stats().cappedPaths, 0u);
     }
 }

@@ -101,7 +101,7 @@ TEST(EmissionLight, NoneWhereNothingGlows) {
 // The line estimate through an isothermal, homogeneous block of length L along the
 // ray: E[L̂] = σa B(λ, T) (1 − e^{−σt L}) / σt per wavelength (grid lookups are trilinear, so
 // the ray runs through the block's interior, away from the zero values beyond its last voxel).
-TEST(LineEmission, LineThroughAnIsothermalBlockMatchesTheClosedForm) {
+TEST(LineEstimate, ThroughAnIsothermalBlockMatchesTheClosedForm) {
     const float sigmaA = 1.5f, sigmaS = 2.5f, T = 1600.f;
     RenderScene scene;
     scene.media.push_back(glowingMedium([](int, int, int) { return 1.f; },

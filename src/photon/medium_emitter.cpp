@@ -224,6 +224,29 @@ double MediumEmitter::powerDensityAt(const Vec3& p,
     return kFourPi * double(e.intensity) * sum;
 }
 
+std::vector<MediumEmitter::CellPower> MediumEmitter::cellPowers() const {
+    std::vector<CellPower> out;
+    out.reserve(mCells.size());
+    const FloatGrid& tgrid =
+        mMedium->binding().grids()[size_t(mMedium->binding().temperatureSlot())];
+    tgrid.visit([&](const auto& g) {
+        for (size_t i = 0; i < mCells.size(); ++i) {
+            const Cell& c = mCells[i];
+            const nanovdb::Vec3f p = g.indexToWorldF(
+                nanovdb::Vec3f(float(c.i) + 0.5f, float(c.j) + 0.5f, float(c.k) + 0.5f));
+            out.push_back({Vec3(p[0], p[1], p[2]), mCdf[i] - (i > 0 ? mCdf[i - 1] : 0.0)});
+        }
+    });
+    return out;
+}
+
+Vec3 MediumEmitter::cellSize() const {
+    const FloatGrid& tgrid =
+        mMedium->binding().grids()[size_t(mMedium->binding().temperatureSlot())];
+    const nanovdb::Vec3d h = tgrid.visit([](const auto& g) { return g.voxelSize(); });
+    return Vec3(float(h[0]), float(h[1]), float(h[2]));
+}
+
 bool MediumEmitter::sample(Sampler& sampler, Medium::Context& ctx, PhotonEmission* out) const {
     if (mCells.empty()) return false;
     // The cell ∝ its tabulated power.

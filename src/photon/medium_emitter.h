@@ -52,6 +52,16 @@ public:
     // Emitting voxels of the temperature grid (corners with q > 0).
     size_t emittingVoxels() const { return mEmittingVoxels; }
 
+    // Each cell of the table as its object-space centre and its tabulated power (W): what the
+    // camera paths' coarse grid of emitted power is summed from (render/emission_light.h).
+    struct CellPower {
+        Vec3 centre;
+        double power;
+    };
+    std::vector<CellPower> cellPowers() const;
+    // A cell's edges in object space: the temperature grid's voxel size.
+    Vec3 cellSize() const;
+
     // Draws one photon (origin, isotropic direction, wavelength, weight w as above). ctx is a
     // context of this medium; its wavelengths are changed. Returns false when the table is
     // empty or the drawn point emits nothing at λ (weight 0).

@@ -41,6 +41,9 @@ struct CameraPath : PathSegment {
     bool guided = false;
     float walkStart = 1.f;
     float lobeRatios = 0.f;
+    // The weight of the emission the current ray's flight scores: against the line sample of
+    // the medium vertex it starts from (volpath, render/line_emission.h); 1 elsewhere.
+    float emissionWeight = 1.f;
 };
 
 // The flight ahead of a ray: the nearest surface on it, if any, and where the flight through the

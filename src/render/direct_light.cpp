@@ -14,13 +14,6 @@ float shadowLength(const Vec3& target, float distance) {
     return std::isfinite(distance) ? distance - 4.f * surfaceEpsilon(target) : distance;
 }
 
-// Power heuristic (Veach 1997, §9.2.1, β = 2): the weight of a strategy with pdf `a` against
-// one with pdf `b` for the same direction.
-float powerHeuristic(float a, float b) {
-    const float a2 = a * a, b2 = a2 + b * b;
-    return b2 > 0.f ? a2 / b2 : 0.f;
-}
-
 // Whether the ray from o along the unit wi meets light `i` (then *out holds the distance, the
 // radiance and the pdf its sampleLi draws wi with): Light::hitLi, but for the emissive
 // surfaces, which only the geometry can intersect — the first surface along wi, if it is one of

@@ -22,6 +22,13 @@ enum class MediumLights {
     SkyByEscape,
 };
 
+// Power heuristic (Veach 1997, §9.2.1, β = 2): the weight of a strategy with pdf `a` against
+// one with pdf `b` for the same direction.
+inline float powerHeuristic(float a, float b) {
+    const float a2 = a * a, b2 = a2 + b * b;
+    return b2 > 0.f ? a2 / b2 : 0.f;
+}
+
 // Σ_lights p(−wi, wo) · Li · T(shadow ray). wo is the direction the light leaves towards the
 // viewer (the reverse of the incoming path direction). With `lamps`, the segment c lies on
 // draws points towards the point and spot lights and the lights at infinity too

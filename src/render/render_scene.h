@@ -44,6 +44,9 @@ struct RenderScene {
     // Whether paths draw distances towards point and spot lights besides delta tracking's
     // ([render] lamp_sampling, render/lamp_sampling.h).
     bool equiangular = true;
+    // Whether volpath's medium vertices sample the emissive media as a light, by line
+    // integration ([render] emission_sampling, render/line_emission.h).
+    bool emissionSampling = true;
 
     bool hasSurfaces() const { return geometry && !geometry->empty(); }
     bool holdout(size_t medium) const {

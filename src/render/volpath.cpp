@@ -7,6 +7,9 @@
 // quad or the dome is sampled by the light and by the phase function (render/direct_light.cpp),
 // and point and spot lights also by a point drawn towards them along every segment, weighed
 // against the scattering points' estimates (render/lamp_sampling.h): the lamp in the fog.
+// Emissive media are a light too: every real scattering vertex draws a line towards their
+// glow and estimates its emission whole, the next flight's emission weighed against it
+// (render/line_emission.h): smoke lit by its own flames.
 //
 // Weights (per wavelength; see transport/tracking.h):
 //   emission      β σa Le / σ̄                    at every tentative collision
@@ -58,6 +61,7 @@
 #include "render/integrator.h"
 #include "render/lamp_sampling.h"
 #include "render/light_lobes.h"
+#include "render/line_emission.h"
 #include "transport/path_vertex.h"
 #include "transport/reemission.h"
 
@@ -90,6 +94,12 @@ public:
     explicit VolPathIntegrator(int maxDepth) : mMaxDepth(maxDepth) {}
     const IntegratorInfo& info() const override { return integratorInfo("volpath"); }
     bool lightShapedRadiance() const override { return true; }
+
+    // The emissive media's power grid, where the scene has one and samples it
+    // (render/line_emission.h); built per frame, from the still grids.
+    void preprocess(const RenderScene& scene, uint64_t) override {
+        mEmission = scene.emissionSampling ? EmissionLight::forScene(scene) : nullptr;
+    }
 
     RadianceSample Li(const RenderScene& scene, const Ray& cameraRay, const SampledWavelengths& w,
                       Sampler& sampler, ThreadState& ts) const override {
@@ -180,7 +190,7 @@ private:
             if (m.emissive()) {
                 SampledSpectrum e;
                 scoreEmission(c, m, throughput, &e);
-                rec.emittedInMedium(e, c.t, c.mp.temperature);
+                rec.emittedInMedium(e * path.emissionWeight, c.t, c.mp.temperature);
             }
             if (m.fluorescent() && fluoresce(m, c, sampler, ts, throughput, &f)) return Track::Stop;
             const MediumEvent e = chooseEvent(c, throughput, sampler).event;
@@ -240,8 +250,10 @@ private:
     }
 
     // A real scattering event at x: next-event estimation, weighed against the lobe walks of the
-    // run x belongs to and the segment's points towards the lamps, a lobe walk of its own where
-    // paths are guided, and the phase function's sample that continues the path.
+    // run x belongs to and the segment's points towards the lamps, a line sample of the emissive
+    // media's light (render/line_emission.h), a lobe walk of its own where paths are guided, and
+    // the phase function's sample that continues the path, its flight's emission weighed
+    // against the line samples.
     void scatterInMedium(const RenderScene& scene, const Collision& x, const LampSampling& lamps,
                          Sampler& sampler, ThreadState& ts, CameraPath& path,
                          PathRecorder& rec) const {
@@ -258,12 +270,20 @@ private:
         rec.scatteredInMedium(x.t);
         path.specularChain = false;  // a medium event: next-event estimation counted the dome
         path.escapePdf = 0.f;
+        // Where paths bend, the flight is no line: the emission stays the flight's alone.
+        const EmissionLight* line = ts.curved ? nullptr : mEmission.get();
+        const bool last = path.depth + 1 >= mMaxDepth;
+        if (line)
+            sampleLineEmission(scene, *line, x, path.ray.d, path.throughput.beta, last, sampler, ts,
+                               rec);
         const Medium& m = ts.tracking.medium(x.medium);
-        if (!path.guided || path.depth + 1 >= mMaxDepth) {
+        if (!path.guided || last) {
             float pdf = 0.f;
-            path.ray =
-                Ray{x.p, samplePhase(m, x, path.ray.d, sampler, &path.throughput, &pdf), kInfinity};
+            const Vec3 dir = samplePhase(m, x, path.ray.d, sampler, &path.throughput, &pdf);
+            path.emissionWeight =
+                line ? flightEmissionWeight(*line, x.p, dir, pdf, ts.tracking) : 1.f;
             if (escapes) path.leaveSkyToEscape(pdf, 1.f / (1.f + ratios));
+            path.ray = Ray{x.p, dir, kInfinity};
             path.lobeRatios = 0.f;
             return;
         }
@@ -277,6 +297,7 @@ private:
         // spot's cone): their share decays all the same.
         path.lobeRatios = kLobeWalkGoesOn * ratios +
                           (lobes.empty() ? 0.f : path.walkStart * lobes.pdf(dir) / pdf);
+        path.emissionWeight = line ? flightEmissionWeight(*line, x.p, dir, pdf, ts.tracking) : 1.f;
         path.ray = Ray{x.p, dir, kInfinity};
     }
 
@@ -292,7 +313,8 @@ private:
                         f.at.t);
         rec.scatteredInMedium(f.at.t);
         path.specularChain = false;
-        path.lobeRatios = 0.f;  // no lobe walk crosses a re-emission
+        path.lobeRatios = 0.f;      // no lobe walk crosses a re-emission
+        path.emissionWeight = 1.f;  // nor a line sample (render/line_emission.h)
         path.escapePdf = 0.f;
         path.ray = Ray{f.at.p, f.wi, kInfinity};
     }
@@ -305,6 +327,7 @@ private:
                           ThreadState& ts, CameraPath& path, PathRecorder& rec) const {
         const Material& mat = gatherAtSurface(scene, hit, true, sampler, ts, path, rec);
         path.lobeRatios = 0.f;
+        path.emissionWeight = 1.f;  // a surface draws no line sample
         const bool walks = path.guided && !mat.specular() && path.depth + 1 < mMaxDepth;
         const LightLobes lobes = walks ? LightLobes(scene, hit.p, path.wavelengths) : LightLobes();
         if (!lobes.empty()) walkFromSurface(scene, lobes, hit, path, sampler, ts, rec);
@@ -459,6 +482,7 @@ private:
 
     int mMaxDepth;
     mutable std::atomic<uint64_t> mCapped{0};
+    std::unique_ptr<EmissionLight> mEmission;  // null: emission found by flights alone
 };
 
 }  // namespace

@@ -252,6 +252,8 @@ static void readSettings(const TableReader& top,
                                      : SamplerKind::Random;
         scene.render.equiangular =
             r->getChoice("lamp_sampling", "equiangular", "distance", "lamp sampling");
+        scene.render.emissionSampling =
+            r->getChoice("emission_sampling", "line", "flight", "emission sampling");
         scene.majorantResolution = int(r->getInt("majorant_resolution", 64, 1, 1024));
         readPhotonKeys(*r, &scene);
         r->finish();

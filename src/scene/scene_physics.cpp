@@ -143,6 +143,23 @@ PhysicsTerm curvedPathsTerm(const Scene& scene, const std::string& integrator) {
                        "straight)")};
 }
 
+// Emission, and how the integrator finds it: the photon pass emits from it; volpath's scattering
+// vertices sample it as a light by line integration (render/line_emission.h), unless the scene
+// says `[render] emission_sampling = "flight"`.
+PhysicsTerm emissionTerm(const RenderScene& render, const std::string& integrator,
+                         const MediaPhysics& m) {
+    if (!m.emission) return {"emission", false, "no shader has an [emission] table"};
+    std::string why = m.emitWhy;
+    if (integratorInfo(integrator).photonPass) why += "; the photon pass emits from it ∝ 4π σa·Le";
+    if (integrator == "volpath" && m.scatter)
+        why += render.emissionSampling
+                   ? "; sampled as a light at every scattering vertex (line integration, "
+                     "[render] emission_sampling = \"line\")"
+                   : "; found by the paths' flights alone ([render] emission_sampling = "
+                     "\"flight\")";
+    return {"emission", true, why};
+}
+
 }  // namespace
 
 std::vector<PhysicsTerm> Scene::physics() const {
@@ -155,11 +172,7 @@ std::vector<PhysicsTerm> Scene::physics() const {
                                           : std::to_string(render.media.size()) + " volume(s)"});
     terms.push_back(singleScatteringTerm(render, m));
     terms.push_back(multipleScatteringTerm(*this, name, m));
-    terms.push_back({"emission", m.emission,
-                     m.emission ? m.emitWhy + (integratorInfo(name).photonPass
-                                                   ? "; the photon pass emits from it ∝ 4π σa·Le"
-                                                   : "")
-                                : "no shader has an [emission] table"});
+    terms.push_back(emissionTerm(render, name, m));
     terms.push_back({"spectral coefficients", m.spectral,
                      m.spectral ? m.spectralWhy
                                 : "every σ is wavelength-independent: grey path (σ set once "

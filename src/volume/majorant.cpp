@@ -37,6 +37,14 @@ void MajorantGrid::addConstant(float value) {
     for (float& v : mValues) v += value;
 }
 
+void MajorantGrid::addCells(const std::vector<float>& values) {
+    MIRAGE_CHECK(values.size() == mValues.size());
+    for (size_t i = 0; i < values.size(); ++i) {
+        MIRAGE_CHECK(values[i] >= 0.f);
+        mValues[i] += values[i];
+    }
+}
+
 void MajorantGrid::dilateLocally(const std::vector<Vec3>& reach) {
     MIRAGE_CHECK(reach.size() == mValues.size());
     const std::vector<float> still = mValues;

@@ -27,6 +27,9 @@ public:
     void addGridMonotone(const FloatGrid& grid, const std::function<float(float)>& f);
     // Adds a constant (homogeneous component) over the whole bounds.
     void addConstant(float value);
+    // Adds one value per cell, in the order of cell(): a table over the same cells walked by
+    // the same DDA (render/emission_light.h: emitted power per volume, not σt).
+    void addCells(const std::vector<float>& values);
     // Replaces each cell c by the maximum over the cells within reach[c] of it (metres per
     // axis, one entry per cell in the order of cell()). A point of c
     // moved by at most reach[c] lands there, so this bounds f(x − d(x)) when |d_a(x)| ≤
@@ -38,7 +41,10 @@ public:
 
     const Bounds3& bounds() const { return mBounds; }
     int res(int axis) const { return mRes[axis]; }
-    float cell(int x, int y, int z) const { return mValues[(size_t(z) * mRes[1] + y) * mRes[0] + x]; }
+    Vec3 cellSize() const { return mCellSize; }
+    float cell(int x, int y, int z) const {
+        return mValues[(size_t(z) * mRes[1] + y) * mRes[0] + x];
+    }
     float maxValue() const;
 
     // Walks the cells a ray crosses in [tMin, tMax] (object-space ray; d need not be unit,

@@ -152,6 +152,14 @@ ShaderDesc greyShader(float sigmaA, float sigmaS, float g) {
     return s;
 }
 
+ShaderDesc glowingShader(float sigmaA, float sigmaS, float g) {
+    ShaderDesc s = greyShader(sigmaA, sigmaS, g);
+    EmissionSpec e;
+    e.temperatureGrid = "temperature";
+    s.emission = e;
+    return s;
+}
+
 double opticalDepth(const FloatGrid& g, const Vec3& a, const Vec3& b, double sigmaT) {
     auto acc = g.accessor();
     const int n = 2000;

@@ -72,6 +72,8 @@ FloatGrid makeGrid(const std::function<float(int, int, int)>& value, int lo, int
 // A ShaderDesc of one grey component reading grid slot "density" (σ in 1/m per unit
 // density, HG asymmetry g).
 ShaderDesc greyShader(float sigmaA, float sigmaS, float g = 0.f);
+// greyShader() emitting as a blackbody at grid slot "temperature" (a fire's smoke).
+ShaderDesc glowingShader(float sigmaA, float sigmaS, float g = 0.f);
 
 // A medium of greyShader() over makeGrid(value, lo, hi, h): the test scenes' workhorse.
 std::unique_ptr<Medium> gridMedium(const std::function<float(int, int, int)>& value, int lo,

@@ -44,35 +44,20 @@ TEST(LightLobes, DrawsFollowTheirDensityChiSquare) {
     const SampledWavelengths w = SampledWavelengths::sampleVisible(0.3f);
     const LightLobes lobes(scene, Vec3(0.45f, 0.4f, 0.5f), w);
     ASSERT_FALSE(lobes.empty());
-    constexpr int kZ = 40, kPhi = 80, kDraws = 1000000, kSub = 8;
-    auto bin = [](const Vec3& d) {
-        const int iz = std::min(kZ - 1, int((d.z + 1.f) * 0.5f * kZ));
-        const float phi = std::atan2(d.y, d.x) + float(M_PI);
-        return iz * kPhi + std::min(kPhi - 1, int(phi / (2 * M_PI) * kPhi));
-    };
-    std::vector<double> observed(kZ * kPhi, 0.0), expected(kZ * kPhi, 0.0);
     Sampler s(21, 0, 0);
-    for (int i = 0; i < kDraws; ++i) {
-        const float u = s.get1D(), u1 = s.get1D(), u2 = s.get1D();
-        observed[size_t(bin(lobes.sample(u, u1, u2)))] += 1;
-    }
-    double integral = 0;
-    const double cell = (2.0 / kZ) * (2 * M_PI / kPhi) / (kSub * kSub);  // sr per sub-cell
-    for (int iz = 0; iz < kZ * kSub; ++iz)
-        for (int ip = 0; ip < kPhi * kSub; ++ip) {
-            const double z = -1.0 + (iz + 0.5) * 2.0 / (kZ * kSub);
-            const double phi = -M_PI + (ip + 0.5) * 2 * M_PI / (kPhi * kSub);
-            const double r = std::sqrt(std::max(0.0, 1 - z * z));
-            const Vec3 d(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z));
-            const double p = lobes.pdf(d) * cell;
-            integral += p;
-            expected[size_t(bin(d))] += p * kDraws;
-        }
-    EXPECT_NEAR(integral, 1.0, 2e-3);
-    const test::ChiSquare c = test::chiSquare(observed, expected);
-    std::printf("lobes: ∫ pdf dω = %.5f, χ² %.1f on %d degrees of freedom\n", integral, c.statistic,
-                c.dof);
-    EXPECT_LT(c.statistic, test::chiSquareCritical(c.dof));
+    const test::SphereChiSquare c = test::sphereChiSquare<40, 80, 8>(
+        1000000,
+        [&] {
+            const float u = s.get1D(), u1 = s.get1D(), u2 = s.get1D();
+            return lobes.sample(u, u1, u2);
+        },
+        [&](double x, double y, double z) {
+            return lobes.pdf(Vec3(float(x), float(y), float(z)));
+        });
+    EXPECT_NEAR(c.integral, 1.0, 2e-3);
+    std::printf("lobes: ∫ pdf dω = %.5f, χ² %.1f on %d degrees of freedom\n", c.integral,
+                c.fit.statistic, c.fit.dof);
+    EXPECT_LT(c.fit.statistic, test::chiSquareCritical(c.fit.dof));
 }
 
 // Guiding is for strongly forward media with a light to guide to: not for smoke (HG g 0.5),

@@ -210,23 +210,56 @@ public:
                     std::min(w0, w1) > double(mBounds.hi[a]))
                     hi[a][l] = lo[a][l] - 1;
             }
-        // NanoVDB leaf order: offset = x·64 + y·8 + z.
-        for (int x = 0; x < 8; ++x)
-            for (int y = 0; y < 8; ++y)
-                for (int z = 0; z < 8; ++z) {
-                    const float v = values[(x << 6) | (y << 3) | z];
-                    if (!(v > 0.f)) continue;
-                    for (int cz = lo[2][z]; cz <= hi[2][z]; ++cz)
-                        for (int cy = lo[1][y]; cy <= hi[1][y]; ++cy) {
-                            float* row = &mCells[(size_t(cz) * mRes[1] + cy) * mRes[0]];
-                            for (int cx = lo[0][x]; cx <= hi[0][x]; ++cx)
-                                row[cx] = std::max(row[cx], v);
-                        }
+        // Voxels whose footprints touch the same cells on every axis share their splat: per
+        // axis, the runs of coordinates with the same cell range, and per box of runs, one
+        // splat of the box's maximum. The cells get the same maxima as one splat per voxel (a
+        // maximum in any order), for a pass over the values and a few splats per leaf.
+        Run runs[3][8];
+        int count[3];
+        for (int a = 0; a < 3; ++a) count[a] = sameCellRuns(lo[a], hi[a], runs[a]);
+        for (int i = 0; i < count[0]; ++i)
+            for (int j = 0; j < count[1]; ++j)
+                for (int k = 0; k < count[2]; ++k) {
+                    const Run &rx = runs[0][i], &ry = runs[1][j], &rz = runs[2][k];
+                    // NanoVDB leaf order: offset = x·64 + y·8 + z.
+                    float m = 0.f;
+                    for (int x = rx.first; x < rx.end; ++x)
+                        for (int y = ry.first; y < ry.end; ++y)
+                            for (int z = rz.first; z < rz.end; ++z) {
+                                const float v = values[(x << 6) | (y << 3) | z];
+                                m = v > m ? v : m;  // NaN and values ≤ 0 add nothing
+                            }
+                    if (m > 0.f) splatCells(rx, ry, rz, m);
                 }
         return true;
     }
 
 private:
+    // Coordinates [first, end) of a leaf on one axis whose footprints touch cells [lo, hi].
+    struct Run {
+        int first, end, lo, hi;
+    };
+    // The runs of equal cell ranges along one axis; ranges that touch no cell (hi < lo) are
+    // left out. Returns their number.
+    static int sameCellRuns(const int lo[8], const int hi[8], Run runs[8]) {
+        int n = 0;
+        for (int l = 0; l < 8; ++l) {
+            if (hi[l] < lo[l]) continue;
+            if (n > 0 && runs[n - 1].end == l && runs[n - 1].lo == lo[l] && runs[n - 1].hi == hi[l])
+                ++runs[n - 1].end;
+            else
+                runs[n++] = Run{l, l + 1, lo[l], hi[l]};
+        }
+        return n;
+    }
+    void splatCells(const Run& x, const Run& y, const Run& z, float v) {
+        for (int cz = z.lo; cz <= z.hi; ++cz)
+            for (int cy = y.lo; cy <= y.hi; ++cy) {
+                float* row = &mCells[(size_t(cz) * mRes[1] + cy) * mRes[0]];
+                for (int cx = x.lo; cx <= x.hi; ++cx) row[cx] = std::max(row[cx], v);
+            }
+    }
+
     bool axisAligned() const { return isDiagonal3x3(mGrid.map().mMatD); }
     // The world coordinate on axis a of index coordinate i on that axis (axis-aligned map).
     double axisToWorld(int a, double i) const {
@@ -284,9 +317,9 @@ std::vector<float> MajorantGrid::cellMaximaOf(const Grid& g) const {
 
     if constexpr (std::is_same_v<Grid, nanovdb::FloatGrid>) {
         // Leaves: all 512 values, inactive ones included (the sampler reads them); voxel by voxel
-        // where the map allows, else the leaf's maximum over the leaf's footprint. In parallel, each
-        // thread onto cells of its own, merged by maximum: exact, so the same cells for any thread
-        // count. A fine majorant grid (over kParallelCells cells) is splatted by one thread.
+        // where the map allows, else the leaf's maximum over the leaf's footprint. In parallel,
+        // each thread onto cells of its own, merged by maximum: exact, so the same cells for any
+        // thread count. A fine majorant grid (over kParallelCells cells) is splatted by one thread.
         const auto* leaf = tree.getFirstLeaf();
         auto splatLeaves = [&](Splatter<Grid>& s, uint32_t begin, uint32_t end) {
             for (uint32_t i = begin; i < end; ++i) {

@@ -25,6 +25,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <cstring>
@@ -68,6 +69,20 @@ struct NodeStats {
         stats.add(value, ChildT::NUM_VALUES);
         bbox[0].minComponent(origin);
         bbox[1].maxComponent(origin + nanovdb::Coord(int32_t(ChildT::DIM) - 1));
+    }
+};
+
+// nanovdb::Stats<float>::add(float) on one value after another: the same operations, so the
+// same bits, kept as a Stats for the nodes' merges.
+class RunningStats : public Stats {
+public:
+    void add(float v) {
+        if (v < mMin) mMin = v;
+        if (v > mMax) mMax = v;
+        mSize += 1;
+        const double delta = double(v) - mAvg;
+        mAvg += delta / double(mSize);
+        mAux += delta * (double(v) - mAvg);
     }
 };
 
@@ -174,8 +189,8 @@ private:
     NanoLeaf* leaf(size_t i) const { return at<NanoLeaf>(mLayout.leaf) + i; }
 
     // Leaf i: its values read and copied under the voxel rule (then, when asked, freed from
-    // the OpenVDB tree), its active bbox and statistics.
-    NodeStats leafNode(size_t i, SanitizeCounts& count) {
+    // the OpenVDB tree). False when the leaf could not be read.
+    bool fillLeaf(size_t i, SanitizeCounts& count) {
         OpenLeaf& open = *mLayout.leaves[i];
         auto* data = leaf(i)->data();
         data->mFlags = data->mBBoxDif[2] = data->mBBoxDif[1] = data->mBBoxDif[0] = 0u;
@@ -183,8 +198,7 @@ private:
         data->mStdDevi = data->mAverage = 0.f;
         data->setOrigin(open.origin());
         data->mValueMask = open.valueMask();
-        NodeStats local;
-        if (!mReads.load(open)) return local;
+        if (!mReads.load(open)) return false;
         const float* src = open.buffer().data();
         for (uint32_t n = 0; n < OpenLeaf::SIZE; ++n) {
             float v = src[n];
@@ -195,14 +209,45 @@ private:
             OpenLeaf::Buffer spent(openvdb::PartialCreate(), 0.f);
             open.buffer().swap(spent);
         }
-        if (data->mValueMask.countOn() == 0) {
+        return true;
+    }
+
+    // The active bbox and statistics of leaves [first, first + n), n ≤ kLeafGroup, filled.
+    // Each leaf's mean and variance are a chain of dependent divisions over its active voxels
+    // (RunningStats); the group's chains advance side by side so that the core overlaps them.
+    static constexpr size_t kLeafGroup = 4;
+    void leafStats(size_t first, size_t n, NodeStats* out) {
+        float active[kLeafGroup][OpenLeaf::SIZE];
+        uint32_t count[kLeafGroup];
+        uint32_t common = OpenLeaf::SIZE;
+        for (size_t k = 0; k < n; ++k) {
+            const auto* data = leaf(first + k)->data();
+            count[k] = 0;
+            for (auto it = data->mValueMask.beginOn(); it; ++it)
+                active[k][count[k]++] = data->getValue(*it);
+            common = std::min(common, count[k]);
+        }
+        RunningStats running[kLeafGroup];
+        for (uint32_t v = 0; v < common; ++v)
+            for (size_t k = 0; k < n; ++k) running[k].add(active[k][v]);
+        for (size_t k = 0; k < n; ++k) {
+            for (uint32_t v = common; v < count[k]; ++v) running[k].add(active[k][v]);
+            out[k] = finishLeaf(first + k, running[k]);
+        }
+    }
+
+    // GridStats on a leaf: its bbox of active voxels, its statistics and flags.
+    NodeStats finishLeaf(size_t i, const RunningStats& running) {
+        NodeStats local;
+        auto* data = leaf(i)->data();
+        if (running.size() == 0) {
             data->mFlags &= ~uint8_t(2);
             return local;
         }
         leaf(i)->updateBBox();
         local.bbox[0] = local.bbox[1] = data->mBBoxMin;
         local.bbox[1] += nanovdb::Coord(data->mBBoxDif[0], data->mBBoxDif[1], data->mBBoxDif[2]);
-        for (auto it = data->mValueMask.beginOn(); it; ++it) local.stats.add(data->getValue(*it));
+        local.stats = running;
         setStats(data, local.stats);
         data->mFlags &= ~uint8_t(1);
         return local;
@@ -242,7 +287,15 @@ private:
         NodeStats total = internalNode(
             lower(i), *mLayout.lowers[i], [&](size_t k) { return leaf(first + k); },
             uint64_t(OpenLeaf::SIZE), count);
-        for (size_t l = first; l < last; ++l) total.add(leafNode(l, count));
+        for (size_t l = first; l < last; l += kLeafGroup) {
+            const size_t n = std::min(kLeafGroup, last - l);
+            bool filled = true;
+            for (size_t k = 0; k < n; ++k) filled = fillLeaf(l + k, count) && filled;
+            if (!filled) break;  // mReads reports it
+            NodeStats leaves[kLeafGroup];
+            leafStats(l, n, leaves);
+            for (size_t k = 0; k < n; ++k) total.add(leaves[k]);
+        }
         finishInternal(lower(i)->data(), total);
         mReads.advance(last - first);
         return total;

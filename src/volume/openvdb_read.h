@@ -21,6 +21,7 @@
 #include "core/error.h"
 #include "core/progress.h"
 #include "volume/load_progress.h"
+#include "volume/mapped_file_pages.h"
 
 namespace mirage {
 
@@ -68,10 +69,17 @@ public:
     }
     bool failed() const { return mFailed; }
 
-    // `leaves` more leaves are done: the bar's steps add up to the grid's size.
+    // `leaves` more leaves are done: the bar's steps add up to the grid's size. Every
+    // kReleaseMegabytes read, the file's mapped pages are given back (mapped_file_pages.h), by
+    // one thread at a time.
     void advance(size_t leaves) {
         const size_t before = mDone.fetch_add(leaves);
-        mProgress.advance(megabytesBefore(before + leaves) - megabytesBefore(before));
+        const uint64_t from = megabytesBefore(before), to = megabytesBefore(before + leaves);
+        mProgress.advance(to - from);
+        if (from / kReleaseMegabytes != to / kReleaseMegabytes) {
+            std::unique_lock<std::mutex> lock(mReleaseMutex, std::try_to_lock);
+            if (lock) releaseMappedPages(mPath);
+        }
     }
 
     // Ends the bar; throws MirageError naming the file and grid, with what OpenVDB said, when a
@@ -84,6 +92,7 @@ public:
     }
 
 private:
+    static constexpr uint64_t kReleaseMegabytes = 128;
     uint64_t megabytesBefore(size_t i) const {
         return mLeaves == 0 ? 0 : uint64_t(double(mMegabytes) * double(i) / double(mLeaves));
     }
@@ -95,7 +104,7 @@ private:
     std::atomic<size_t> mDone{0};
     std::atomic<bool> mFailed{false};
     std::string mError;
-    std::mutex mErrorMutex;
+    std::mutex mErrorMutex, mReleaseMutex;
 };
 
 // Reads every leaf's values of `grid` (lazily read: its leaves still in the file), in parallel.

@@ -215,25 +215,47 @@ private:
     // The active bbox and statistics of leaves [first, first + n), n ≤ kLeafGroup, filled.
     // Each leaf's mean and variance are a chain of dependent divisions over its active voxels
     // (RunningStats); the group's chains advance side by side so that the core overlaps them.
-    static constexpr size_t kLeafGroup = 4;
+    static constexpr size_t kLeafGroup = 4;  // leafStats writes the four chains out
     void leafStats(size_t first, size_t n, NodeStats* out) {
         float active[kLeafGroup][OpenLeaf::SIZE];
         uint32_t count[kLeafGroup];
         uint32_t common = OpenLeaf::SIZE;
         for (size_t k = 0; k < n; ++k) {
-            const auto* data = leaf(first + k)->data();
-            count[k] = 0;
-            for (auto it = data->mValueMask.beginOn(); it; ++it)
-                active[k][count[k]++] = data->getValue(*it);
+            count[k] = activeValues(*leaf(first + k)->data(), active[k]);
             common = std::min(common, count[k]);
         }
         RunningStats running[kLeafGroup];
-        for (uint32_t v = 0; v < common; ++v)
-            for (size_t k = 0; k < n; ++k) running[k].add(active[k][v]);
+        if (n == kLeafGroup) {
+            // Written out, so that the four means stay in registers.
+            for (uint32_t v = 0; v < common; ++v) {
+                running[0].add(active[0][v]);
+                running[1].add(active[1][v]);
+                running[2].add(active[2][v]);
+                running[3].add(active[3][v]);
+            }
+        } else {
+            common = 0;
+        }
         for (size_t k = 0; k < n; ++k) {
             for (uint32_t v = common; v < count[k]; ++v) running[k].add(active[k][v]);
             out[k] = finishLeaf(first + k, running[k]);
         }
+    }
+
+    // A leaf's active values in mask order (GridStats' order), into `out`; returns their count.
+    static uint32_t activeValues(const typename NanoLeaf::DataType& data, float* out) {
+        uint32_t n = 0;
+        for (uint32_t w = 0; w < OpenLeaf::SIZE / 64; ++w) {
+            uint64_t word = data.mValueMask.template getWord<uint64_t>(w);
+            const float* values = data.mValues + 64 * w;
+            if (word == ~uint64_t(0)) {
+                std::memcpy(out + n, values, 64 * sizeof(float));
+                n += 64;
+                continue;
+            }
+            for (; word != 0; word &= word - 1) out[n++] = values[__builtin_ctzll(word)];
+        }
+        return n;
     }
 
     // GridStats on a leaf: its bbox of active voxels, its statistics and flags.

@@ -200,11 +200,14 @@ private:
         data->mValueMask = open.valueMask();
         if (!mReads.load(open)) return false;
         const float* src = open.buffer().data();
-        for (uint32_t n = 0; n < OpenLeaf::SIZE; ++n) {
-            float v = src[n];
-            applyScalarVoxelRule(v, 1, count);
-            data->mValues[n] = v;
-        }
+        // Nearly every leaf keeps the rule already: a test of all its values at once, then a
+        // copy; the rule value by value only where one breaks it.
+        uint32_t broken = 0;
+        for (uint32_t n = 0; n < OpenLeaf::SIZE; ++n)
+            broken |= uint32_t(!(src[n] >= 0.f && src[n] <= kMaxVoxelValue));
+        std::memcpy(data->mValues, src, sizeof(data->mValues));
+        if (broken)
+            for (float& v : data->mValues) applyScalarVoxelRule(v, 1, count);
         if (mRelease) {
             OpenLeaf::Buffer spent(openvdb::PartialCreate(), 0.f);
             open.buffer().swap(spent);

@@ -39,8 +39,9 @@ class DenseBlock {
 public:
     // The copy of `grid` over its active box dilated by one voxel (two above: a stencil's
     // reach), or null when the grid is empty or the copy would break the budget above
-    // (treeBytes: the grid's buffer). Filled in parallel, each x slice by its own accessor:
-    // the same values for any thread count.
+    // (treeBytes: the grid's buffer). Filled in parallel by slabs of 8³ blocks aligned with the
+    // leaves, each block from its leaf's values or the one value the tree holds over it: what a
+    // lookup of each voxel returns, for any thread count.
     static std::shared_ptr<const DenseBlock> of(const nanovdb::FloatGrid& grid, uint64_t treeBytes);
 
     // Whether the 2×2×2 stencil from voxel ijk lies inside the block; if so *offset is the

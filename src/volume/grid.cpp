@@ -1,6 +1,10 @@
 #include "volume/grid.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 #include <algorithm>
+#include <type_traits>
 #include <utility>
 
 #include "core/error.h"
@@ -18,7 +22,23 @@ namespace {
 template <typename Grid>
 float maxStoredValue(const Grid& grid) {
     float m = grid.tree().background();
-    forEachDecodedValue(grid.tree(), [&m](float v, uint64_t) { m = std::max(m, v); });
+    auto keep = [&m](float v, uint64_t) { m = std::max(m, v); };
+    if constexpr (std::is_same_v<Grid, nanovdb::FloatGrid>) {
+        // A float grid's leaves are one array: their maximum on every core (a big cache's
+        // leaves hold gigabytes), then the tiles.
+        const auto* leaf = grid.tree().getFirstLeaf();
+        m = tbb::parallel_reduce(
+            tbb::blocked_range<uint32_t>(0, grid.tree().nodeCount(0), 1024), m,
+            [leaf](const tbb::blocked_range<uint32_t>& r, float local) {
+                for (uint32_t i = r.begin(); i != r.end(); ++i)
+                    for (const float v : leaf[i].data()->mValues) local = std::max(local, v);
+                return local;
+            },
+            [](float a, float b) { return std::max(a, b); });
+        forEachTileValue(grid.tree(), keep);
+    } else {
+        forEachDecodedValue(grid.tree(), keep);
+    }
     return m;
 }
 

@@ -21,57 +21,106 @@
 #include "core/error.h"
 #include "core/progress.h"
 #include "volume/load_progress.h"
+#include "volume/mapped_file_pages.h"
 
 namespace mirage {
 
-// Reads every leaf's values of `grid` (lazily read: its leaves still in the file), in parallel.
-// `fileBytes` is the grid's extent in file `path`; `gridLabel` names it on the bar. Throws
-// MirageError naming the file and grid when OpenVDB cannot read a leaf (corrupt compressed
-// data), with what it said. Such a leaf's
-// buffer is left by OpenVDB half loaded (allocated, yet marked as still in the file) and would
-// crash when freed: it is swapped for an empty buffer and the broken one is parked for the
-// process's life (brokenLeafBuffers: one leaf per failure, on a corrupt file only; reachable,
-// so not a leak to LeakSanitizer).
-// Where broken leaf buffers are kept, never freed (readLeavesInParallel).
+// Where broken leaf buffers are kept, never freed (LeafReads::load).
 inline std::vector<std::shared_ptr<void>>& brokenLeafBuffers() {
     static auto* parked = new std::vector<std::shared_ptr<void>>();
     return *parked;
 }
 
+// The reads of one grid's leaves, from any thread: each leaf's values loaded, the bar advanced
+// as leaves are done, and the first failure kept for finish() to report. `fileBytes` is the
+// grid's extent in file `path`; `gridLabel` names it on the bar and in the error.
+template <typename LeafT>
+class LeafReads {
+public:
+    LeafReads(uint64_t fileBytes, size_t leafCount, const std::string& path,
+              const std::string& gridLabel)
+        : mPath(path),
+          mLabel(gridLabel),
+          mLeaves(leafCount),
+          mMegabytes(fileBytes / 1000000 + 1),
+          mProgress("reading " + path.substr(path.find_last_of('/') + 1) + " " + gridLabel,
+                    mMegabytes, "MB",
+                    fileBytes >= kLoadProgressBytes ? gridLoadProgress() : Progress::Mode::Quiet) {}
+
+    // Loads the leaf's values; false when OpenVDB could not (corrupt compressed data). Such a
+    // leaf's buffer is left by OpenVDB half loaded (allocated, yet marked as still in the file)
+    // and would crash when freed: it is swapped for an empty buffer and the broken one is
+    // parked for the process's life (brokenLeafBuffers: one leaf per failure, on a corrupt file
+    // only; reachable, so not a leak to LeakSanitizer).
+    bool load(LeafT& leaf) {
+        if (mFailed) return false;
+        try {
+            leaf.buffer().data();
+            return true;
+        } catch (const std::exception& e) {
+            using Buffer = typename LeafT::Buffer;
+            auto* broken = new Buffer();
+            broken->swap(leaf.buffer());
+            std::lock_guard<std::mutex> lock(mErrorMutex);
+            brokenLeafBuffers().emplace_back(broken, [](void*) {});
+            if (!mFailed.exchange(true)) mError = e.what();
+            return false;
+        }
+    }
+    bool failed() const { return mFailed; }
+
+    // `leaves` more leaves are done: the bar's steps add up to the grid's size. Every
+    // kReleaseMegabytes read, the file's mapped pages are given back (mapped_file_pages.h), by
+    // one thread at a time.
+    void advance(size_t leaves) {
+        const size_t before = mDone.fetch_add(leaves);
+        const uint64_t from = megabytesBefore(before), to = megabytesBefore(before + leaves);
+        mProgress.advance(to - from);
+        if (from / kReleaseMegabytes != to / kReleaseMegabytes) {
+            std::unique_lock<std::mutex> lock(mReleaseMutex, std::try_to_lock);
+            if (lock) releaseMappedPages(mPath);
+        }
+    }
+
+    // Ends the bar; throws MirageError naming the file and grid, with what OpenVDB said, when a
+    // leaf could not be read.
+    void finish() {
+        mProgress.finish();
+        if (mFailed)
+            throw MirageError(FileLoc{mPath}, "OpenVDB could not read grid " + mLabel + ": " +
+                                                  boundedMessage(mError));
+    }
+
+private:
+    static constexpr uint64_t kReleaseMegabytes = 128;
+    uint64_t megabytesBefore(size_t i) const {
+        return mLeaves == 0 ? 0 : uint64_t(double(mMegabytes) * double(i) / double(mLeaves));
+    }
+
+    std::string mPath, mLabel;
+    size_t mLeaves;
+    uint64_t mMegabytes;
+    Progress mProgress;
+    std::atomic<size_t> mDone{0};
+    std::atomic<bool> mFailed{false};
+    std::string mError;
+    std::mutex mErrorMutex, mReleaseMutex;
+};
+
+// Reads every leaf's values of `grid` (lazily read: its leaves still in the file), in parallel.
+// Throws MirageError naming the file and grid when OpenVDB cannot read a leaf.
 template <typename GridT>
 void readLeavesInParallel(GridT& grid, uint64_t fileBytes, const std::string& path,
                           const std::string& gridLabel) {
-    using Buffer = typename GridT::TreeType::LeafNodeType::Buffer;
-    const std::string label = path.substr(path.find_last_of('/') + 1) + " " + gridLabel;
+    using LeafT = typename GridT::TreeType::LeafNodeType;
     openvdb::tree::LeafManager<typename GridT::TreeType> leaves(grid.tree());
-    const size_t count = leaves.leafCount();
-    const uint64_t megabytes = fileBytes / 1000000 + 1;
-    const Progress::Mode mode =
-        fileBytes >= kLoadProgressBytes ? gridLoadProgress() : Progress::Mode::Quiet;
-    Progress progress("reading " + label, megabytes, "MB", mode);
-    // The bytes of leaves [0, i): the bar's steps add up to the grid's size.
-    auto megabytesBefore = [&](size_t i) { return uint64_t(double(megabytes) * i / count); };
-    std::atomic<bool> failed{false};
-    std::string error;
-    std::mutex errorMutex;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 64), [&](const auto& r) {
-        for (size_t i = r.begin(); i != r.end() && !failed; ++i) {
-            try {
-                leaves.leaf(i).buffer().data();
-            } catch (const std::exception& e) {
-                auto* broken = new Buffer();
-                broken->swap(leaves.leaf(i).buffer());
-                std::lock_guard<std::mutex> lock(errorMutex);
-                brokenLeafBuffers().emplace_back(broken, [](void*) {});
-                if (!failed.exchange(true)) error = e.what();
-            }
+    LeafReads<LeafT> reads(fileBytes, leaves.leafCount(), path, gridLabel);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, leaves.leafCount(), 64), [&](const auto& r) {
+        for (size_t i = r.begin(); i != r.end() && reads.load(leaves.leaf(i)); ++i) {
         }
-        progress.advance(megabytesBefore(r.end()) - megabytesBefore(r.begin()));
+        reads.advance(r.size());
     });
-    progress.finish();
-    if (failed)
-        throw MirageError(FileLoc{path}, "OpenVDB could not read grid " + gridLabel + ": " +
-                                             boundedMessage(error));
+    reads.finish();
 }
 
 }  // namespace mirage

@@ -30,6 +30,7 @@
 #include "volume/grid_lookup.h"
 #include "volume/openvdb_expression.h"
 #include "volume/openvdb_read.h"
+#include "volume/openvdb_to_nano.h"
 #include "volume/vdb_format.h"
 #include "volume/vdb_tree.h"
 #include "volume/voxel_rule.h"
@@ -141,7 +142,9 @@ openvdb::GridBase::Ptr readOpenVdbGrid(const std::string& path, const FileLayout
 }
 
 // Reads a grid and returns it as a float grid (double grids are converted; float grids stored
-// as half come back as float already), after checking that it is a scalar fog volume.
+// as half come back as float already), after checking that it is a scalar fog volume. A float
+// grid's leaves are still in the file (delayed loading): toNanoVdb or readLeavesInParallel
+// reads them.
 openvdb::FloatGrid::Ptr readFogVolume(const std::string& path, const FileLayout& layout,
                                       int index) {
     const GridRecord& record = layout.grids[size_t(index)];
@@ -157,7 +160,6 @@ openvdb::FloatGrid::Ptr readFogVolume(const std::string& path, const FileLayout&
                        " transform; only affine index → object maps are supported");
 
     openvdb::FloatGrid::Ptr grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
-    if (grid) readLeavesInParallel(*grid, record.endPos - record.gridPos, path, label);
     if (!grid) {
         auto dgrid = openvdb::gridPtrCast<openvdb::DoubleGrid>(base);
         if (!dgrid) fail(path, "grid " + label + " has an unexpected tree type " + record.type);
@@ -342,22 +344,34 @@ GridInfo nanoVdbGridInfo(const GridRecord& record) {
     return info;
 }
 
+// The NanoVDB grid of a fog volume from readFogVolume, under the voxel rule (what it changed in
+// *sanitized): its leaves read from the file (`fileBytes` of it: the bar's length) as they are
+// converted. With `releaseLeaves` the OpenVDB grid keeps only its topology afterwards, so that a
+// big grid's values are never held twice (openvdb_to_nano.h). The grids that converter does not
+// take (a staggered class, a long name) go through NanoVDB's own.
 nanovdb::GridHandle<nanovdb::HostBuffer> toNanoVdb(const std::string& path,
                                                    const std::string& label,
-                                                   const openvdb::FloatGrid& grid) {
+                                                   openvdb::FloatGrid& grid, uint64_t fileBytes,
+                                                   bool releaseLeaves, SanitizeCounts* sanitized) {
+    if (convertsDirectly(grid))
+        return convertFloatGrid(grid, fileBytes, path, label, releaseLeaves, sanitized);
+    readLeavesInParallel(grid, fileBytes, path, label);
+    nanovdb::GridHandle<nanovdb::HostBuffer> handle;
     try {
-        return nanovdb::openToNanoVDB(grid, nanovdb::StatsMode::All,
-                                      nanovdb::ChecksumMode::Partial);
+        handle =
+            nanovdb::openToNanoVDB(grid, nanovdb::StatsMode::All, nanovdb::ChecksumMode::Partial);
     } catch (const std::exception& e) {
         fail(path, "could not convert grid " + label + " to NanoVDB: " + boundedMessage(e.what()));
     }
+    *sanitized = sanitizeScalarVoxels(handle);
+    return handle;
 }
 
-// The voxel rule on a converted grid, its warning (`label` names the grid in it), and the name
+// The voxel rule's warning for a converted grid (`label` names the grid in it), and the name
 // the grid goes by: its own, or "#N".
 FloatGrid finishGrid(const std::string& path, const FileLayout& layout, int index,
-                     nanovdb::GridHandle<nanovdb::HostBuffer> handle, const std::string& label) {
-    const SanitizeCounts sanitized = sanitizeScalarVoxels(handle);
+                     nanovdb::GridHandle<nanovdb::HostBuffer> handle, const std::string& label,
+                     const SanitizeCounts& sanitized) {
     if (sanitized.total() > 0) warnSanitizedOnce(path, label, sanitized);
     std::string name = gridName(layout.grids[size_t(index)].name, size_t(index));
     return FloatGrid(std::move(handle), std::move(name), sanitized.total());
@@ -395,6 +409,7 @@ FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName) {
     const std::string label = vdbformat::gridLabel(layout, index);
 
     nanovdb::GridHandle<nanovdb::HostBuffer> handle;
+    SanitizeCounts sanitized;
     if (layout.format == Format::NanoVdb) {
         const std::string valueType = vdbformat::valueTypeOf(record);
         if (valueType != "float")
@@ -406,10 +421,12 @@ FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName) {
         if (background != 0.f)
             fail(path, "grid " + label + " has background value " + fmt(background) +
                            ", expected 0 for a fog volume (is it a level set?)");
+        sanitized = sanitizeScalarVoxels(handle);
     } else {
-        handle = toNanoVdb(path, label, *readFogVolume(path, layout, index));
+        handle = toNanoVdb(path, label, *readFogVolume(path, layout, index),
+                           record.endPos - record.gridPos, /*releaseLeaves=*/true, &sanitized);
     }
-    return finishGrid(path, layout, index, std::move(handle), label);
+    return finishGrid(path, layout, index, std::move(handle), label, sanitized);
 }
 
 std::vector<FloatGrid> loadFloatGrids(const std::string& path,
@@ -437,7 +454,10 @@ std::vector<FloatGrid> loadFloatGrids(const std::string& path,
     auto read = [&](int index) {
         openvdb::FloatGrid::Ptr& grid = grids[index];
         if (!grid) {
+            const GridRecord& record = layout.grids[size_t(index)];
             grid = readFogVolume(path, layout, index);
+            readLeavesInParallel(*grid, record.endPos - record.gridPos, path,
+                                 vdbformat::gridLabel(layout, index));
             grid->setName(canonicalName(index));
         }
         return grid;
@@ -477,9 +497,12 @@ std::vector<FloatGrid> loadFloatGrids(const std::string& path,
 
     for (const int index : wanted) {
         std::string label = vdbformat::gridLabel(layout, index);
-        auto handle = toNanoVdb(path, label, *grids[index]);
+        // Read already (for the expressions): no second bar; a grid named twice is converted
+        // twice, so its leaves stay.
+        SanitizeCounts sanitized;
+        auto handle = toNanoVdb(path, label, *grids[index], 0, /*releaseLeaves=*/false, &sanitized);
         if (written.count(index)) label += " (after its expression)";
-        out.push_back(finishGrid(path, layout, index, std::move(handle), label));
+        out.push_back(finishGrid(path, layout, index, std::move(handle), label, sanitized));
     }
     return out;
 }

@@ -21,16 +21,9 @@ namespace mirage {
 SanitizeCounts sanitizeScalarVoxels(nanovdb::GridHandle<nanovdb::HostBuffer>& handle) {
     nanovdb::FloatGrid& grid = *handle.grid<float>();
     SanitizeCounts count;
-    auto fix = [&count](float& v, uint64_t voxels) {
-        if (!(v >= 0.f)) {  // NaN or negative
-            v = 0.f;
-            count.zeroed += voxels;
-        } else if (v > kMaxVoxelValue) {  // +∞ included
-            v = kMaxVoxelValue;
-            count.clamped += voxels;
-        }
-    };
-    forEachStoredValue(grid.tree(), fix);
+    forEachStoredValue(grid.tree(), [&count](float& v, uint64_t voxels) {
+        applyScalarVoxelRule(v, voxels, count);
+    });
     if (count.total() > 0) {
         // The node statistics (min/max) and the checksum describe the old values.
         nanovdb::gridStats(grid, nanovdb::StatsMode::All);
@@ -55,12 +48,9 @@ void warnSanitizedOnce(const std::string& path, const std::string& label,
                         : " voxels were negative or NaN and were set to 0");
     if (count.clamped > 0)
         what += (what.empty() ? "" : "; ") + std::to_string(count.clamped) +
-                (vectors ? " vectors were longer than " + maxText +
-                               " and were shortened to it"
-                         : " voxels were +inf or above " + maxText +
-                               " and were clamped to it");
-    std::fprintf(stderr, "warning: %s: grid %s: %s\n", path.c_str(), label.c_str(),
-                 what.c_str());
+                (vectors ? " vectors were longer than " + maxText + " and were shortened to it"
+                         : " voxels were +inf or above " + maxText + " and were clamped to it");
+    std::fprintf(stderr, "warning: %s: grid %s: %s\n", path.c_str(), label.c_str(), what.c_str());
 }
 
 }  // namespace mirage

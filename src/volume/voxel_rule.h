@@ -21,9 +21,21 @@ struct SanitizeCounts {
     uint64_t total() const { return zeroed + clamped; }
 };
 
-// NaN and negative values (−∞ included) become 0, +∞ and values above kMaxVoxelValue become
-// kMaxVoxelValue, in leaves and tiles of the handle's float grid; the node statistics and
-// checksum are brought up to date.
+// The rule on one stored value covering `voxels` voxels (a tile covers many): NaN and negative
+// values (−∞ included) become 0, +∞ and values above kMaxVoxelValue become kMaxVoxelValue,
+// counted in *count.
+inline void applyScalarVoxelRule(float& v, uint64_t voxels, SanitizeCounts& count) {
+    if (!(v >= 0.f)) {  // NaN or negative
+        v = 0.f;
+        count.zeroed += voxels;
+    } else if (v > kMaxVoxelValue) {  // +∞ included
+        v = kMaxVoxelValue;
+        count.clamped += voxels;
+    }
+}
+
+// The rule on every stored value, in leaves and tiles, of the handle's float grid; the node
+// statistics and checksum are brought up to date.
 SanitizeCounts sanitizeScalarVoxels(nanovdb::GridHandle<nanovdb::HostBuffer>& handle);
 
 // The voxel rule for vectors, applied to every stored value of the handle's Vec3f grid (leaf

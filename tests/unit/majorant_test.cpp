@@ -13,6 +13,7 @@
 #include "tools/asset_writer.h"
 #include "volume/grid_lookup.h"
 #include "volume/grid_quantise.h"
+#include "volume/stored_values.h"
 #include "volume/vdb_file.h"
 
 namespace mirage {
@@ -173,6 +174,70 @@ TEST(Majorant, CellsHoldTheVoxelsNearThemNotTheirLeafsMaximum) {
     for (double i : {4.5, 6.5}) {
         EXPECT_GE(at(i), 1.f) << i;
         EXPECT_LE(at(i), 1.001f) << i;
+    }
+}
+
+// One splat per voxel, as the majorant once did it: each value > 0 onto the cells its footprint
+// (i − 1.001, i + 1.001) touches on each axis (an axis-aligned map), maximum per cell.
+std::vector<float> splatPerVoxel(const FloatGrid& g, const MajorantGrid& m) {
+    const Bounds3& b = m.bounds();
+    std::vector<float> cells(size_t(m.res(0)) * m.res(1) * m.res(2), 0.f);
+    auto cellIndex = [&](int a, float x) {
+        const float c = (x - b.lo[a]) * (1.f / ((b.hi[a] - b.lo[a]) / float(m.res(a))));
+        if (!(c > 0.f)) return 0;
+        return c >= float(m.res(a)) ? m.res(a) - 1 : int(c);
+    };
+    const auto& tree = g.grid()->tree();
+    const auto* leaf = tree.getFirstLeaf();
+    for (uint32_t i = 0; i < tree.nodeCount(0); ++i)
+        for (uint32_t n = 0; n < 512; ++n) {
+            const float v = leaf[i].getValue(n);
+            if (!(v > 0.f)) continue;
+            const nanovdb::Coord ijk = leaf[i].offsetToGlobalCoord(n);
+            int lo[3], hi[3];
+            bool inside = true;
+            for (int a = 0; a < 3; ++a) {
+                nanovdb::Vec3d p0(0.0), p1(0.0);
+                p0[a] = ijk[a] - 1.001;
+                p1[a] = ijk[a] + 1.001;
+                const double w0 = g.grid()->indexToWorld(p0)[a], w1 = g.grid()->indexToWorld(p1)[a];
+                lo[a] = cellIndex(a, float(std::min(w0, w1)));
+                hi[a] = cellIndex(a, float(std::max(w0, w1)));
+                inside = inside && std::max(w0, w1) >= double(b.lo[a]) &&
+                         std::min(w0, w1) <= double(b.hi[a]);
+            }
+            if (!inside) continue;
+            for (int z = lo[2]; z <= hi[2]; ++z)
+                for (int y = lo[1]; y <= hi[1]; ++y)
+                    for (int x = lo[0]; x <= hi[0]; ++x) {
+                        float& c = cells[(size_t(z) * m.res(1) + y) * m.res(0) + x];
+                        c = std::max(c, v);
+                    }
+        }
+    return cells;
+}
+
+// The leaves' voxels splatted in groups that share their cells give the cells one splat per
+// voxel gave, bit for bit, whether cells are narrower or wider than a leaf.
+TEST(Majorant, GroupedSplatsAreTheSplatsOfEachVoxel) {
+    const FloatGrid g = loadFloatGrid(makeSmoke(40), "density");
+    uint64_t tiles = 0;
+    forEachTileValue(g.grid()->tree(), [&](float v, uint64_t) { tiles += v > 0.f; });
+    ASSERT_EQ(tiles, 0u);  // the leaves alone hold the medium: the oracle splats leaves only
+    for (int res : {3, 7, 13, 64}) {
+        SCOPED_TRACE(res);
+        MajorantGrid m(g.objectBounds(), res);
+        m.addGrid(g, 1.f);
+        const std::vector<float> expected = splatPerVoxel(g, m);
+        size_t nonZero = 0;
+        for (int z = 0; z < m.res(2); ++z)
+            for (int y = 0; y < m.res(1); ++y)
+                for (int x = 0; x < m.res(0); ++x) {
+                    const float e = expected[(size_t(z) * m.res(1) + y) * m.res(0) + x];
+                    nonZero += e > 0.f;
+                    ASSERT_EQ(m.cell(x, y, z), (1.f + 1e-6f) * e) << x << " " << y << " " << z;
+                }
+        EXPECT_GT(nonZero, 0u);
     }
 }
 

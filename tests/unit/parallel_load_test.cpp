@@ -1,12 +1,15 @@
-// The parallel read of OpenVDB grids (volume/openvdb_read.h): the NanoVDB grid a load makes is
-// byte for byte the one OpenVDB's whole-grid reader and NanoVDB's converter made before, on the
-// reference caches in ../shared/data and on a generated pyro cache (half floats, a velocity
-// grid at twice the voxel size); a truncated cache is one clear error naming the file.
+// The parallel read of OpenVDB grids (volume/openvdb_read.h) and their conversion leaf by leaf
+// as they are read (volume/openvdb_to_nano.h): the NanoVDB grid a load makes is byte for byte
+// the one OpenVDB's whole-grid reader and NanoVDB's converter made before, on the reference
+// caches in ../shared/data, on a generated pyro cache (half floats, a velocity grid at twice the
+// voxel size) and, with the voxel rule, on bad values; a truncated cache is one clear error
+// naming the file.
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <limits>
 
 #include "core/error.h"
 #include "test_grids.h"
@@ -14,6 +17,7 @@
 #include "tools/asset_writer.h"
 #include "volume/grid_lookup.h"
 #include "volume/vdb_file.h"
+#include "volume/voxel_rule.h"
 
 namespace mirage {
 namespace {
@@ -81,6 +85,40 @@ TEST(ParallelLoad, TruncatedPyroCacheIsOneErrorNamingTheFile) {
                 EXPECT_LT(what.size(), 400u) << what;
             }
         }
+    }
+}
+
+// The voxel rule applied as the leaves are copied (volume/openvdb_to_nano.h) gives the grid of
+// the rule applied after NanoVDB's converter, its statistics redone (sanitizeScalarVoxels):
+// NaN, negative, infinite and huge values in active and inactive voxels and in tiles of both
+// internal levels, in a fog volume and in a grid of no stated class.
+TEST(ParallelLoad, TheVoxelRuleOnTheWayGivesTheGridOfTheRuleAfterwards) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double inf = std::numeric_limits<double>::infinity();
+    for (const char* cls : {"fog volume", "unknown"}) {
+        SCOPED_TRACE(cls);
+        TestGridSpec spec;
+        spec.gridClass = cls;
+        spec.voxels = {{0, 0, 0, 1.0},  {1, 0, 0, nan}, {2, 0, 0, -3.0},  {3, 0, 0, inf},
+                       {4, 0, 0, 1e12}, {9, 9, 9, 0.5}, {-20, 5, 7, 2.0}, {40, 41, 42, -inf}};
+        spec.inactiveVoxels = {{5, 0, 0, nan}, {6, 0, 0, -1.0}, {7, 0, 0, 1e11}};
+        spec.tiles = {
+            {64, 0, 0, 1, -2.0}, {0, 512, 0, 2, nan}, {0, 0, 256, 1, 1e13}, {300, 0, 0, 2, 0.25}};
+        const std::string path = test::tempDir() + "/bad_values.vdb";
+        writeTestGrid(path, spec);
+
+        const FloatGrid loaded = loadFloatGrid(path, "density");
+        const std::string eager = eagerNanoVdbForTest(path, "density");
+        nanovdb::HostBuffer buffer = nanovdb::HostBuffer::create(eager.size());
+        std::memcpy(buffer.data(), eager.data(), eager.size());
+        nanovdb::GridHandle<nanovdb::HostBuffer> handle(std::move(buffer));
+        const SanitizeCounts after = sanitizeScalarVoxels(handle);
+        EXPECT_GT(after.zeroed, 0u);
+        EXPECT_GT(after.clamped, 0u);
+        EXPECT_EQ(loaded.sanitizedVoxels(), after.total());
+        ASSERT_EQ(loaded.grid()->gridSize(), handle.size());
+        EXPECT_TRUE(bytesOf(loaded.grid(), loaded.grid()->gridSize()) ==
+                    bytesOf(handle.data(), handle.size()));
     }
 }
 

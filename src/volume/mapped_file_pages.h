@@ -1,0 +1,18 @@
+// The pages of a file this process has mapped, given back while it reads on. OpenVDB's delayed
+// loading maps the whole cache (io::MappedFile) and each leaf read touches its compressed bytes
+// there: the pages stay in the process's resident set until the mapping goes, after the last
+// leaf — at 10⁹ voxels 1.5 GB of density on top of the NanoVDB grid being filled. Dropping the
+// mapping's page-table entries (madvise MADV_DONTNEED) leaves the file's pages in the page cache
+// and the mapping valid: a later read of them faults them back in from the cache.
+#pragma once
+
+#include <string>
+
+namespace mirage {
+
+// Drops this process's resident pages of every mapping of file `path` (found in
+// /proc/self/maps by its canonical path). Does nothing where there is no such file or mapping.
+// Safe while other threads read the mapping.
+void releaseMappedPages(const std::string& path);
+
+}  // namespace mirage

@@ -210,112 +210,90 @@ TEST(DomeLight, ReadsAnHdrFile) {
     EXPECT_THROW(makeDomeLight(bad, 1.f, kXyz, {}), MirageError);
 }
 
-TEST(DomeLight, WhiteFurnace) {
-    // An albedo-1 medium under a white dome (L = 1 at every λ): in equilibrium with its
-    // surroundings, it shows exactly the dome's radiance whatever its optical thickness
-    // (dL/ds = −σt L + σs ∫ p L dω = 0 when L = 1 everywhere). Rays cross a 2 m cube.
-    for (float sigmaS : {0.5f, 8.f}) {
-        RenderScene scene;
-        scene.lights.push_back(makeDomeLight(Spectrum(1.f), {}));
-        scene.media.push_back(test::gridMedium([](int, int, int) { return 1.f; }, 0, 15, 0.125, 0.f,
-                                               sigmaS, 0.6f, Transform::translate(Vec3d(-1.0))));
-        auto volpath = makeVolPathIntegrator();
-        ThreadState ts(scene);
-        test::SampleMean radiance;
-        for (int i = 0; i < 20000; ++i) {
-            Sampler s(21, uint64_t(i), 0);
-            const SampledWavelengths w = SampledWavelengths::sampleVisible(s.get1D());
-            ts.tracking.setWavelengths(w);
-            const float u1 = s.get1D(), u2 = s.get1D();
-            const Vec3 target(0.8f * (2 * u1 - 1), 0.8f * (2 * u2 - 1), 0.f);
-            const Vec3 o(0.f, 0.f, 4.f);
-            const RadianceSample r =
-                volpath->Li(scene, Ray{o, normalize(target - o), kInfinity}, w, s, ts);
-            radiance.add(r.L.average());
-        }
-        const double mean = radiance.mean(), se = radiance.standardError();
-        EXPECT_NEAR(mean, 1.0, 4 * se + 2e-3) << "σs " << sigmaS << " ± " << se;
-        EXPECT_EQ(volpath->stats().cappedPaths, 0u);
+namespace {
+
+// The white furnace: volpath's camera rays from 4 m onto the 2 m cube of `scene`'s albedo-1
+// medium under its dome, whose radiance (the same from every direction) the medium shows exactly
+// at every wavelength, whatever its optical thickness (dL/ds = −σt L + σs ∫ p L dω = 0 when L is
+// the dome's everywhere). The mean of the samples' radiance over the dome's at their wavelengths
+// is 1.
+void expectWhiteFurnace(const RenderScene& scene, uint64_t seed, const std::string& what) {
+    auto volpath = makeVolPathIntegrator();
+    ThreadState ts(scene);
+    test::SampleMean ratio;
+    for (int i = 0; i < 20000; ++i) {
+        Sampler s(seed, uint64_t(i), 0);
+        const SampledWavelengths w = SampledWavelengths::sampleVisible(s.get1D());
+        ts.tracking.setWavelengths(w);
+        const float u1 = s.get1D(), u2 = s.get1D();
+        const Vec3 target(0.8f * (2 * u1 - 1), 0.8f * (2 * u2 - 1), 0.f);
+        const Vec3 o(0.f, 0.f, 4.f);
+        const RadianceSample r =
+            volpath->Li(scene, Ray{o, normalize(target - o), kInfinity}, w, s, ts);
+        ratio.add(r.L.average() /
+                  scene.lights[0]->escapedRadiance(Vec3(0, 1, 0), w, false).average());
     }
+    const double mean = ratio.mean(), se = ratio.standardError();
+    EXPECT_NEAR(mean, 1.0, 4 * se + 2e-3) << what << " ± " << se;
+    EXPECT_EQ(volpath->stats().cappedPaths, 0u) << what;
 }
 
-// The white furnace again under a dome drawn from an image of one colour, rendered with and
-// without the camera ray's points for the dome. Such a dome is not uniform to the renderer
-// (Light::uniformRadiance): past the camera ray each medium vertex samples it by next-event
-// estimation and leaves the phase function's strategy to the path's continuation, which scores
-// it where it leaves the medium (render/direct_light.cpp, MediumLights::SkyByEscape). A power
-// weight that did not sum to 1 over the two, or an escape scored twice, moves the mean off the
-// dome's radiance at each sampled wavelength (the furnace holds per wavelength).
-TEST(DomeLight, WhiteFurnaceOfAnImageDomeOfOneColour) {
+// A scene of the furnace: the dome, then a 2 m cube of unit density, albedo 1.
+RenderScene furnaceScene(std::unique_ptr<Light> dome, float sigmaS, float g) {
+    RenderScene scene;
+    scene.lights.push_back(std::move(dome));
+    scene.media.push_back(test::gridMedium([](int, int, int) { return 1.f; }, 0, 15, 0.125, 0.f,
+                                           sigmaS, g, Transform::translate(Vec3d(-1.0))));
+    return scene;
+}
+
+// A dome image of one colour: not uniform to the renderer (Light::uniformRadiance), so its
+// own samples are drawn too.
+LatLongImage oneColourImage() {
     LatLongImage img;
     img.width = 16;
     img.height = 8;
     img.rgb.assign(size_t(img.width) * img.height * 3, 1.f);
+    return img;
+}
+
+}  // namespace
+
+TEST(DomeLight, WhiteFurnace) {
+    for (float sigmaS : {0.5f, 8.f})
+        expectWhiteFurnace(furnaceScene(makeDomeLight(Spectrum(1.f), {}), sigmaS, 0.6f), 21,
+                           "σs " + std::to_string(sigmaS));
+}
+
+// The white furnace again under a dome drawn from an image of one colour, rendered with and
+// without the camera ray's points for the dome. Past the camera ray each medium vertex samples
+// it by next-event estimation and leaves the phase function's strategy to the path's
+// continuation, which scores it where it leaves the medium (render/direct_light.cpp,
+// MediumLights::SkyByEscape). A power weight that did not sum to 1 over the two, or an escape
+// scored twice, moves the mean off the dome's radiance at each sampled wavelength.
+TEST(DomeLight, WhiteFurnaceOfAnImageDomeOfOneColour) {
     for (bool skyPoints : {true, false}) {
-        RenderScene scene;
-        scene.equiangular = skyPoints;
-        scene.lights.push_back(makeDomeLight(img, 1.f, kXyz, {}));
+        RenderScene scene = furnaceScene(makeDomeLight(oneColourImage(), 1.f, kXyz, {}), 8.f, 0.6f);
         ASSERT_FALSE(scene.lights[0]->uniformRadiance());
-        scene.media.push_back(test::gridMedium([](int, int, int) { return 1.f; }, 0, 15, 0.125, 0.f,
-                                               8.f, 0.6f, Transform::translate(Vec3d(-1.0))));
-        auto volpath = makeVolPathIntegrator();
-        ThreadState ts(scene);
-        test::SampleMean ratio;
-        for (int i = 0; i < 20000; ++i) {
-            Sampler s(22, uint64_t(i), 0);
-            const SampledWavelengths w = SampledWavelengths::sampleVisible(s.get1D());
-            ts.tracking.setWavelengths(w);
-            const float u1 = s.get1D(), u2 = s.get1D();
-            const Vec3 target(0.8f * (2 * u1 - 1), 0.8f * (2 * u2 - 1), 0.f);
-            const Vec3 o(0.f, 0.f, 4.f);
-            const RadianceSample r =
-                volpath->Li(scene, Ray{o, normalize(target - o), kInfinity}, w, s, ts);
-            const float dome = scene.lights[0]->escapedRadiance(Vec3(0, 1, 0), w, false).average();
-            ratio.add(r.L.average() / dome);
-        }
-        const double mean = ratio.mean(), se = ratio.standardError();
-        EXPECT_NEAR(mean, 1.0, 4 * se + 2e-3) << "sky points " << skyPoints << " ± " << se;
-        EXPECT_EQ(volpath->stats().cappedPaths, 0u);
+        scene.equiangular = skyPoints;
+        expectWhiteFurnace(scene, 22, skyPoints ? "sky points" : "no sky points");
     }
 }
 
 // The white furnace of a forward medium (HG g 0.9, past the lobe walks' threshold) with a faint
 // lamp for the walks to aim at (render/light_lobes.h): the paths are guided, so each medium
 // vertex's estimates, its escape included, carry its share 1/(1 + ratios) against the walks that
-// could have drawn it. An escape that kept its whole weight would count those paths twice. The
-// lamp's 10⁻⁶ W adds ~10⁻⁸ to a radiance of 1. Under a constant dome and an image of one colour
-// (the two ways a vertex leaves the dome to its escape).
+// could have drawn it. An escape that kept its whole weight would count those paths twice (the
+// mean read 1.064 and 1.049). The lamp's 10⁻⁶ W adds ~10⁻⁸ to a radiance of 1. Under a constant
+// dome and an image of one colour (the two ways a vertex leaves the dome to its escape).
 TEST(DomeLight, WhiteFurnaceOfAForwardMediumWithLobeWalks) {
-    LatLongImage img;
-    img.width = 16;
-    img.height = 8;
-    img.rgb.assign(size_t(img.width) * img.height * 3, 1.f);
     for (bool image : {false, true}) {
-        RenderScene scene;
-        scene.lights.push_back(image ? makeDomeLight(img, 1.f, kXyz, {})
-                                     : makeDomeLight(Spectrum(1.f), {}));
+        RenderScene scene = furnaceScene(image ? makeDomeLight(oneColourImage(), 1.f, kXyz, {})
+                                               : makeDomeLight(Spectrum(1.f), {}),
+                                         4.f, 0.9f);
         scene.lights.push_back(makePointLight(Vec3(0.f, 2.f, 0.f), 1e-6f, Spectrum(1.f)));
-        scene.media.push_back(test::gridMedium([](int, int, int) { return 1.f; }, 0, 15, 0.125, 0.f,
-                                               4.f, 0.9f, Transform::translate(Vec3d(-1.0))));
         ASSERT_TRUE(guidesPaths(scene));
-        auto volpath = makeVolPathIntegrator();
-        ThreadState ts(scene);
-        test::SampleMean ratio;
-        for (int i = 0; i < 20000; ++i) {
-            Sampler s(23, uint64_t(i), 0);
-            const SampledWavelengths w = SampledWavelengths::sampleVisible(s.get1D());
-            ts.tracking.setWavelengths(w);
-            const float u1 = s.get1D(), u2 = s.get1D();
-            const Vec3 target(0.8f * (2 * u1 - 1), 0.8f * (2 * u2 - 1), 0.f);
-            const Vec3 o(0.f, 0.f, 4.f);
-            const RadianceSample r =
-                volpath->Li(scene, Ray{o, normalize(target - o), kInfinity}, w, s, ts);
-            const float dome = scene.lights[0]->escapedRadiance(Vec3(0, 1, 0), w, false).average();
-            ratio.add(r.L.average() / dome);
-        }
-        const double mean = ratio.mean(), se = ratio.standardError();
-        EXPECT_NEAR(mean, 1.0, 4 * se + 2e-3) << (image ? "image" : "constant") << " ± " << se;
-        EXPECT_EQ(volpath->stats().cappedPaths, 0u);
+        expectWhiteFurnace(scene, 23, image ? "image" : "constant");
     }
 }
 

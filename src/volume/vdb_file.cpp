@@ -28,6 +28,7 @@
 #include "core/error.h"
 #include "core/grid_name.h"
 #include "volume/grid_lookup.h"
+#include "volume/openvdb_describe.h"
 #include "volume/openvdb_expression.h"
 #include "volume/openvdb_read.h"
 #include "volume/openvdb_to_nano.h"
@@ -57,32 +58,8 @@ void initOpenVdb() {
     std::call_once(once, [] { openvdb::initialize(); });
 }
 
-std::string fmt(double v) {
-    std::ostringstream s;
-    s.precision(6);
-    s << v;
-    return s.str();
-}
-
-std::string fmt(const openvdb::Vec3d& v) {
-    if (v[0] == v[1] && v[1] == v[2]) return fmt(v[0]);
-    return "(" + fmt(v[0]) + ", " + fmt(v[1]) + ", " + fmt(v[2]) + ")";
-}
-
-// "voxel size 0.476 m, index (0,0,0) at (-34, -13.1, -26.4) m", plus the map's kind when it
-// rotates or shears.
-std::string describeTransform(const openvdb::math::Transform& xform) {
-    const auto map = xform.baseMap();
-    if (!map->isLinear()) return map->type() + " (not affine)";
-    const openvdb::Mat4d m = map->getAffineMap()->getMat4();
-    bool axisAligned = true;
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) axisAligned = axisAligned && (r == c || m(r, c) == 0.0);
-    std::string s = axisAligned ? "" : "affine (rotated or sheared), ";
-    s += "voxel size " + fmt(xform.voxelSize()) + " m, index (0,0,0) at (" + fmt(m(3, 0)) + ", " +
-         fmt(m(3, 1)) + ", " + fmt(m(3, 2)) + ") m";
-    return s;
-}
+using vdbtext::describeTransform;
+using vdbtext::fmt;
 
 int requireGrid(const std::string& path, const FileLayout& layout, const std::string& name) {
     int index = vdbformat::findGrid(layout, name);

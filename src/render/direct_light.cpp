@@ -251,7 +251,9 @@ SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, 
             if (pdf > 0.f && hitLight(scene, *light, c.p, wi, w, &hs))
                 term += shadowed(hs) * weight * (phaseOnly ? 1.f : powerHeuristic(pdf, hs.pdf));
         }
-        if (!curved && (phaseOnly || ls.pdf > 0.f)) term *= share;
+        // The share weighs every strategy but a delta light's sample, which took it as its
+        // weight (curved paths' too: curvedLightTerm's deltaWeight).
+        if (!(sampled && !(ls.pdf > 0.f))) term *= share;
         L += term;
         if (split) split[scene.lightGroupSlot(i)] += term;
     }

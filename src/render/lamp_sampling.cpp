@@ -34,6 +34,19 @@ bool mediaSpan(const RenderScene& scene, const Ray& ray, float tEnd, float* a, f
 // tracking's density of scattering points (lamp_sampling.h).
 float scatterProxy(const MediumPoint& mp) { return mp.sigmaS.average(); }
 
+// The majorant's optical depth along the camera ray past which its points for the lights at
+// infinity fork no path (lamp_sampling.h).
+constexpr float kForkDepth = 16.f;
+
+// An index i < n drawn with probability term[i] / total (total = their sum > 0) by u ∈ [0, 1);
+// never one whose term is 0, even where u · total rounds past the last positive one.
+int chooseInProportion(const float* term, int n, float total, float u) {
+    int i = 0;
+    for (float left = u * total; i + 1 < n && !(left < term[i]); ++i) left -= term[i];
+    while (i > 0 && !(term[i] > 0.f)) --i;
+    return i;
+}
+
 }  // namespace
 
 bool samplesSky(const RenderScene& scene) {
@@ -41,6 +54,15 @@ bool samplesSky(const RenderScene& scene) {
     for (const auto& light : scene.lights)
         if (light->infinite()) return true;
     return false;
+}
+
+bool skyPointsFork(const RenderScene& scene) {
+    if (!samplesSky(scene) || scene.media.size() != 1 || scene.hasSurfaces()) return false;
+    const Medium& medium = *scene.media[0];
+    if (medium.emissive() || medium.fluorescent()) return false;
+    for (const auto& light : scene.lights)
+        if (!light->infinite()) return false;
+    return true;
 }
 
 bool samplesLamps(const RenderScene& scene) {
@@ -51,9 +73,13 @@ bool samplesLamps(const RenderScene& scene) {
 }
 
 LampSampling::LampSampling(const RenderScene& scene, const Ray& ray, float tEnd, bool on,
-                           Sampler& sampler, TrackingContext* sky)
-    : mRay(ray), mScene(&scene) {
+                           Sampler& sampler, TrackingContext* sky, bool forks)
+    : mRay(ray), mScene(&scene), mForks(forks && sky) {
     if (sky) drawSky(*sky, tEnd, sampler);
+    // A fork where the points lie no further apart than kForkDepth / kSkyStrata in the
+    // majorant's optical depth (lamp_sampling.h).
+    for (size_t k = 0; k < mSkyCount; ++k)
+        if (mSky[k].depth > kForkDepth) mForks = false;
     float a = 0.f, b = 0.f;
     if (!on || !mediaSpan(scene, ray, tEnd, &a, &b)) return;
     for (size_t i = 0; i < scene.lights.size() && mCount < kMaxLamps; ++i) {
@@ -80,7 +106,8 @@ void LampSampling::passPoints(float t) {
         p.passed = true;
     };
     for (size_t k = 0; k < mCount; ++k) pass(mLamps[k].point);
-    for (size_t k = 0; k < mSkyCount; ++k) pass(mSky[k].point);
+    for (size_t k = 0; k < mSkyCount; ++k)
+        for (int i = 0; i < mSky[k].count; ++i) pass(mSky[k].points[i]);
 }
 
 void LampSampling::ratioTrack(const Collision& c, const TrackingContext& tracking) {
@@ -113,83 +140,109 @@ const LampSampling::Lamp* LampSampling::find(size_t light) const {
     return nullptr;
 }
 
+const LampSampling::SkyPoint* LampSampling::findSky(int medium) const {
+    for (size_t k = 0; k < mSkyCount; ++k)
+        if (mSky[k].medium == medium) return &mSky[k];
+    return nullptr;
+}
+
 float LampSampling::scatterPointWeight(size_t light, const Collision& c) const {
     const Lamp* lamp = find(light);
     if (lamp) return powerWeight(scatterProxy(c.mp), lamp->segment.pdf(c.t));
-    for (size_t k = 0; k < mSkyCount; ++k)
-        if (mSky[k].medium == c.medium && c.t < mSky[k].tCap && mScene->lights[light]->infinite())
-            return 0.f;
+    const SkyPoint* sky = mScene->lights[light]->infinite() ? findSky(c.medium) : nullptr;
+    if (sky && !mForks) return powerWeight(scatterProxy(c.mp), sky->density(c.sigmaMaj));
     return 1.f;
 }
 
-// The majorant's optical depth along the camera ray that its points for the lights at
-// infinity cover (lamp_sampling.h): beyond it, delta tracking's scattering points alone.
-constexpr float kSkyDepthCap = 3.f;
+bool LampSampling::keepsScatterPoint(const Collision& c, Sampler& sampler) const {
+    const SkyPoint* sky = mForks ? findSky(c.medium) : nullptr;
+    if (!sky) return true;
+    return sampler.get1D() < powerWeight(scatterProxy(c.mp), sky->density(c.sigmaMaj));
+}
 
 void LampSampling::drawSky(TrackingContext& tracking, float tEnd, Sampler& sampler) {
     for (size_t m = 0; m < tracking.size() && mSkyCount < kMaxSky; ++m) {
         const Medium& medium = tracking.medium(m);
         const Ray r = tracking.context(m).toObject(mRay);
         const float path = tracking.pathMajorant(m);
-        // The first walk: the majorant's optical depth over the segment, up to the cap.
-        float depth = 0.f, tCap = tEnd;
+        // The first walk: the majorant's optical depth over the segment.
+        float depth = 0.f;
         MajorantGrid::Walk walk(medium.majorant(), r.o, r.d, 0.f, tEnd);
         for (MajorantGrid::Walk::Segment s; walk.next(&s); walk.advanceTo(s.t1)) {
             const float sigma = path >= 0.f ? path : s.sigmaMaj;
-            if (!(sigma > 0.f)) continue;
-            const float cell = sigma * (s.t1 - s.t0);
-            if (depth + cell >= kSkyDepthCap) {
-                tCap = s.t0 + (kSkyDepthCap - depth) / sigma;
-                depth = kSkyDepthCap;
-                break;
-            }
-            depth += cell;
+            if (sigma > 0.f) depth += sigma * (s.t1 - s.t0);
         }
         const float u = sampler.get1D();
-        if (!(depth > 0.f)) continue;
-        // The point: the exponential of the majorant truncated at `depth`, by inversion.
-        const float mass = -std::expm1(-depth);
-        const float tau = std::min(-std::log1p(-u * mass), depth);
+        if (!(depth > 0.f) || !std::isfinite(depth)) continue;
+        // The second: one point per stratum of [0, depth), uniform in the majorant's depth.
+        SkyPoint& sky = mSky[mSkyCount];
+        sky.medium = int(m);
+        sky.depth = depth;
+        sky.count = 0;
         MajorantGrid::Walk second(medium.majorant(), r.o, r.d, 0.f, tEnd);
-        float t, sigma;
-        if (!nextTentativeCollision(second, 0.f, tau, &t, &sigma, path)) continue;
-        SkyPoint& p = mSky[mSkyCount++];
-        p.medium = int(m);
-        p.tCap = tCap;
-        p.point.t = t;
-        p.point.pdf = sigma * std::exp(-tau) / mass;
+        float t = 0.f, last = 0.f;
+        for (int i = 0; i < kSkyStrata; ++i) {
+            const float tau = (float(i) + u) * depth / float(kSkyStrata);
+            float sigma;
+            if (!nextTentativeCollision(second, t, tau - last, &t, &sigma, path)) break;
+            last = tau;
+            sky.points[sky.count++] = FlightPoint{t, sky.density(sigma)};
+        }
+        if (sky.count) ++mSkyCount;
     }
 }
 
 void LampSampling::gatherSky(const RenderScene& scene, const SampledSpectrum& beta,
-                             Sampler& sampler, ThreadState& ts, PathRecorder& rec) const {
+                             Sampler& sampler, ThreadState& ts, PathRecorder& rec,
+                             std::optional<SkyFork>* fork) const {
     for (size_t k = 0; k < mSkyCount; ++k) {
         const SkyPoint& sky = mSky[k];
         const size_t m = size_t(sky.medium);
-        if (rec.holdout(m) || !(sky.point.pdf > 0.f)) continue;
+        if (rec.holdout(m)) continue;
         const Medium& medium = ts.tracking.medium(m);
         Medium::Context& ctx = ts.tracking.context(m);
+        const Ray r = ctx.toObject(mRay);
+        // Each point's term of the strata's sum, w(t) β T̂(0, t) σs(t) / p(t), with the
+        // transmittance the flight read where it got that far: one term is lit, chosen in
+        // proportion to it and divided by its probability (lamp_sampling.h).
+        std::array<MediumPoint, kSkyStrata> mp;
+        std::array<float, kSkyStrata> term{};
+        float total = 0.f;
+        for (int i = 0; i < sky.count; ++i) {
+            const FlightPoint& point = sky.points[i];
+            medium.eval(r.at(point.t), ctx, &mp[i]);
+            ++ts.tracking.lookups;
+            const SampledSpectrum known = closedFormTransmittance(ts.tracking, mRay, point.t) *
+                                          (point.passed ? point.ratio : mRatio);
+            term[i] = powerWeight(point.pdf, scatterProxy(mp[i])) *
+                      (known * mp[i].sigmaS).average() / point.pdf;
+            total += term[i];
+        }
+        if (!(total > 0.f)) continue;
+        const int chosen = chooseInProportion(term.data(), sky.count, total, sampler.get1D());
+        const FlightPoint& point = sky.points[chosen];
+        const SampledSpectrum T = toPoint(point, ts.tracking, sampler);
+        if (T.isZero()) continue;
         Collision c;
         c.medium = sky.medium;
-        c.t = sky.point.t;
+        c.t = point.t;
         c.p = mRay.at(c.t);
         c.sigmaMaj = 0.f;
-        medium.eval(ctx.toObject(mRay).at(c.t), ctx, &c.mp);
-        ++ts.tracking.lookups;
-        if (c.mp.sigmaS.isZero()) continue;
-        const SampledSpectrum T = toPoint(sky.point, ts.tracking, sampler);
-        if (T.isZero()) continue;
-        const SampledSpectrum weight = beta * T * c.mp.sigmaS / sky.point.pdf;
+        c.mp = mp[chosen];
+        const float w = powerWeight(point.pdf, scatterProxy(c.mp));
+        const SampledSpectrum weight =
+            beta * T * c.mp.sigmaS * (w * total / term[chosen]) / point.pdf;
         rec.litInMedium(
             weight,
             directLightMedium(scene, c, -mRay.d, sampler, ts, nullptr, MediumLights::InfiniteOnly),
             c.t);
+        if (mForks && fork) *fork = SkyFork{c, weight};
     }
 }
 
 void LampSampling::gather(const RenderScene& scene, const SampledSpectrum& beta, Sampler& sampler,
-                          ThreadState& ts, PathRecorder& rec) const {
-    if (mSkyCount) gatherSky(scene, beta, sampler, ts, rec);
+                          ThreadState& ts, PathRecorder& rec, std::optional<SkyFork>* fork) const {
+    if (mSkyCount) gatherSky(scene, beta, sampler, ts, rec, fork);
     const SampledWavelengths& w = ts.tracking.wavelengths();
     const Vec3 wo = -mRay.d;
     for (size_t k = 0; k < mCount; ++k) {

@@ -13,10 +13,12 @@
 //
 // Weights (per wavelength; see transport/tracking.h):
 //   emission      β σa Le / σ̄                    at every tentative collision
-//   scattering    β ← β σs / (σ̄ P_s)             then NEE and β ← β p/pdf (= 1 for one lobe)
+//   real          β ← β σs / (σ̄ (P_a + P_s))     it scatters, absorption a weight; then NEE
+//                                                 and β ← β p/pdf (= 1 for one lobe)
 //   null          β ← β σn / (σ̄ P_n)
-// A path ends by absorption (probability P_a), by leaving every medium, by roulette, or at the
-// depth cap (counted in the summary: a capped path is a bias, however rare).
+// A path ends by leaving every medium, by roulette, where nothing scatters (σs = 0), or at the
+// depth cap (counted in the summary: a capped path is a bias, however rare). Absorption is a
+// weight, not an end (transport/path_vertex.h: chooseEvent).
 //
 // Curved light: behind the curved camera (render/curved_camera.h), where a [refraction] field
 // bends light, every segment after the camera's chord follows its Fermat path (flyCurved) and
@@ -48,7 +50,7 @@
 // with w = n_f Γ σa,c(λi) η(λi → λo) (λi/λo) / (q σ̄ P_f) — λi/λo because η counts photons and
 // radiance counts energy, the adjoint of the photon walk's power × λi/λo (Mobley 1994 §5.13) —
 // and next-event estimation through the isotropic lobe (render/inelastic_light.h). Not chosen:
-// the ordinary events, their weights divided by 1 − P_f; absorption then ends the path.
+// the ordinary events, their weights divided by 1 − P_f.
 #include <atomic>
 #include <cmath>
 #include <optional>
@@ -109,24 +111,54 @@ public:
         // Lobe walks (render/light_lobes.h) are straight: where paths bend, none is drawn.
         path.guided = !ts.curved && guidesPaths(scene);
         if (path.guided) path.walkStart = lobeWalkStart(scene);
+        std::optional<Fork> fork;
+        trace(scene, sampler, ts, path, rec, &fork);
+        if (fork) trace(scene, sampler, ts, fork->path, fork->rec, nullptr);
+        if (path.reemitted) ts.tracking.setWavelengths(w);  // the caller's, for its next path
+        rec.finish(path.throughput);
+        return out;
+    }
+
+    IntegratorStats stats() const override {
+        IntegratorStats s;
+        s.cappedPaths = mCapped.load();
+        return s;
+    }
+
+private:
+    // A second path from the camera ray's point for the lights at infinity (skyPointsFork,
+    // render/lamp_sampling.h), past its first vertex, with its branch of the sample's record.
+    struct Fork {
+        CameraPath path;
+        PathRecorder rec;
+    };
+
+    // The path from its ray on, vertex after vertex, until it ends; on the camera ray, where
+    // `fork` is given and the scene's points for the lights at infinity fork, the second path
+    // they start.
+    void trace(const RenderScene& scene, Sampler& sampler, ThreadState& ts, CameraPath& path,
+               PathRecorder& rec, std::optional<Fork>* fork) const {
         // Lobe walks weigh next-event estimation against themselves; lamps and the lights at
         // infinity draw their own points only where they do not (render/lamp_sampling.h).
         const bool towardsLamps = !path.guided && samplesLamps(scene);
         const bool towardsSky = !path.guided && samplesSky(scene);
+        const bool forks = fork && !ts.curved && mMaxDepth > 1 && skyPointsFork(scene);
         for (;; ++path.depth) {
             // Where paths bend, every segment after the camera's (a chord the curved camera
             // hands over) follows its Fermat path.
             const bool bends = ts.curved && path.depth > 0;
             SurfaceAhead ahead = bends ? SurfaceAhead() : surfaceAhead(scene, path.ray);
-            // The camera ray also draws a point per medium for the lights at infinity.
+            // The camera ray also draws points per medium for the lights at infinity.
             const bool sky = path.depth == 0 && towardsSky;
             LampSampling lamps(scene, path.ray, ahead.tEnd, towardsLamps && !bends, sampler,
-                               sky ? &ts.tracking : nullptr);
+                               sky ? &ts.tracking : nullptr, sky && forks);
             const SampledSpectrum betaAtStart = path.throughput.beta;
             const Flight f = bends ? flyCurved(scene, lamps, sampler, ts, path, rec, &ahead)
                                    : fly(straightTrack(ts, path.ray, ahead.tEnd, sampler), lamps,
                                          sampler, ts, path, rec);
-            if (!lamps.empty()) lamps.gather(scene, betaAtStart, sampler, ts, rec);
+            std::optional<SkyFork> skyFork;
+            if (!lamps.empty()) lamps.gather(scene, betaAtStart, sampler, ts, rec, &skyFork);
+            if (skyFork) *fork = forkAt(*skyFork, path, rec, sampler, ts);
             // What the camera sees through the flight: the plate, past nothing or a holdout.
             const bool plate = f.end == Flight::End::Escaped &&
                                (!ahead.hit || rec.holdout(*scene.geometry, *ahead.hit));
@@ -136,8 +168,8 @@ public:
                 rec.coverage(plate, path.throughput.beta.average());
             bool goesOn = false;
             if (f.end == Flight::End::Scattered) {
-                scatterInMedium(scene, f.at, lamps, sampler, ts, path, rec);
-                goesOn = true;
+                goesOn = lamps.keepsScatterPoint(f.at, sampler);
+                if (goesOn) scatterInMedium(scene, f.at, lamps, sampler, ts, path, rec);
             } else if (f.end == Flight::End::Reemitted) {
                 reemit(scene, f, sampler, ts, path, rec);
                 goesOn = true;
@@ -153,18 +185,26 @@ public:
             }
             if (!path.throughput.roulette(sampler)) break;
         }
-        if (path.reemitted) ts.tracking.setWavelengths(w);  // the caller's, for its next path
-        rec.finish(path.throughput);
-        return out;
     }
 
-    IntegratorStats stats() const override {
-        IntegratorStats s;
-        s.cappedPaths = mCapped.load();
-        return s;
+    // The second path from the camera ray's point x for the lights at infinity: its
+    // next-event estimate made (LampSampling::gather), it goes on along a phase-function sample,
+    // with its own branch of the record from the camera ray on.
+    Fork forkAt(const SkyFork& x, const CameraPath& camera, const PathRecorder& rec,
+                Sampler& sampler, ThreadState& ts) const {
+        Fork fork{CameraPath(camera.ray, camera.wavelengths), rec.branch()};
+        CameraPath& path = fork.path;
+        path.throughput.beta = x.beta;
+        fork.rec.scatteredInMedium(x.at.t);
+        path.specularChain = false;
+        float pdf;
+        const Vec3 dir = samplePhase(ts.tracking.medium(x.at.medium), x.at, path.ray.d, sampler,
+                                     &path.throughput, &pdf);
+        path.ray = Ray{x.at.p, dir, kInfinity};
+        path.depth = 1;
+        return fork;
     }
 
-private:
     // The flight along the path's ray, its tentative collisions handed over by `track` (true
     // when the ray got through): emission scored at every tentative collision, then the event
     // chosen there (transport/path_vertex.h), or in a fluorescent medium first the inelastic
@@ -261,7 +301,9 @@ private:
         // The lights at infinity are left to the path's continuation where no point drawn for
         // them on the segment weighs against next-event estimation and no field bends the path.
         // Its escape then counts as x's estimate does, with the lobe walks' share 1/(1 + ratios).
-        const bool escapes = !ts.curved && !lamps.drewSky();
+        // At the depth cap there is no continuation to leave them to.
+        const bool last = path.depth + 1 >= mMaxDepth;
+        const bool escapes = !ts.curved && !lamps.weighsSky() && !last;
         rec.litInMedium(
             path.throughput.beta / (1.f + ratios),
             directLightMedium(scene, x, -path.ray.d, sampler, ts, lamps.empty() ? nullptr : &lamps,
@@ -272,7 +314,6 @@ private:
         path.escapePdf = 0.f;
         // Where paths bend, the flight is no line: the emission stays the flight's alone.
         const EmissionLight* line = ts.curved ? nullptr : mEmission.get();
-        const bool last = path.depth + 1 >= mMaxDepth;
         if (line)
             sampleLineEmission(scene, *line, x, path.ray.d, path.throughput.beta, last, sampler, ts,
                                rec);

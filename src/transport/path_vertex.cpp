@@ -15,11 +15,11 @@ CollisionOutcome collisionEvent(const Collision& c, const Medium& medium, PathTh
 
 CollisionOutcome chooseEvent(const Collision& c, PathThroughput& path, Sampler& sampler) {
     const EventProbabilities e = eventProbabilities(c, path.beta);
-    const float u = sampler.get1D();
-    if (u < e.pAbsorb) return {MediumEvent::Absorbed, e.pAbsorb};
-    if (u < e.pAbsorb + e.pScatter) {
-        path.beta *= c.mp.sigmaS / (c.sigmaMaj * e.pScatter);
-        return {MediumEvent::Scattered, e.pAbsorb};
+    const float pReal = e.pAbsorb + e.pScatter;
+    if (sampler.get1D() < pReal) {
+        // Absorption as a weight: the real collision scatters what σs/σt of it scatters.
+        path.beta *= c.mp.sigmaS / (c.sigmaMaj * pReal);
+        return {path.alive() ? MediumEvent::Scattered : MediumEvent::Absorbed, e.pAbsorb};
     }
     path.beta *= e.sigmaN / (c.sigmaMaj * e.pNull);
     return {MediumEvent::Null, e.pAbsorb};

@@ -79,11 +79,17 @@ struct PathSegment {
 
 // What a camera path does at a tentative collision (null-collision formulation,
 // transport/tracking.h): the emission term β σa Le / σ̄ is scored into *L at every tentative
-// collision, then one event is chosen with the spectral-tracking probabilities and β weighted:
+// collision, then a real or a null collision is chosen with the spectral-tracking
+// probabilities (P_r = P_a + P_s) and β weighted:
 //   null        β ← β σn / (σ̄ P_n)
-//   scattering  β ← β σs / (σ̄ P_s)
-//   absorption  β unchanged: the caller ends the path or re-emits (fluorescence), with
-//               pAbsorb the probability the event had.
+//   real        β ← β σs / (σ̄ P_r): it scatters, absorption taken as a weight (σs/σt, the
+//               albedo, for a grey medium); Absorbed only where β is then 0 (σs = 0).
+// Absorption as a weight rather than as an end: a path through a bright medium (albedo 0.99)
+// ends by absorption on a coin that makes the pixel a Bernoulli variable (variance p(1 − p));
+// weighted, it escapes with β = Π albedo, whose spread over path lengths is far smaller
+// (docs/regimes.md: relMSE of the sky-white cloud's core 0.022 → 0.008 at 16 samples for
+// 4 % more CPU). Roulette (PathThroughput::roulette) ends the paths whose β falls. pAbsorb is
+// the probability absorption had (fluorescence's inelastic event is drawn against it).
 enum class MediumEvent { Null, Absorbed, Scattered };
 struct CollisionOutcome {
     MediumEvent event;

@@ -325,3 +325,16 @@ TEST(DomeLight, FindsTheSunInAMap) {
     EXPECT_FALSE(makeDomeLight(img, 1.f, kXyz, DomeSettings{})->lobe().has_value());
     EXPECT_FALSE(makeDomeLight(Spectrum(1.f), DomeSettings{})->lobe().has_value());
 }
+
+// A path cut at its last vertex has no continuation to leave the dome to: there the vertex
+// takes the dome by its shadow rays. Volpath cut after one scattering event is then the
+// single-scattering integrator (before, under a constant dome, it read 0).
+TEST(DomeLight, APathsLastVertexStillSeesTheDome) {
+    RenderScene scene = furnaceScene(makeDomeLight(Spectrum(1.f), {}), 2.f, 0.6f);
+    scene.equiangular = false;
+    const Ray ray{Vec3(-2.f, 0.1f, 0.2f), Vec3(1, 0, 0), kInfinity};
+    const auto cut = test::estimateAlongRay(*makeVolPathIntegrator(1), scene, ray, 20000);
+    const auto single = test::estimateAlongRay(*makeSingleScatterIntegrator(), scene, ray, 20000);
+    EXPECT_GT(single.mean, 0.1);
+    EXPECT_NEAR(cut.mean, single.mean, 4 * std::hypot(cut.se, single.se));
+}

@@ -272,3 +272,36 @@ TEST(LampSampling, TheDomesPointsOnTheCameraRayKeepTheMeanAndLowerTheNoise) {
         EXPECT_LT(sky[k].se * 2, dist[k].se) << "λ" << k;
     }
 }
+
+// A thin wisp beside a dense slab: the majorant cells the camera ray crosses hold the slab's
+// density, 1000 times the wisp's, so the majorant's optical depth along the ray (about 12)
+// says nothing of its real one (0.012). The dome's points lie uniformly in the majorant's
+// depth over the whole segment and are weighed against delta tracking's scattering points by
+// their densities: a cap on the majorant's depth would leave most of the ray to delta
+// tracking, a coin of probability 1 % and a value a hundred times the mean (single
+// scattering: paths cut after one event). With paths of every length, the scene forks
+// (skyPointsFork): the lit point starts a second path and delta tracking's goes on with the
+// probability of its weight; the mean stays, and the light scattered again off the slab comes
+// through the lit points too.
+TEST(LampSampling, TheDomesPointsStayQuietWhereTheMajorantIsLoose) {
+    RenderScene scene;
+    scene.media.push_back(
+        test::gridMedium([](int, int j, int) { return j == 17 || j == 18 ? 3.f : 0.003f; }, 0, 31,
+                         kH, 0.02f, 4.f, 0.6f));
+    DomeSettings hidden;
+    hidden.cameraVisible = false;
+    scene.lights.push_back(makeDomeLight(Spectrum(1.f), hidden));
+    ASSERT_TRUE(skyPointsFork(scene));
+    const Ray ray{Vec3(-0.2f, float(16 * kH), 0.5f), Vec3(1, 0, 0), kInfinity};
+    for (int depth : {1, 16}) {
+        const auto volpath = makeVolPathIntegrator(depth);
+        scene.equiangular = true;
+        const Estimate sky = test::estimateAlongRay(*volpath, scene, ray, 40000);
+        scene.equiangular = false;
+        const Estimate dist = test::estimateAlongRay(*volpath, scene, ray, 40000);
+        std::printf("depth %d: the dome's points %.5g ± %.2g, delta tracking's %.5g ± %.2g\n",
+                    depth, sky.mean, sky.se, dist.mean, dist.se);
+        EXPECT_NEAR(sky.mean, dist.mean, 4 * std::hypot(sky.se, dist.se)) << depth;
+        EXPECT_LT(sky.se * (depth == 1 ? 8 : 2), dist.se) << depth;
+    }
+}

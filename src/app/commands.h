@@ -45,6 +45,7 @@ struct InfoOptions {
     int frame = 1;            // for $F4 patterns and keyed motion, as `render --frame`
     double shutter = -1;      // --shutter WIDTH (frames); −1: the scene's
     bool motionBlur = false;  // --motion-blur: --shutter 0.5
+    bool load = false;        // --load: a bare volume file loaded as a scene, not just listed
 };
 int runInfo(const InfoOptions& o);
 Command addInfoCommand(CLI::App& app);

@@ -15,7 +15,7 @@ namespace mirage {
 namespace {
 
 void printGrids(const std::string& file, const VdbFileInfo& info) {
-    std::printf("  %s: OpenVDB file version %s, %zu grid(s)\n", file.c_str(),
+    std::printf("  %s: %s file version %s, %zu grid(s)\n", file.c_str(), info.format.c_str(),
                 info.fileVersion.c_str(), info.grids.size());
     for (size_t i = 0; i < info.grids.size(); ++i) {
         const GridInfo& g = info.grids[i];
@@ -212,9 +212,26 @@ void printSceneInfo(const std::string& input, const SceneInfo& info) {
         std::printf("  [%s] %-22s %s\n", t.active ? "on " : "off", t.name.c_str(), t.why.c_str());
 }
 
+// A bare volume file from its metadata and topology: its grids, and their leaves and bytes at
+// each precision; its voxels are not read (a 10⁹-voxel cache in a second, not minutes).
+void printVolumeFileInfo(const std::string& input, const VolumeFileInfo& info) {
+    std::printf("%s\n", input.c_str());
+    printGrids(info.file, info.vdb);
+    printPrecisionTable(info.grids);
+    std::printf(
+        "voxels: not read (the file's metadata and topology only); --load loads the file as "
+        "`mirage render` does and describes what it becomes: shader, binding, physics\n");
+}
+
 }  // namespace
 
 int runInfo(const InfoOptions& o) {
+    // --set and the shutter describe the scene a bare file becomes: they load it too.
+    const bool asScene = o.load || !o.overrides.empty() || o.shutter >= 0 || o.motionBlur;
+    if (isVolumeFile(o.input) && !asScene) {
+        printVolumeFileInfo(o.input, describeVolumeFile(o.input, o.frame));
+        return 0;
+    }
     ColorPipeline color(o.ocioConfig);
     LoadOptions load{o.frame, o.overrides};
     const double shutterWidth = o.motionBlur ? 0.5 : o.shutter;
@@ -237,6 +254,9 @@ Command addInfoCommand(CLI::App& app) {
         "Describe the scene with a shutter open for WIDTH frames, as render --shutter");
     info->add_flag("--motion-blur", o->motionBlur, "The same with a 180° shutter (--shutter 0.5)")
         ->excludes("--shutter");
+    info->add_flag("--load", o->load,
+                   "A bare .vdb/.nvdb: load it as render does and describe the scene it becomes "
+                   "(without: its metadata and topology, no voxel read)");
     return {info, [o] { return runInfo(*o); }};
 }
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "core/grid_name.h"
 #include "film/color.h"
 #include "film/cryptomatte.h"
 #include "photon/medium_emitter.h"
@@ -135,6 +136,29 @@ std::string describePhotons(const Scene& scene) {
 }
 
 }  // namespace
+
+VolumeFileInfo describeVolumeFile(const std::string& path, int frame) {
+    VolumeFileInfo info;
+    info.file = expandFramePattern(path, frame);
+    info.vdb = inspectVdbFile(info.file);
+    if (info.vdb.format != "OpenVDB") return info;
+    for (size_t i = 0; i < info.vdb.grids.size(); ++i) {
+        const GridInfo& g = info.vdb.grids[i];
+        if (g.valueType != "float" && g.valueType != "half" && g.valueType != "double") continue;
+        const std::string name = gridName(g.name, i);
+        const GridTopology topology = readGridTopology(info.file, name);
+        SlotInfo grid;
+        grid.slot = grid.grid = name;
+        grid.activeVoxels = g.activeVoxels;
+        grid.treeBytes = topology.floatTreeBytes;
+        grid.leaves = topology.leaves;
+        for (GridPrecision p : kAllPrecisions)
+            grid.bytesAt[size_t(p)] =
+                treeBytesAt(p, GridPrecision::Float, topology.floatTreeBytes, topology.leaves);
+        info.grids.push_back(grid);
+    }
+    return info;
+}
 
 SceneInfo describeScene(const Scene& scene, const ColorPipeline& color) {
     SceneInfo info;

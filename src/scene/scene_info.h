@@ -104,6 +104,21 @@ struct SceneInfo {
     std::vector<PhysicsTerm> physics;
 };
 
+// What `mirage info FILE.vdb` says of a bare volume file without reading a voxel: its grids
+// from the file's metadata, and for each scalar OpenVDB grid its leaves and tree bytes at every
+// precision from its topology (SlotInfo's slot and grid both the grid's name; no maximum, no
+// dense copy: those need the voxels).
+struct VolumeFileInfo {
+    std::string file;  // the path, its frame pattern filled in
+    VdbFileInfo vdb;
+    std::vector<SlotInfo> grids;
+};
+
+// The record of bare volume file `path` (a $F4 pattern filled in with `frame`), from its
+// metadata and topology alone: gridReadCount() does not change. Throws MirageError for a
+// missing or corrupt file.
+VolumeFileInfo describeVolumeFile(const std::string& path, int frame);
+
 // The record of `scene`, loaded through `color`. Reads each volume file's grid list (metadata),
 // never a grid the load left unread. Throws MirageError for a file gone bad.
 SceneInfo describeScene(const Scene& scene, const ColorPipeline& color);

@@ -26,8 +26,9 @@ std::shared_ptr<const DenseBlock> DenseBlock::of(const nanovdb::FloatGrid& grid,
     auto block = std::make_shared<DenseBlock>();
     block->mMin = lo;
     for (int a = 0; a < 3; ++a) block->mDim[a] = uint32_t(dim[a]);
-    block->mValues.resize(count);
-    float* values = block->mValues.data();
+    block->mValues.reset(new float[count]);
+    block->mCount = count;
+    float* values = block->mValues.get();
     // By blocks of 8³ aligned with the leaves: a leaf's values copied from its array, else the
     // one value the tree holds over the whole block (a tile's or the background) — what a
     // lookup of each voxel returns, for one probe per block. In parallel over x slabs of blocks.

@@ -21,7 +21,6 @@
 
 #include <cstdint>
 #include <memory>
-#include <vector>
 
 namespace mirage {
 
@@ -61,12 +60,15 @@ public:
         return uint32_t(i) * mDim[1] * mDim[2] + uint32_t(j) * mDim[2] + uint32_t(k);
     }
     float value(uint32_t o) const { return mValues[o]; }
-    uint64_t bytes() const { return uint64_t(mValues.size()) * sizeof(float); }
+    uint64_t bytes() const { return mCount * sizeof(float); }
 
 private:
     nanovdb::Coord mMin;
     uint32_t mDim[3] = {0, 0, 0};
-    std::vector<float> mValues;
+    // Not zeroed when allocated (a vector would zero it on one thread, a second at 10⁸
+    // voxels): of() writes every value, in parallel.
+    std::unique_ptr<float[]> mValues;
+    uint64_t mCount = 0;
 };
 
 }  // namespace mirage

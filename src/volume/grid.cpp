@@ -4,11 +4,13 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <optional>
 #include <type_traits>
 #include <utility>
 
 #include "core/error.h"
 #include "volume/grid_lookup.h"
+#include "volume/load_progress.h"
 #include "volume/stored_values.h"
 
 namespace mirage {
@@ -19,11 +21,16 @@ namespace {
 // values only, but the sampler also reads inactive voxels of a leaf and inactive tiles, so
 // every stored value counts: all leaf values (as decoded, at a quantised precision), all tile
 // values of the internal and root nodes, and the background (what lies outside every tile).
+// `leafMaximum`, when given, is the leaves' largest value, known already: only the tiles are
+// read then.
 template <typename Grid>
-float maxStoredValue(const Grid& grid) {
+float maxStoredValue(const Grid& grid, std::optional<float> leafMaximum) {
     float m = grid.tree().background();
     auto keep = [&m](float v, uint64_t) { m = std::max(m, v); };
-    if constexpr (std::is_same_v<Grid, nanovdb::FloatGrid>) {
+    if (leafMaximum) {
+        m = std::max(m, *leafMaximum);
+        forEachTileValue(grid.tree(), keep);
+    } else if constexpr (std::is_same_v<Grid, nanovdb::FloatGrid>) {
         // A float grid's leaves are one array: their maximum on every core (a big cache's
         // leaves hold gigabytes), then the tiles.
         const auto* leaf = grid.tree().getFirstLeaf();
@@ -50,7 +57,7 @@ struct GridFacts {
 };
 
 template <typename Grid>
-GridFacts gridFacts(const Grid& g) {
+GridFacts gridFacts(const Grid& g, std::optional<float> leafMaximum) {
     GridFacts f;
     // A voxel at index i contributes to trilinear lookups in the open interval (i-1, i+1) on
     // each axis, so the medium is non-zero only inside the active index bbox dilated by one
@@ -70,7 +77,7 @@ GridFacts gridFacts(const Grid& g) {
     f.minVoxelSize = float(std::min(voxel[0], std::min(voxel[1], voxel[2])));
     f.activeVoxels = g.activeVoxelCount();
     f.leaves = g.tree().nodeCount(0);
-    f.maxValue = maxStoredValue(g);
+    f.maxValue = maxStoredValue(g, leafMaximum);
     return f;
 }
 
@@ -93,13 +100,17 @@ GridPrecision precisionOf(const nanovdb::GridHandle<nanovdb::HostBuffer>& handle
 
 FloatGrid::FloatGrid(nanovdb::GridHandle<nanovdb::HostBuffer> handle, std::string name,
                      uint64_t sanitizedVoxels)
+    : FloatGrid(std::move(handle), std::move(name), sanitizedVoxels, std::nullopt) {}
+
+FloatGrid::FloatGrid(nanovdb::GridHandle<nanovdb::HostBuffer> handle, std::string name,
+                     uint64_t sanitizedVoxels, std::optional<float> leafMaximum)
     : mHandle(std::make_shared<nanovdb::GridHandle<nanovdb::HostBuffer>>(std::move(handle))),
       mName(std::move(name)),
       mSanitized(sanitizedVoxels) {
     mPrecision = precisionOf(*mHandle);
     MIRAGE_CHECK(mPrecision != GridPrecision::Float || grid() != nullptr);
     mIndexMap = visit([](const auto& g) { return IndexMap(g.map()); });
-    const GridFacts facts = visit([](const auto& g) { return gridFacts(g); });
+    const GridFacts facts = visit([&](const auto& g) { return gridFacts(g, leafMaximum); });
     mObjectBounds = facts.objectBounds;
     mMinVoxelSize = facts.minVoxelSize;
     mActiveVoxels = facts.activeVoxels;
@@ -107,7 +118,12 @@ FloatGrid::FloatGrid(nanovdb::GridHandle<nanovdb::HostBuffer> handle, std::strin
     mMaxValue = facts.maxValue;
     // A quantised grid keeps no dense copy: a float copy of its box would undo the memory its
     // precision saves, and a copy at its precision would cost the decode it spares.
-    if (mPrecision == GridPrecision::Float) mDense = DenseBlock::of(*grid(), treeBytes());
+    if (mPrecision == GridPrecision::Float) {
+        // A second at 10⁸ voxels: a stage of a big grid's load.
+        LoadStage stage("dense copy of", "", "grid '" + mName + "'", treeBytes(), 1, "step");
+        mDense = DenseBlock::of(*grid(), treeBytes());
+        stage.advance(1);
+    }
 }
 
 float FloatGrid::sampleQuantised(const Accessor& acc, const Vec3& pi) const {

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "core/math.h"
@@ -27,6 +28,11 @@ public:
     FloatGrid() = default;
     FloatGrid(nanovdb::GridHandle<nanovdb::HostBuffer> handle, std::string name,
               uint64_t sanitizedVoxels = 0);
+    // The same, where the grid's maker saw every value its leaves store (inactive voxels too,
+    // as a lookup decodes them): `leafMaximum`, the largest, spares maxValue() a pass over
+    // the leaves (gigabytes, in a big cache); nullopt: that pass.
+    FloatGrid(nanovdb::GridHandle<nanovdb::HostBuffer> handle, std::string name,
+              uint64_t sanitizedVoxels, std::optional<float> leafMaximum);
 
     bool valid() const { return mHandle != nullptr; }
     const std::string& name() const { return mName; }

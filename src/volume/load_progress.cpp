@@ -15,4 +15,14 @@ Progress::Mode gridLoadProgress() { return tQuiet ? Progress::Mode::Quiet : gMod
 QuietGridLoads::QuietGridLoads() : mWasQuiet(tQuiet) { tQuiet = true; }
 QuietGridLoads::~QuietGridLoads() { tQuiet = mWasQuiet; }
 
+LoadStage::LoadStage(const std::string& stage, const std::string& path,
+                     const std::string& gridLabel, uint64_t bytes, uint64_t total,
+                     const std::string& unit)
+    : Progress(stage + (path.empty() ? "" : " " + path.substr(path.find_last_of('/') + 1)) + " " +
+                   gridLabel,
+               total, unit,
+               bytes >= kLoadProgressBytes ? gridLoadProgress() : Progress::Mode::Quiet) {
+    advance(0);
+}
+
 }  // namespace mirage

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "core/progress.h"
 
@@ -28,5 +29,16 @@ private:
 
 // Grids smaller than this in the file load without a bar: they take well under a second.
 constexpr uint64_t kLoadProgressBytes = uint64_t(64) << 20;
+
+// The bar of one stage of a grid's load — "<stage> <file name> <grid>" (no file name where
+// `path` is empty: a grid in memory), `total` `unit`s long
+// — in the process's mode, or quiet for a grid of fewer than kLoadProgressBytes (`bytes`: its
+// size in the file, or in memory). Drawn at once, at 0 %: a stage that cannot count its work
+// still shows that it runs.
+class LoadStage : public Progress {
+public:
+    LoadStage(const std::string& stage, const std::string& path, const std::string& gridLabel,
+              uint64_t bytes, uint64_t total, const std::string& unit);
+};
 
 }  // namespace mirage

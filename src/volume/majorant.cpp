@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "volume/grid_lookup.h"
 #include "volume/index_map.h"
+#include "volume/load_progress.h"
 #include "volume/stored_values.h"
 
 namespace mirage {
@@ -349,11 +350,14 @@ void MajorantGrid::addGridMonotone(const FloatGrid& grid, const std::function<fl
 }
 
 std::vector<float> MajorantGrid::cellMaxima(const FloatGrid& grid) const {
-    return grid.visit([this](const auto& g) { return cellMaximaOf(g); });
+    // A big grid's leaves take a second or more: a stage of its load.
+    LoadStage progress("majorant of", "", "grid '" + grid.name() + "'", grid.treeBytes(),
+                       grid.leafCount(), "leaves");
+    return grid.visit([&](const auto& g) { return cellMaximaOf(g, progress); });
 }
 
 template <typename Grid>
-std::vector<float> MajorantGrid::cellMaximaOf(const Grid& g) const {
+std::vector<float> MajorantGrid::cellMaximaOf(const Grid& g, Progress& progress) const {
     const auto& tree = g.tree();
 
     // Per-cell maximum of this grid first, then added: a sum of per-component maxima bounds
@@ -389,6 +393,7 @@ std::vector<float> MajorantGrid::cellMaximaOf(const Grid& g) const {
                                   Splatter<Grid> s(g, mBounds, mRes, mCellSize, own.local());
                                   s.useTable(&table);
                                   splatLeaves(s, r.begin(), r.end());
+                                  progress.advance(r.size());
                               });
             for (const std::vector<float>& o : own)
                 for (size_t c = 0; c < cells.size(); ++c) cells[c] = std::max(cells[c], o[c]);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/progress.h"
 #include "volume/grid.h"
 #include "volume/vector_grid.h"
 
@@ -64,7 +65,7 @@ private:
     // Per cell: the max of `grid` over the cell and the trilinear footprint of its voxels.
     std::vector<float> cellMaxima(const FloatGrid& grid) const;
     template <typename Grid>  // a NanoVDB grid at any precision (majorant.cpp)
-    std::vector<float> cellMaximaOf(const Grid& grid) const;
+    std::vector<float> cellMaximaOf(const Grid& grid, Progress& progress) const;
 
     Bounds3 mBounds;
     int mRes[3] = {0, 0, 0};

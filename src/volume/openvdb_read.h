@@ -43,9 +43,7 @@ public:
           mLabel(gridLabel),
           mLeaves(leafCount),
           mMegabytes(fileBytes / 1000000 + 1),
-          mProgress("reading " + path.substr(path.find_last_of('/') + 1) + " " + gridLabel,
-                    mMegabytes, "MB",
-                    fileBytes >= kLoadProgressBytes ? gridLoadProgress() : Progress::Mode::Quiet) {}
+          mProgress("reading", path, gridLabel, fileBytes, mMegabytes, "MB") {}
 
     // Loads the leaf's values; false when OpenVDB could not (corrupt compressed data). Such a
     // leaf's buffer is left by OpenVDB half loaded (allocated, yet marked as still in the file)
@@ -100,7 +98,7 @@ private:
     std::string mPath, mLabel;
     size_t mLeaves;
     uint64_t mMegabytes;
-    Progress mProgress;
+    LoadStage mProgress;
     std::atomic<size_t> mDone{0};
     std::atomic<bool> mFailed{false};
     std::string mError;

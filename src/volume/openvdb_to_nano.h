@@ -109,11 +109,25 @@ void finishInternal(Data* data, const NodeStats& total) {
     }
 }
 
+// The bytes of a NanoVDB float grid whose root has `rootEntries` tiles and children, over
+// `upper`, `lower` and `leaves` nodes: where each level starts, and its end.
+struct NanoOffsets {
+    uint64_t tree = 0, root = 0, upper = 0, lower = 0, leaf = 0, end = 0;
+    NanoOffsets(uint64_t rootEntries, uint64_t uppers, uint64_t lowers, uint64_t leaves) {
+        tree = NanoGrid::memUsage();
+        root = tree + NanoTree::memUsage();
+        upper = root + NanoRoot::memUsage(uint32_t(rootEntries));
+        lower = upper + NanoUpper::memUsage() * uppers;
+        leaf = lower + NanoLower::memUsage() * lowers;
+        end = leaf + sizeof(NanoLeaf) * leaves;
+    }
+};
+
 // The OpenVDB nodes in the order of their NanoVDB copies, and where each level starts.
 struct Layout {
     std::vector<OpenUpper*> uppers;
     std::vector<OpenLower*> lowers;
-    std::vector<OpenLeaf*> leaves;
+    std::vector<OpenLeaf*> leaves;   // released leaves are deleted once copied: count only then
     std::vector<size_t> firstLeaf;   // of each lower node, then the leaf count
     std::vector<size_t> firstLower;  // of each upper node, then the lower count
     uint32_t rootTiles = 0;
@@ -133,12 +147,13 @@ struct Layout {
         firstLower.push_back(lowers.size());
         firstLeaf.push_back(leaves.size());
         rootTiles = uint32_t(openRoot.getTableSize());
-        tree = NanoGrid::memUsage();
-        root = tree + NanoTree::memUsage();
-        upper = root + NanoRoot::memUsage(rootTiles);
-        lower = upper + NanoUpper::memUsage() * uppers.size();
-        leaf = lower + NanoLower::memUsage() * lowers.size();
-        end = leaf + sizeof(NanoLeaf) * leaves.size();
+        const NanoOffsets at(rootTiles, uppers.size(), lowers.size(), leaves.size());
+        tree = at.tree;
+        root = at.root;
+        upper = at.upper;
+        lower = at.lower;
+        leaf = at.leaf;
+        end = at.end;
     }
 };
 
@@ -154,16 +169,18 @@ public:
     SanitizeCounts run(uint8_t* buffer) {
         mBuffer = buffer;
         std::vector<NodeStats> lowerStats(mLayout.lowers.size());
+        std::vector<float> lowerMaxima(mLayout.lowers.size(), 0.f);
         std::atomic<uint64_t> zeroed{0}, clamped{0};
         tbb::parallel_for(tbb::blocked_range<size_t>(0, mLayout.lowers.size(), 1),
                           [&](const tbb::blocked_range<size_t>& r) {
                               SanitizeCounts count;
                               for (size_t i = r.begin(); i != r.end(); ++i)
-                                  lowerStats[i] = lowerNode(i, count);
+                                  lowerStats[i] = lowerNode(i, count, &lowerMaxima[i]);
                               zeroed += count.zeroed;
                               clamped += count.clamped;
                           });
         mReads.finish();
+        for (const float m : lowerMaxima) mLeafMaximum = std::max(mLeafMaximum, m);
         SanitizeCounts count;
         std::vector<NodeStats> upperStats(mLayout.uppers.size());
         for (size_t i = 0; i < mLayout.uppers.size(); ++i)
@@ -177,6 +194,10 @@ public:
         return count;
     }
 
+    // After run(): the largest value the leaves store, inactive voxels too, under the voxel
+    // rule (0 without leaves): what FloatGrid's maximum would read them all again for.
+    float leafMaximum() const { return mLeafMaximum; }
+
 private:
     template <typename T>
     T* at(uint64_t offset) const {
@@ -188,9 +209,10 @@ private:
     NanoLower* lower(size_t i) const { return at<NanoLower>(mLayout.lower) + i; }
     NanoLeaf* leaf(size_t i) const { return at<NanoLeaf>(mLayout.leaf) + i; }
 
-    // Leaf i: its values read and copied under the voxel rule (then, when asked, freed from
-    // the OpenVDB tree). False when the leaf could not be read.
-    bool fillLeaf(size_t i, SanitizeCounts& count) {
+    // Leaf i, a child of `lowerOf`: its values read and copied under the voxel rule (then,
+    // when asked, the leaf deleted from the OpenVDB tree, a tile in its place), their maximum
+    // kept in *maximum. False when the leaf could not be read.
+    bool fillLeaf(size_t i, OpenLower& lowerOf, SanitizeCounts& count, float* maximum) {
         OpenLeaf& open = *mLayout.leaves[i];
         auto* data = leaf(i)->data();
         data->mFlags = data->mBBoxDif[2] = data->mBBoxDif[1] = data->mBBoxDif[0] = 0u;
@@ -203,15 +225,23 @@ private:
         // Nearly every leaf keeps the rule already: a test of all its values at once, then a
         // copy; the rule value by value only where one breaks it.
         uint32_t broken = 0;
-        for (uint32_t n = 0; n < OpenLeaf::SIZE; ++n)
+        float m = *maximum;
+        for (uint32_t n = 0; n < OpenLeaf::SIZE; ++n) {
             broken |= uint32_t(!(src[n] >= 0.f && src[n] <= kMaxVoxelValue));
-        std::memcpy(data->mValues, src, sizeof(data->mValues));
-        if (broken)
-            for (float& v : data->mValues) applyScalarVoxelRule(v, 1, count);
-        if (mRelease) {
-            OpenLeaf::Buffer spent(openvdb::PartialCreate(), 0.f);
-            open.buffer().swap(spent);
+            m = src[n] > m ? src[n] : m;
         }
+        std::memcpy(data->mValues, src, sizeof(data->mValues));
+        if (broken) {
+            m = *maximum;
+            for (float& v : data->mValues) {
+                applyScalarVoxelRule(v, 1, count);
+                m = std::max(m, v);
+            }
+        }
+        *maximum = m;
+        // The leaf goes as soon as it is copied, on this thread: freeing two million leaves
+        // with the tree afterwards took half a second on one core.
+        if (mRelease) delete lowerOf.template stealNode<OpenLeaf>(open.origin(), 0.f, false);
         return true;
     }
 
@@ -306,8 +336,9 @@ private:
         return total;
     }
 
-    // Lower node i with its leaves (one thread: the leaves' statistics merge in order).
-    NodeStats lowerNode(size_t i, SanitizeCounts& count) {
+    // Lower node i with its leaves (one thread: the leaves' statistics merge in order); the
+    // leaves' largest value in *maximum.
+    NodeStats lowerNode(size_t i, SanitizeCounts& count, float* maximum) {
         const size_t first = mLayout.firstLeaf[i], last = mLayout.firstLeaf[i + 1];
         NodeStats total = internalNode(
             lower(i), *mLayout.lowers[i], [&](size_t k) { return leaf(first + k); },
@@ -315,7 +346,8 @@ private:
         for (size_t l = first; l < last; l += kLeafGroup) {
             const size_t n = std::min(kLeafGroup, last - l);
             bool filled = true;
-            for (size_t k = 0; k < n; ++k) filled = fillLeaf(l + k, count) && filled;
+            for (size_t k = 0; k < n; ++k)
+                filled = fillLeaf(l + k, *mLayout.lowers[i], count, maximum) && filled;
             if (!filled) break;  // mReads reports it
             NodeStats leaves[kLeafGroup];
             leafStats(l, n, leaves);
@@ -379,7 +411,8 @@ private:
         for (const OpenUpper* u : mLayout.uppers) tiles[1] += u->getValueMask().countOn();
         for (auto it = mOpen.tree().root().cbeginValueOn(); it; ++it) ++tiles[2];
         uint64_t voxels = 0;
-        for (const OpenLeaf* l : mLayout.leaves) voxels += l->valueMask().countOn();
+        for (size_t i = 0; i < mLayout.leaves.size(); ++i)
+            voxels += leaf(i)->data()->mValueMask.countOn();
         // NanoVDB counts a tile of a lower or upper node as its child's table size, not its
         // voxels (OpenToNanoVDB::processTree); kept, so that the grids match.
         voxels += tiles[0] * NanoLeaf::NUM_VALUES;
@@ -440,6 +473,7 @@ private:
     uint8_t* mBuffer = nullptr;
     LeafReads<OpenLeaf>& mReads;
     bool mRelease;
+    float mLeafMaximum = 0.f;
 };
 
 }  // namespace openvdbtonano
@@ -455,18 +489,20 @@ inline bool convertsDirectly(const openvdb::FloatGrid& grid) {
 }
 
 // The NanoVDB grid of `grid` (convertsDirectly), under the voxel rule, whose changes are
-// returned in *sanitized. Leaves still in the file (delayed loading) are read in parallel, on a
-// bar when the grid's `fileBytes` in file `path` call for one; with `releaseLeaves`, each
-// leaf's values are freed once copied (the OpenVDB grid keeps its topology only). Throws
-// MirageError naming the file and `label` when a leaf cannot be read.
+// returned in *sanitized, and the largest value its leaves store in *leafMaximum. Leaves still
+// in the file (delayed loading) are read in parallel, on a bar when the grid's `fileBytes` in
+// file `path` call for one; with `releaseLeaves`, each leaf's values are freed once copied (the
+// OpenVDB grid keeps its topology only). Throws MirageError naming the file and `label` when a
+// leaf cannot be read.
 inline nanovdb::GridHandle<nanovdb::HostBuffer> convertFloatGrid(
     openvdb::FloatGrid& grid, uint64_t fileBytes, const std::string& path, const std::string& label,
-    bool releaseLeaves, SanitizeCounts* sanitized) {
+    bool releaseLeaves, SanitizeCounts* sanitized, float* leafMaximum) {
     MIRAGE_CHECK(convertsDirectly(grid));
     LeafReads<openvdbtonano::OpenLeaf> reads(fileBytes, grid.tree().leafCount(), path, label);
     openvdbtonano::Converter converter(grid, reads, releaseLeaves);
     nanovdb::GridHandle<nanovdb::HostBuffer> handle(nanovdb::HostBuffer::create(converter.bytes()));
     *sanitized = converter.run(handle.data());
+    *leafMaximum = converter.leafMaximum();
     return handle;
 }
 

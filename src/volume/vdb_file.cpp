@@ -22,12 +22,14 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include "core/error.h"
 #include "core/grid_name.h"
 #include "volume/grid_lookup.h"
+#include "volume/load_progress.h"
 #include "volume/openvdb_describe.h"
 #include "volume/openvdb_expression.h"
 #include "volume/openvdb_read.h"
@@ -93,6 +95,10 @@ openvdb::GridBase::Ptr readOpenVdbGrid(const std::string& path, const FileLayout
     }
     initOpenVdb();
     try {
+        // OpenVDB reads a lazy grid's topology in one call, leaf by leaf (a second at 10⁹
+        // voxels): a stage of one step.
+        LoadStage topology("reading the topology of", path, label,
+                           mode == ReadMode::Lazy ? record.endPos - record.gridPos : 0, 1, "step");
         openvdb::io::File file(path);
         file.setCopyMaxBytes(0);
         file.open(/*delayLoad=*/mode == ReadMode::Lazy);
@@ -100,6 +106,8 @@ openvdb::GridBase::Ptr readOpenVdbGrid(const std::string& path, const FileLayout
         openvdb::GridBase::Ptr grid =
             mode == ReadMode::Metadata ? file.readGridMetadata(name) : file.readGrid(name);
         file.close();
+        topology.advance(1);
+        topology.finish();
         // A singular index → object map (a zero or denormal voxel size in a corrupt file) reads
         // without complaint, but OpenVDB throws ArithmeticError wherever the map is later
         // inverted or turned affine: build the affine form now, inside this handler.
@@ -324,14 +332,22 @@ GridInfo nanoVdbGridInfo(const GridRecord& record) {
 // The NanoVDB grid of a fog volume from readFogVolume, under the voxel rule (what it changed in
 // *sanitized): its leaves read from the file (`fileBytes` of it: the bar's length) as they are
 // converted. With `releaseLeaves` the OpenVDB grid keeps only its topology afterwards, so that a
-// big grid's values are never held twice (openvdb_to_nano.h). The grids that converter does not
-// take (a staggered class, a long name) go through NanoVDB's own.
+// big grid's values are never held twice (openvdb_to_nano.h); *leafMaximum is the largest
+// value its leaves store. The grids that converter does not take (a staggered class, a long
+// name) go through NanoVDB's own, and *leafMaximum is nullopt.
 nanovdb::GridHandle<nanovdb::HostBuffer> toNanoVdb(const std::string& path,
                                                    const std::string& label,
                                                    openvdb::FloatGrid& grid, uint64_t fileBytes,
-                                                   bool releaseLeaves, SanitizeCounts* sanitized) {
-    if (convertsDirectly(grid))
-        return convertFloatGrid(grid, fileBytes, path, label, releaseLeaves, sanitized);
+                                                   bool releaseLeaves, SanitizeCounts* sanitized,
+                                                   std::optional<float>* leafMaximum) {
+    if (convertsDirectly(grid)) {
+        float maximum = 0.f;
+        auto handle =
+            convertFloatGrid(grid, fileBytes, path, label, releaseLeaves, sanitized, &maximum);
+        *leafMaximum = maximum;
+        return handle;
+    }
+    *leafMaximum = std::nullopt;
     readLeavesInParallel(grid, fileBytes, path, label);
     nanovdb::GridHandle<nanovdb::HostBuffer> handle;
     try {
@@ -348,10 +364,10 @@ nanovdb::GridHandle<nanovdb::HostBuffer> toNanoVdb(const std::string& path,
 // the grid goes by: its own, or "#N".
 FloatGrid finishGrid(const std::string& path, const FileLayout& layout, int index,
                      nanovdb::GridHandle<nanovdb::HostBuffer> handle, const std::string& label,
-                     const SanitizeCounts& sanitized) {
+                     const SanitizeCounts& sanitized, std::optional<float> leafMaximum) {
     if (sanitized.total() > 0) warnSanitizedOnce(path, label, sanitized);
     std::string name = gridName(layout.grids[size_t(index)].name, size_t(index));
-    return FloatGrid(std::move(handle), std::move(name), sanitized.total());
+    return FloatGrid(std::move(handle), std::move(name), sanitized.total(), leafMaximum);
 }
 
 }  // namespace
@@ -359,6 +375,14 @@ FloatGrid finishGrid(const std::string& path, const FileLayout& layout, int inde
 void validateVdbFile(const std::string& path) { vdbformat::scanFile(path); }
 
 uint64_t gridReadCount() { return gGridReads; }
+
+GridTopology readGridTopology(const std::string& path, const std::string& gridName) {
+    const FileLayout layout = vdbformat::scanFile(path);
+    const int index = requireGrid(path, layout, gridName);
+    const vdbformat::TreeCounts n = vdbformat::countOpenVdbTree(path, layout, index);
+    return {n.leaves,
+            openvdbtonano::NanoOffsets(n.rootEntries, n.upper, n.lower, n.leaves).end};
+}
 
 VdbFileInfo inspectVdbFile(const std::string& path) {
     const FileLayout layout = vdbformat::scanFile(path);
@@ -387,6 +411,7 @@ FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName) {
 
     nanovdb::GridHandle<nanovdb::HostBuffer> handle;
     SanitizeCounts sanitized;
+    std::optional<float> leafMaximum;
     if (layout.format == Format::NanoVdb) {
         const std::string valueType = vdbformat::valueTypeOf(record);
         if (valueType != "float")
@@ -401,9 +426,10 @@ FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName) {
         sanitized = sanitizeScalarVoxels(handle);
     } else {
         handle = toNanoVdb(path, label, *readFogVolume(path, layout, index),
-                           record.endPos - record.gridPos, /*releaseLeaves=*/true, &sanitized);
+                           record.endPos - record.gridPos, /*releaseLeaves=*/true, &sanitized,
+                           &leafMaximum);
     }
-    return finishGrid(path, layout, index, std::move(handle), label, sanitized);
+    return finishGrid(path, layout, index, std::move(handle), label, sanitized, leafMaximum);
 }
 
 std::vector<FloatGrid> loadFloatGrids(const std::string& path,
@@ -477,9 +503,12 @@ std::vector<FloatGrid> loadFloatGrids(const std::string& path,
         // Read already (for the expressions): no second bar; a grid named twice is converted
         // twice, so its leaves stay.
         SanitizeCounts sanitized;
-        auto handle = toNanoVdb(path, label, *grids[index], 0, /*releaseLeaves=*/false, &sanitized);
+        std::optional<float> leafMaximum;
+        auto handle = toNanoVdb(path, label, *grids[index], 0, /*releaseLeaves=*/false, &sanitized,
+                                &leafMaximum);
         if (written.count(index)) label += " (after its expression)";
-        out.push_back(finishGrid(path, layout, index, std::move(handle), label, sanitized));
+        out.push_back(
+            finishGrid(path, layout, index, std::move(handle), label, sanitized, leafMaximum));
     }
     return out;
 }

@@ -82,6 +82,14 @@ std::vector<FloatGrid> loadFloatGrids(const std::string& path,
                                       const std::vector<GridExpression>& expressions,
                                       std::vector<double>* expressionSeconds = nullptr);
 
+// A scalar grid's leaf count and the bytes of its NanoVDB tree at float precision, from the
+// topology of OpenVDB grid `gridName` alone: no voxel is read (gridReadCount stays). Throws
+// MirageError for a missing grid or a tree that is corrupt or cannot be walked.
+struct GridTopology {
+    uint64_t leaves = 0, floatTreeBytes = 0;
+};
+GridTopology readGridTopology(const std::string& path, const std::string& gridName);
+
 // How many grids' voxels this process has read from files (metadata reads do not count): what
 // tests assert "this grid was never read" with.
 uint64_t gridReadCount();

@@ -26,9 +26,17 @@ TEST(CliOutput, InfoOnAVdbListsEveryGridFieldAndThePhysics) {
     for (const char* field : {"'density'", "type float", "class fog volume", "compression",
                               "voxel size (0.125, 0.125, 0.125) m", "index bbox",
                               "world bounds", "active voxels", "memory", "transform voxel size",
-                              "physics:", "[on ] absorption", "[off] emission",
-                              "[off] curved paths"})
+                              "grid bytes at", "voxels: not read"})
         EXPECT_TRUE(has(info, field)) << field << " missing in\n" << info;
+    // Without --load, nothing that needs the voxels: no slot, maximum or physics.
+    for (const char* loaded : {"slot 'density'", "physics:", "max σt"})
+        EXPECT_FALSE(has(info, loaded)) << loaded << " in\n" << info;
+    // --load describes the scene the file becomes, as before.
+    std::string scene;
+    ASSERT_EQ(test::runMirage("info --load '" + vdb + "'", &scene), 0) << scene;
+    for (const char* field : {"'density'", "slot 'density'", "physics:", "[on ] absorption",
+                              "[off] emission", "[off] curved paths"})
+        EXPECT_TRUE(has(scene, field)) << field << " missing in\n" << scene;
 
     // The active-voxel count and index box agree with OpenVDB's vdb_print.
     std::string peer;

@@ -26,7 +26,15 @@ std::string bytesOf(const void* data, uint64_t size) {
     return std::string(static_cast<const char*>(data), size_t(size));
 }
 
-// Every scalar grid named, loaded by Mirage, against the whole-grid read.
+// A grid of the bytes of `grid`, its maximum found by FloatGrid's own pass over every value.
+FloatGrid maximumReadAfterwards(const FloatGrid& grid) {
+    nanovdb::HostBuffer buffer = nanovdb::HostBuffer::create(grid.treeBytes());
+    std::memcpy(buffer.data(), grid.grid(), grid.treeBytes());
+    return FloatGrid(nanovdb::GridHandle<nanovdb::HostBuffer>(std::move(buffer)), grid.name());
+}
+
+// Every scalar grid named, loaded by Mirage, against the whole-grid read; the maximum the
+// converter kept as it copied the leaves against the one read from the grid afterwards.
 void expectSameScalarGrids(const std::string& path, const std::vector<std::string>& names) {
     for (const std::string& name : names) {
         SCOPED_TRACE(path + " " + name);
@@ -35,6 +43,7 @@ void expectSameScalarGrids(const std::string& path, const std::vector<std::strin
         ASSERT_EQ(loaded.grid()->gridSize(), eager.size());
         EXPECT_TRUE(bytesOf(loaded.grid(), loaded.grid()->gridSize()) == eager);
         EXPECT_GT(loaded.activeVoxels(), 0u);
+        EXPECT_EQ(loaded.maxValue(), maximumReadAfterwards(loaded).maxValue());
     }
 }
 
@@ -119,7 +128,26 @@ TEST(ParallelLoad, TheVoxelRuleOnTheWayGivesTheGridOfTheRuleAfterwards) {
         ASSERT_EQ(loaded.grid()->gridSize(), handle.size());
         EXPECT_TRUE(bytesOf(loaded.grid(), loaded.grid()->gridSize()) ==
                     bytesOf(handle.data(), handle.size()));
+        // The clamped values (1e11 inactive, 1e12 active, a tile of 1e13) are the largest.
+        EXPECT_EQ(loaded.maxValue(), maximumReadAfterwards(loaded).maxValue());
+        EXPECT_EQ(loaded.maxValue(), kMaxVoxelValue);
     }
+}
+
+// The maximum the converter keeps counts what a lookup can read: an inactive voxel above every
+// active one, and a tile above every voxel.
+TEST(ParallelLoad, TheMaximumKeptOnTheWayCountsInactiveVoxelsAndTiles) {
+    TestGridSpec spec;
+    spec.voxels = {{0, 0, 0, 1.0}, {3, 2, 1, 0.5}};
+    spec.inactiveVoxels = {{5, 0, 0, 4.0}};
+    const std::string path = test::tempDir() + "/inactive_max.vdb";
+    writeTestGrid(path, spec);
+    EXPECT_EQ(loadFloatGrid(path, "density").maxValue(), 4.f);
+    spec.tiles = {{64, 0, 0, 1, 6.0}};
+    writeTestGrid(path, spec);
+    const FloatGrid tiled = loadFloatGrid(path, "density");
+    EXPECT_EQ(tiled.maxValue(), 6.f);
+    EXPECT_EQ(maximumReadAfterwards(tiled).maxValue(), 6.f);
 }
 
 }  // namespace

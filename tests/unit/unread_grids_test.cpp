@@ -13,6 +13,7 @@
 #include "scene/scene_info.h"
 #include "test_grids.h"
 #include "test_support.h"
+#include "tools/asset_writer.h"
 #include "volume/grid_cache.h"
 #include "volume/grid_quantise.h"
 #include "volume/vdb_file.h"
@@ -93,6 +94,30 @@ TEST(UnreadGrids, MaxMemoryRefusesAGridAtItsPrecisionBeforeReadingIt) {
 }
 
 // The estimate before reading shrinks with the precision and bounds what the grid then takes.
+// `mirage info FILE.vdb` describes a bare file from its metadata and topology: no grid is read,
+// yet each scalar grid's leaves and tree bytes at every precision are those of the loaded grid.
+TEST(UnreadGrids, InfoOnABareFileReadsNoGridYetGivesEachGridsLeavesAndBytes) {
+    const std::string dir = test::tempDir();
+    const std::string path = writeCache(dir);
+    const uint64_t before = gridReadCount();
+    const VolumeFileInfo info = describeVolumeFile(path, 1);
+    EXPECT_EQ(gridReadCount(), before);
+    ASSERT_EQ(info.vdb.grids.size(), 3u);
+    ASSERT_EQ(info.grids.size(), 2u) << "density and temperature; vel is a vector grid";
+    // A pyro cache's trees have several root children and tiles.
+    const std::string pyro = dir + "/pyro.vdb";
+    writeProceduralAsset("pyro", pyro, 48, 5);
+    for (const std::string& file : {path, pyro})
+        for (const SlotInfo& g : describeVolumeFile(file, 1).grids) {
+            SCOPED_TRACE(file + " " + g.grid);
+            const FloatGrid loaded = loadFloatGrid(file, g.grid);
+            EXPECT_EQ(g.leaves, loaded.leafCount());
+            EXPECT_EQ(g.treeBytes, loaded.treeBytes());
+            for (GridPrecision p : kAllPrecisions)
+                EXPECT_EQ(g.bytesAt[size_t(p)], loaded.treeBytesAt(p)) << precisionName(p);
+        }
+}
+
 TEST(UnreadGrids, EstimateBeforeReadingBoundsEachPrecision) {
     const std::string path = writeCache(test::tempDir());
     const GridInfo info = inspectVdbFile(path).grids[0];

@@ -15,6 +15,7 @@
 #include "volume/grid_lookup.h"
 #include "volume/vdb_file.h"
 #include "volume/vdb_format.h"
+#include "volume/vdb_reader.h"
 #include "volume/vdb_tree.h"
 
 namespace mirage {
@@ -287,6 +288,39 @@ TEST(VdbTree, FilesBefore222AreRefusedWithWhatToDo) {
         EXPECT_NE(std::string(e.what()).find("predates 222"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("vdb_tool"), std::string::npos) << e.what();
     }
+}
+
+}  // namespace
+}  // namespace mirage
+
+namespace mirage {
+namespace {
+
+// The reader's window (src/volume/vdb_reader.h): every read returns the file's bytes at its
+// position, whichever way the reads go — forward in small skips, across the window's end, far
+// ahead, back to the start, one larger than the window — and a read past the end is refused.
+TEST(VdbReader, EveryReadReturnsTheFilesBytesWhereverTheWindowIs) {
+    std::string bytes(size_t(9) << 20, '\0');
+    for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = char((i * 2654435761u) >> 13);
+    const std::string path = writeBytes(test::tempDir() + "/reader.bin", bytes);
+    std::ifstream in(path, std::ios::binary);
+    vdbformat::Reader r(path, in, bytes.size());
+    auto expectAt = [&](uint64_t pos, uint64_t n) {
+        r.seek(pos);
+        std::string got(size_t(n), '\0');
+        r.read(got.data(), n, "bytes");
+        ASSERT_EQ(got, bytes.substr(size_t(pos), size_t(n))) << n << " bytes at " << pos;
+        ASSERT_EQ(r.pos(), pos + n);
+    };
+    for (uint64_t pos = 0; pos < (uint64_t(5) << 20); pos += 1000) expectAt(pos, 70);
+    expectAt((uint64_t(64) << 10) - 3, 10);
+    expectAt(uint64_t(8) << 20, 4096);
+    expectAt(0, 8);
+    expectAt(12345, uint64_t(5) << 20);
+    expectAt(bytes.size() - 1, 1);
+    r.seek(bytes.size() - 4);
+    char four[8];
+    EXPECT_THROW(r.read(four, 8, "past the end"), MirageError);
 }
 
 }  // namespace

@@ -74,7 +74,7 @@ bool samplesLamps(const RenderScene& scene) {
 
 LampSampling::LampSampling(const RenderScene& scene, const Ray& ray, float tEnd, bool on,
                            Sampler& sampler, TrackingContext* sky, bool forks)
-    : mRay(ray), mScene(&scene), mForks(forks && sky) {
+    : mForks(forks && sky), mRay(ray), mScene(&scene) {
     if (sky) drawSky(*sky, tEnd, sampler);
     // A fork where the points lie no further apart than kForkDepth / kSkyStrata in the
     // majorant's optical depth (lamp_sampling.h).

@@ -40,8 +40,8 @@
 // The cap left the far side of thin edges to delta tracking wherever the majorant was loose:
 // fireflies of ~60× the pixel's value.
 //
-// Forks (skyPointsFork: one medium, neither emissive nor fluorescent, no surfaces, lights at
-// infinity alone). The path also goes on from the lit point: a second path whose throughput
+// Forks (skyPointsFork: one medium, neither emissive nor fluorescent, no surfaces, domes
+// alone). The path also goes on from the lit point: a second path whose throughput
 // is its estimate's weight, and which carries the light scattered more than once off the camera
 // ray's thin stretches. Delta tracking's scattering point then goes on only with probability
 // w_dt(t), its weight taken as a roulette. A ray of majorant depth above kForkDepth forks
@@ -168,7 +168,8 @@ bool samplesLamps(const RenderScene& scene);
 // `[render] lamp_sampling` = equiangular.
 bool samplesSky(const RenderScene& scene);
 // Whether the paths also go on from those points (lamp_sampling.h): where they draw them and
-// every light is at infinity, one medium, neither emissive nor fluorescent, and no surface.
+// every light is a dome (Light::infinite: a distant sun is not), one medium, neither emissive
+// nor fluorescent, and no surface.
 bool skyPointsFork(const RenderScene& scene);
 
 }  // namespace mirage

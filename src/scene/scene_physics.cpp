@@ -5,6 +5,7 @@
 #include "core/text.h"
 #include "medium/ocean_components.h"
 #include "render/achromatic_film.h"
+#include "render/lamp_sampling.h"
 #include "scene/scene.h"
 #include "volume/grid_expression.h"
 
@@ -66,12 +67,24 @@ MediaPhysics mediaPhysics(const RenderScene& render) {
     return m;
 }
 
-PhysicsTerm singleScatteringTerm(const RenderScene& render, const MediaPhysics& m) {
+// How volpath's camera rays find a dome (render/lamp_sampling.h).
+std::string skyPointsReason(const RenderScene& render, const std::string& integrator) {
+    if (integrator != "volpath" || !samplesSky(render)) return "";
+    return skyPointsFork(render) ? "; camera rays draw 4 points per medium for the dome, weighed "
+                                   "against delta tracking's, each lit one starting a path of "
+                                   "its own"
+                                 : "; camera rays draw 4 points per medium for the dome, weighed "
+                                   "against delta tracking's";
+}
+
+PhysicsTerm singleScatteringTerm(const RenderScene& render, const std::string& integrator,
+                                 const MediaPhysics& m) {
     return {"single scattering", m.scatter && !render.lights.empty(),
             !m.scatter              ? "no component scatters (σs = 0)"
             : render.lights.empty() ? "no lights"
                                     : "σs > 0 and " + std::to_string(render.lights.size()) +
-                                          " light(s): shadow rays by ratio tracking"};
+                                          " light(s): shadow rays by ratio tracking" +
+                                          skyPointsReason(render, integrator)};
 }
 
 // Emissive media light the scene too: their light scatters like a light's (photons from the
@@ -81,12 +94,11 @@ PhysicsTerm multipleScatteringTerm(const Scene& scene, const std::string& integr
     const bool follows = integratorInfo(integrator).multipleScattering;
     bool multiple = follows && m.scatter && (!scene.render.lights.empty() || m.emission);
     return {"multiple scattering", multiple,
-            !follows
-                ? "integrator '" + integrator + "' computes single scattering only"
-                : multiple ? "integrator '" + integrator + "' follows paths of up to " +
-                                 std::to_string(scene.maxDepth) + " scattering events" +
-                                 (m.emission ? ", emitted light included" : "")
-                           : "nothing scatters or nothing lights the scene"};
+            !follows   ? "integrator '" + integrator + "' computes single scattering only"
+            : multiple ? "integrator '" + integrator + "' follows paths of up to " +
+                             std::to_string(scene.maxDepth) + " scattering events" +
+                             (m.emission ? ", emitted light included" : "")
+                       : "nothing scatters or nothing lights the scene"};
 }
 
 PhysicsTerm surfacesTerm(const RenderScene& render) {
@@ -105,8 +117,7 @@ PhysicsTerm expressionsTerm(const std::vector<VolumeRecord>& volumes) {
         for (const ExpressionRecord& e : volumes[i].expressions)
             runs.push_back("volume " + std::to_string(i) + " (" + e.origin + ", " +
                            e.expression.where.str() + ") " + describeAccess(e.access));
-    if (runs.empty())
-        return {"grid expressions", false, "no expression: grids are used as stored"};
+    if (runs.empty()) return {"grid expressions", false, "no expression: grids are used as stored"};
     return {"grid expressions", true,
             "OpenVDB AX on the grids before NanoVDB conversion, active voxels only: " +
                 joinList(runs, "; ")};
@@ -125,22 +136,21 @@ PhysicsTerm curvedPathsTerm(const Scene& scene, const std::string& integrator) {
                       refraction.field->gradientBound(Vec3d(b.lo), Vec3d(b.hi)));
     const bool photonPass = integratorInfo(integrator).photonPass;
     const bool photons = photonPass && photonsCurve(refraction.field.get(), b);
-    return {"curved paths", true,
-            "[refraction]: " + refraction.description + bound +
-                ". Camera rays bend (Dormand-Prince RK5(4)), straight beyond " +
-                std::to_string(int(refraction.maxArc)) + " m of path; " +
-                (photons ? "photons follow curved paths too, and direct light comes from the "
-                           "photon maps (no shadow rays)"
-                 : photonPass
-                     ? "photons straight (the field is flat within the scene)"
-                 : !refraction.bendTransport
-                     ? "shadow rays and scattered paths straight ([refraction] "
-                       "curved_transport = false)"
-                 : integrator == "volpath"
-                     ? "scattered paths and shadow rays to lights at infinity bend too (shadow "
-                       "rays to lamps stay straight)"
-                     : "shadow rays to lights at infinity bend too (shadow rays to lamps stay "
-                       "straight)")};
+    return {
+        "curved paths", true,
+        "[refraction]: " + refraction.description + bound +
+            ". Camera rays bend (Dormand-Prince RK5(4)), straight beyond " +
+            std::to_string(int(refraction.maxArc)) + " m of path; " +
+            (photons      ? "photons follow curved paths too, and direct light comes from the "
+                            "photon maps (no shadow rays)"
+             : photonPass ? "photons straight (the field is flat within the scene)"
+             : !refraction.bendTransport ? "shadow rays and scattered paths straight ([refraction] "
+                                           "curved_transport = false)"
+             : integrator == "volpath"
+                 ? "scattered paths and shadow rays to lights at infinity bend too (shadow "
+                   "rays to lamps stay straight)"
+                 : "shadow rays to lights at infinity bend too (shadow rays to lamps stay "
+                   "straight)")};
 }
 
 // Emission, and how the integrator finds it: the photon pass emits from it; volpath's scattering
@@ -167,10 +177,10 @@ std::vector<PhysicsTerm> Scene::physics() const {
     // A scene built in code may still say "auto"; a loaded one has been resolved.
     const std::string name = integrator == "auto" ? chooseIntegrator(*this).name : integrator;
     std::vector<PhysicsTerm> terms;
-    terms.push_back({"absorption", !render.media.empty(),
-                     render.media.empty() ? "no volumes"
-                                          : std::to_string(render.media.size()) + " volume(s)"});
-    terms.push_back(singleScatteringTerm(render, m));
+    terms.push_back(
+        {"absorption", !render.media.empty(),
+         render.media.empty() ? "no volumes" : std::to_string(render.media.size()) + " volume(s)"});
+    terms.push_back(singleScatteringTerm(render, name, m));
     terms.push_back(multipleScatteringTerm(*this, name, m));
     terms.push_back(emissionTerm(render, name, m));
     terms.push_back({"spectral coefficients", m.spectral,

@@ -115,15 +115,17 @@ TEST(SceneErrors, UnreadablePathsAreOneMessageNamingTheKey) {
     EXPECT_NE(msg.find("volume file unreadable (File name too long)"), std::string::npos) << msg;
 
     fogAsset(dir);
-    const std::string shader = writeFile(
-        dir, "long_shader.toml",
-        "[[volume]]\nfile = \"fog.vdb\"\nshader = \"" + longName + ".toml\"\n");
+    const std::string shader =
+        writeFile(dir, "long_shader.toml",
+                  "[[volume]]\nfile = \"fog.vdb\"\nshader = \"" + longName + ".toml\"\n");
     msg = loadError(shader);
     EXPECT_NE(msg.find("shader file unreadable (File name too long)"), std::string::npos) << msg;
 
-    const std::string mesh = writeFile(
-        dir, "long_mesh.toml", "[[material]]\nname = \"white\"\ntype = \"diffuse\"\n"
-        "[[shape]]\ntype = \"mesh\"\nmaterial = \"white\"\nfile = \"" + longName + ".obj\"\n");
+    const std::string mesh =
+        writeFile(dir, "long_mesh.toml",
+                  "[[material]]\nname = \"white\"\ntype = \"diffuse\"\n"
+                  "[[shape]]\ntype = \"mesh\"\nmaterial = \"white\"\nfile = \"" +
+                      longName + ".obj\"\n");
     msg = loadError(mesh);
     EXPECT_NE(msg.find("mesh file unreadable (File name too long)"), std::string::npos) << msg;
 }
@@ -175,6 +177,28 @@ TEST(SceneLoad, OverridesAndFramePatterns) {
     EXPECT_FALSE(emission);  // smoke does not emit: the term is off and says why
 }
 
+// `mirage info` says how volpath's camera rays find a dome: points of their own weighed against
+// delta tracking's, forking paths in a plain medium under domes alone
+// (render/lamp_sampling.h), and nothing of the kind with lamp_sampling = "distance".
+TEST(SceneLoad, InfoSaysHowCameraRaysFindTheDome) {
+    std::string dir = test::tempDir();
+    fogAsset(dir);
+    std::string p = writeFile(dir, "sky.toml",
+                              "[[volume]]\nfile = \"fog.vdb\"\nshader = \"smoke\"\n"
+                              "[[light]]\ntype = \"dome\"\ncolor = [1, 1, 1]\n");
+    ColorPipeline color;
+    auto reason = [&](std::vector<std::string> sets) {
+        sets.push_back("render.integrator=volpath");
+        const Scene s = loadScene(p, LoadOptions{1, sets}, color);
+        for (const auto& t : s.physics())
+            if (t.name == "single scattering") return t.why;
+        return std::string();
+    };
+    EXPECT_NE(reason({}).find("each lit one starting a path of its own"), std::string::npos)
+        << reason({});
+    EXPECT_EQ(reason({"render.lamp_sampling=distance"}).find("points"), std::string::npos);
+}
+
 TEST(EndToEnd, SceneAndBareVdbRenderFiniteNonBlackExr) {
     std::string dir = test::tempDir();
     std::string vdb = fogAsset(dir);
@@ -217,8 +241,11 @@ TEST(EndToEnd, TurntableAndFrameRangesNumberTheirOutputs) {
     std::string dir = test::tempDir();
     std::string vdb = fogAsset(dir);
     std::string log;
-    ASSERT_EQ(0, test::runMirage("render '" + vdb + "' -o '" + dir + "/tt.exr' --turntable 2 "
-                                 "--resolution 16x16 --spp 1 --quiet", &log)) << log;
+    ASSERT_EQ(0, test::runMirage("render '" + vdb + "' -o '" + dir +
+                                     "/tt.exr' --turntable 2 "
+                                     "--resolution 16x16 --spp 1 --quiet",
+                                 &log))
+        << log;
     Image a = readExr(dir + "/tt.0001.exr"), b = readExr(dir + "/tt.0002.exr");
     ASSERT_EQ(a.rgba.size(), b.rgba.size());
     EXPECT_NE(a.rgba, b.rgba);  // the camera moved half a turn
@@ -229,8 +256,11 @@ TEST(EndToEnd, TurntableAndFrameRangesNumberTheirOutputs) {
     std::string scene = std::string(kGoodScene);
     scene.replace(scene.find("fog.vdb"), 7, "fog.$F4.vdb");
     std::string p = writeFile(dir, "seq.toml", scene);
-    ASSERT_EQ(0, test::runMirage("render '" + p + "' -o '" + dir + "/seq.####.exr' --frames 3-4 "
-                                 "--quiet", &log)) << log;
+    ASSERT_EQ(0, test::runMirage("render '" + p + "' -o '" + dir +
+                                     "/seq.####.exr' --frames 3-4 "
+                                     "--quiet",
+                                 &log))
+        << log;
     EXPECT_TRUE(std::filesystem::exists(dir + "/seq.0003.exr"));
     EXPECT_TRUE(std::filesystem::exists(dir + "/seq.0004.exr"));
     EXPECT_NE(0, test::runMirage("render '" + p + "' -o '" + dir + "/x.exr' --frames 3-5 --quiet",
@@ -277,14 +307,14 @@ TEST(EndToEnd, OutputColorSpaceConvertsPixelsAndTagsChromaticities) {
     std::string dir = test::tempDir();
     fogAsset(dir);
     auto sceneIn = [&](const std::string& space) {
-        return writeFile(dir, "cs.toml",
-                         std::string(kGoodScene) + "[output]\ncolor_space = \"" + space +
-                             "\"\nhalf = false\n");
+        return writeFile(
+            dir, "cs.toml",
+            std::string(kGoodScene) + "[output]\ncolor_space = \"" + space + "\"\nhalf = false\n");
     };
     std::string log;
-    ASSERT_EQ(0, test::runMirage("render '" + sceneIn("ACEScg") + "' -o '" + dir +
-                                     "/cg.exr' --quiet --seed 3",
-                                 &log))
+    ASSERT_EQ(
+        0, test::runMirage(
+               "render '" + sceneIn("ACEScg") + "' -o '" + dir + "/cg.exr' --quiet --seed 3", &log))
         << log;
     ASSERT_EQ(0, test::runMirage("render '" + sceneIn("Linear Rec.709 (sRGB)") + "' -o '" + dir +
                                      "/709.exr' --quiet --seed 3",
@@ -315,7 +345,7 @@ TEST(EndToEnd, OutputColorSpaceConvertsPixelsAndTagsChromaticities) {
 
     const std::string msg = loadError(sceneIn("Rec.2020 linear"));
     EXPECT_NE(msg.find("cs.toml:16:"), std::string::npos) << msg;  // the color_space line
-    EXPECT_NE(msg.find("ACEScg"), std::string::npos) << msg;  // lists what the config has
+    EXPECT_NE(msg.find("ACEScg"), std::string::npos) << msg;       // lists what the config has
 }
 
 TEST(SceneLoad, BareFileNameResolvesShadersAndVolumesFromWorkingDirectory) {

@@ -62,6 +62,7 @@ void initOpenVdb() {
 
 using vdbtext::describeTransform;
 using vdbtext::fmt;
+using vdbtext::nanoVdbGridInfo;
 
 int requireGrid(const std::string& path, const FileLayout& layout, const std::string& name) {
     int index = vdbformat::findGrid(layout, name);
@@ -294,36 +295,6 @@ GridInfo openVdbGridInfo(const std::string& path, const FileLayout& layout, int 
                                   c & 4 ? box.max()[2] + 0.5 : box.min()[2] - 0.5);
             openvdb::Vec3d p = grid->transform().indexToWorld(corner);
             info.objectBounds.expand(Vec3(float(p[0]), float(p[1]), float(p[2])));
-        }
-    }
-    return info;
-}
-
-GridInfo nanoVdbGridInfo(const GridRecord& record) {
-    GridInfo info;
-    info.name = record.name;
-    info.valueType = vdbformat::valueTypeOf(record);
-    info.gridClass = nanoClassName(record.nanoGridClass);
-    info.voxelSize =
-        Vec3d(record.nanoVoxelSize[0], record.nanoVoxelSize[1], record.nanoVoxelSize[2]);
-    info.activeVoxels = record.nanoVoxelCount;
-    info.memoryBytes = record.nanoGridBytes;
-    info.compression = compressionName(record.compression, Format::NanoVdb);
-    info.transform = "voxel size " +
-                     fmt(openvdb::Vec3d(info.voxelSize.x, info.voxelSize.y, info.voxelSize.z)) +
-                     " m (NanoVDB file metadata)";
-    const int32_t* b = record.nanoIndexBBox;
-    if (info.activeVoxels > 0 && b[0] <= b[3] && b[1] <= b[4] && b[2] <= b[5]) {
-        for (int a = 0; a < 3; ++a) {
-            info.indexMin[a] = b[a];
-            info.indexMax[a] = b[a + 3];
-        }
-        // NanoVDB's world bbox maps [min, max + 1] (voxel corners at integer coordinates);
-        // shifting by half a voxel gives the ±½ extent around voxel centres used above.
-        for (int a = 0; a < 3; ++a) {
-            double h = 0.5 * record.nanoVoxelSize[a];
-            info.objectBounds.lo[a] = float(record.nanoWorldBBox[a] - h);
-            info.objectBounds.hi[a] = float(record.nanoWorldBBox[a + 3] - h);
         }
     }
     return info;

@@ -32,7 +32,10 @@
 // continuation alone; the escape carries the lobe walks' share of the vertex that drew it, as its
 // NEE does. Where the camera ray's points for the dome weigh against NEE, or a field bends the
 // paths, both strategies stay shadow rays. A path also scores them on the camera ray and after
-// mirrors and glass, where no NEE has.
+// mirrors and glass, where no NEE has. In a plain medium under domes alone the camera ray's lit
+// point for the dome starts a second path (render/lamp_sampling.h: skyPointsFork), which `trace`
+// follows after the first, and delta tracking's scattering point there goes on with the
+// probability of its weight against those points.
 //
 // Surfaces: each free flight ends at the nearest surface (tracking over (0, t_hit)). There the
 // path scores the surface's emission (Lambertian emitters are found by rays only, never by

@@ -85,7 +85,7 @@ public:
             basisY[k] = spectrumToXyz(mBasis[k]).y;
         }
         const size_t n = size_t(mWidth) * size_t(mHeight);
-        mCoefficients.resize(n);
+        mTexels.resize(n);
         mPixelPower.resize(n);
         std::vector<double> weight(n);
         mTotal = 0.0;
@@ -96,7 +96,7 @@ public:
                 const size_t p = size_t(j) * mWidth + i;
                 const Vec3d rgb(img.rgb[3 * p], img.rgb[3 * p + 1], img.rgb[3 * p + 2]);
                 const Vec3d c = vmax(toCoefficients.apply(rgb * double(intensity)), Vec3d(0.0));
-                mCoefficients[p] = Vec3(c);
+                mTexels[p].c = Vec3(c);
                 mPixelPower[p] =
                     float(c.x * basisIntegral[0] + c.y * basisIntegral[1] + c.z * basisIntegral[2]);
                 weight[p] = (c.x * basisY[0] + c.y * basisY[1] + c.z * basisY[2]) * sinT;
@@ -104,6 +104,10 @@ public:
             }
         }
         mDistribution = Distribution2D(weight, mWidth, mHeight);
+        for (int j = 0; j < mHeight; ++j)
+            for (int i = 0; i < mWidth; ++i)
+                mTexels[size_t(j) * mWidth + i].pdfUv = mDistribution.pdf(
+                    (float(i) + 0.5f) / float(mWidth), (float(j) + 0.5f) / float(mHeight));
         findSun();
     }
 
@@ -124,8 +128,17 @@ public:
                LightSample* out) const override {
         out->wi = wi;
         out->distance = kInfinity;
-        out->pdf = directionPdf(wi);
-        out->Li = radiance(wi, w);
+        if (mDistribution.empty()) {
+            out->pdf = kInv4Pi;
+            out->Li = mConstant.sample(w);
+        } else {  // one lookup of the pixel's texel for both (Texel)
+            float u, v;
+            latLongCoordinates(wi, mRotation, &u, &v);
+            const Texel& t = mTexels[pixelAt(u, v)];
+            const float sinT = std::sin(kPi * v);
+            out->pdf = sinT > 0.f ? t.pdfUv * kInv2Pi2 / sinT : 0.f;
+            out->Li = texelRadiance(t, w);
+        }
         return out->pdf > 0.f && !out->Li.isZero();
     }
 
@@ -182,6 +195,15 @@ public:
     }
 
 private:
+    // A pixel's coefficients c_k (intensity folded in) and its cell's density on [0, 1)² as
+    // mDistribution.pdf gives it, side by side: a direction's radiance and density (hitLi, the
+    // phase function's strategy, called at every scattering vertex) then cost one cache miss
+    // where the two arrays and the distribution's row cost three.
+    struct Texel {
+        Vec3 c;
+        float pdfUv = 0.f;
+    };
+
     friend class DomeProjection;
 
     // A photon's wavelength, and its weight L̄(ω) / (p(ω) ∫ L̄), for the direction d towards the
@@ -189,7 +211,7 @@ private:
     void colour(const Vec3& d, float pdf, float uLambda, PhotonEmission* out) const {
         if (!mDistribution.empty()) {
             const size_t p = pixel(d);
-            const Vec3& c = mCoefficients[p];
+            const Vec3& c = mTexels[p].c;
             out->lambda = sampleBasis(c, mPixelPower[p], uLambda);
             out->weight = float(mPixelPower[p] / (pdf * mTotal));
         } else {
@@ -249,27 +271,24 @@ private:
         return latLongDirection(u, v, mRotation);
     }
 
-    // The density sampleDirection draws d with.
-    float directionPdf(const Vec3& d) const {
-        if (mDistribution.empty()) return kInv4Pi;
-        float u, v;
-        latLongCoordinates(d, mRotation, &u, &v);
-        const float sinT = std::sin(kPi * v);
-        return sinT > 0.f ? mDistribution.pdf(u, v) * kInv2Pi2 / sinT : 0.f;
-    }
-
-    size_t pixel(const Vec3& d) const {
-        float u, v;
-        latLongCoordinates(d, mRotation, &u, &v);
+    size_t pixelAt(float u, float v) const {
         const int i = std::min(mWidth - 1, int(u * mWidth));
         const int j = std::min(mHeight - 1, int(v * mHeight));
         return size_t(j) * mWidth + i;
     }
+    size_t pixel(const Vec3& d) const {
+        float u, v;
+        latLongCoordinates(d, mRotation, &u, &v);
+        return pixelAt(u, v);
+    }
 
+    SampledSpectrum texelRadiance(const Texel& t, const SampledWavelengths& w) const {
+        return mBasis[0].sample(w) * t.c.x + mBasis[1].sample(w) * t.c.y +
+               mBasis[2].sample(w) * t.c.z;
+    }
     SampledSpectrum radiance(const Vec3& d, const SampledWavelengths& w) const {
         if (mDistribution.empty()) return mConstant.sample(w);
-        const Vec3& c = mCoefficients[pixel(d)];
-        return mBasis[0].sample(w) * c.x + mBasis[1].sample(w) * c.y + mBasis[2].sample(w) * c.z;
+        return texelRadiance(mTexels[pixel(d)], w);
     }
 
     // λ ∝ Σ c_k B_k(λ): the window k by its share c_k ∫B_k of the pixel's power, then λ in it.
@@ -296,10 +315,10 @@ private:
     int mWidth = 0, mHeight = 0;
     std::array<Spectrum, 3> mBasis;
     std::array<SpectrumSampler, 3> mBasisLambda;
-    std::vector<Vec3> mCoefficients;  // c_k per pixel, intensity folded in
-    std::vector<float> mPixelPower;   // ∫ L dλ per pixel, W·m⁻²·sr⁻¹
-    Distribution2D mDistribution;     // empty for the constant dome
-    std::optional<LightLobe> mSun;    // findSun
+    std::vector<Texel> mTexels;
+    std::vector<float> mPixelPower;  // ∫ L dλ per pixel, W·m⁻²·sr⁻¹
+    Distribution2D mDistribution;    // empty for the constant dome
+    std::optional<LightLobe> mSun;   // findSun
 };
 
 // The dome's projection map: light from each direction crosses the targets' discs facing it

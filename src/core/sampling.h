@@ -4,6 +4,7 @@
 // matters, since the order in which a function's arguments are evaluated is unspecified.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/math.h"
@@ -30,6 +31,25 @@ inline Vec3 sampleUniformCone(const Vec3& axis, float cosMax, float u1, float u2
     const float cosT = 1.f - u1 * (1.f - cosMax), sinT = safeSqrt(1.f - cosT * cosT);
     const float phi = 2.f * kPi * u2;
     return Frame(axis).toWorld(sphericalDirection(sinT, cosT, phi));
+}
+
+// A direction about `axis` (unit) at an angle θ uniform on [0, θmax] (0 < θmax ≤ π), its
+// azimuth uniform: density 1 / (2π θmax sin θ) within θmax (the solid angle between θ and θ + dθ
+// is 2π sin θ dθ). It grows as 1/θ towards the axis, where every smooth density stays finite: a
+// ray drawn so passes within a distance D of a point on the axis with a probability ∝ D, not D²
+// (render/light_lobes.h: the lamps' lobes).
+inline Vec3 sampleUniformAngle(const Vec3& axis, float thetaMax, float u1, float u2) {
+    const float theta = u1 * thetaMax;
+    return Frame(axis).toWorld(
+        sphericalDirection(std::sin(theta), std::cos(theta), 2.f * kPi * u2));
+}
+
+// sampleUniformAngle's density of the unit direction w (1/sr): sin θ is |axis × w|, exact near
+// the axis where an arccosine of the dot product loses it.
+inline float uniformAnglePdf(const Vec3& axis, float thetaMax, const Vec3& w) {
+    const float sinT = length(cross(axis, w)), theta = std::atan2(sinT, dot(axis, w));
+    if (!(theta <= thetaMax)) return 0.f;
+    return 1.f / (2.f * kPi * thetaMax * std::max(sinT, 1e-12f));
 }
 
 // Cosine-weighted hemisphere about +z, pdf cos θ / π (Malley's method: a uniform point on the

@@ -10,9 +10,22 @@
 // the lights finds it at the lobes' density.
 // Not used (plain sampling, the same random numbers as before) where no medium of the scene
 // peaks above 5/sr (HG g ≳ 0.82): smoke, fog and clouds keep their paths.
+//
+// Lamps inside smoke and fog (lampsInMedia) have lobes of another shape, which volpath's medium
+// vertices draw a share of their continuations from (volpath.cpp, "Lobes towards lamps"): the
+// angle θ to the lamp uniform on [0, π/2] (core/sampling.h: sampleUniformAngle), a density
+// ∝ 1/θ. Why. The segment after a vertex at a distance r from a lamp passes it at D = r sin θ,
+// and the lamp's equiangular point on that segment (render/lamp_sampling.h) estimates its
+// single scattering as ∝ (θb − θa)/D: bounded for the segment, but the phase function's
+// directions pass within D with a probability ∝ D², so the estimate's second moment,
+// ∫ D⁻² D dD, diverges as log D: the fireflies of a dark pixel whose paths wander past the lamp
+// after a bounce. Drawn ∝ 1/θ, the probability is ∝ D and p/pdf ∝ sin θ cancels the 1/D. Each
+// lamp is chosen in proportion to Φ/r (its power over its distance), which minimises the sum
+// over lamps of that estimate's second moment, Σ Φ² / (share r²), for a given sum of shares.
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "render/integrator.h"
 
@@ -32,25 +45,53 @@ bool guidesPaths(const RenderScene& scene);
 // Sea water (ρ ≲ 0.9) keeps a walk at every vertex.
 float lobeWalkStart(const RenderScene& scene);
 
-// Lobes (HG g 0.9) about the directions from a point towards the lights not at infinity (at
-// most four; a distant light's direction, a point's, about a quad's middle), each chosen in
-// proportion to the light that would arrive unblocked (its sample's mean Li/pdf at (½, ½)), so
-// that a lamp in the next room of a scene draws few directions: the guide's density, the
-// mixture of the lobes, and draws from it.
+// A point, spot or sphere light whose light scatters off a medium right about it: its
+// position (a sphere's centre) and power (W).
+struct MediumLamp {
+    Vec3 p;
+    float power = 0.f;
+};
+
+// The lamps whose lobes volpath's continuations draw from: the scene's lamps inside or near a
+// medium, those with a majorant cell of some medium within one cell (and a sphere light's
+// radius) of their position, the four most powerful. Empty where no lamp sits where its light
+// scatters close by (a spot outside a ball of haze, a lamp in the empty corner of a cache's box),
+// where paths draw no equiangular points towards lamps ([render] lamp_sampling = "distance",
+// RenderScene::equiangular: their 1/D estimates are what the lobes bound) and where lobe walks
+// guide the paths (guidesPaths): then no path draws them.
+std::vector<MediumLamp> lampsInMedia(const RenderScene& scene);
+
+// The probability that a continuation from a medium vertex is drawn from the lamps' lobes
+// rather than the phase function (volpath.cpp, "Lobes towards lamps").
+constexpr float kLampLobeShare = 0.4f;
+
+// Lobes about the directions from a point towards lights: each chosen with a share, the guide's
+// density the mixture of the lobes, and draws from it.
+// - Forward (the constructor): HG g 0.9 about every light not at infinity (at most four; a
+//   distant light's direction, a point's, about a quad's middle), each chosen in proportion to
+//   the light that would arrive unblocked (its sample's mean Li/pdf at (½, ½)), so that a lamp in
+//   the next room of a scene draws few directions.
+// - Lamp (towardsLamps): the angle to the lamp uniform on [0, π/2], each lamp in proportion to
+//   Φ/r (above).
 class LightLobes {
 public:
     LightLobes() = default;  // none: for a vertex that starts no lobe walk
     LightLobes(const RenderScene& scene, const Vec3& p, const SampledWavelengths& w);
+    static LightLobes towardsLamps(const std::vector<MediumLamp>& lamps, const Vec3& p);
     bool empty() const { return mCount == 0; }
     // u picks the lobe, (u1, u2) the direction in it.
     Vec3 sample(float u, float u1, float u2) const;
     float pdf(const Vec3& wi) const;
 
 private:
+    enum class Shape { Forward, Lamp };
+    Shape mShape = Shape::Forward;
     static constexpr size_t kMaxLights = 4;
     std::array<Vec3, kMaxLights> mDirs;
     std::array<float, kMaxLights> mShare;  // each lobe's probability
     size_t mCount = 0;
+    void add(const Vec3& dir, float weight);  // a lobe of that weight (> 0) before normalising
+    void normalise();
 };
 
 }  // namespace mirage

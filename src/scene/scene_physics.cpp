@@ -6,6 +6,7 @@
 #include "medium/ocean_components.h"
 #include "render/achromatic_film.h"
 #include "render/lamp_sampling.h"
+#include "render/light_lobes.h"
 #include "scene/scene.h"
 #include "volume/grid_expression.h"
 
@@ -87,6 +88,20 @@ PhysicsTerm singleScatteringTerm(const RenderScene& render, const std::string& i
                                           skyPointsReason(render, integrator)};
 }
 
+// Where volpath's continuations head towards lamps inside the media (render/light_lobes.h).
+std::string lampLobesReason(const RenderScene& render, const std::string& integrator) {
+    if (integrator != "volpath") return "";
+    const size_t lamps = lampsInMedia(render).size();
+    if (lamps == 0) return "";
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "; %.0f %% of the continuations from medium vertices drawn towards the %zu "
+                  "lamp(s) inside the media (angle to the lamp uniform), weighed with the phase "
+                  "function's",
+                  100.f * kLampLobeShare, lamps);
+    return buf;
+}
+
 // Emissive media light the scene too: their light scatters like a light's (photons from the
 // medium in the photon pass, emission at every collision in volpath).
 PhysicsTerm multipleScatteringTerm(const Scene& scene, const std::string& integrator,
@@ -97,7 +112,8 @@ PhysicsTerm multipleScatteringTerm(const Scene& scene, const std::string& integr
             !follows   ? "integrator '" + integrator + "' computes single scattering only"
             : multiple ? "integrator '" + integrator + "' follows paths of up to " +
                              std::to_string(scene.maxDepth) + " scattering events" +
-                             (m.emission ? ", emitted light included" : "")
+                             (m.emission ? ", emitted light included" : "") +
+                             lampLobesReason(scene.render, integrator)
                        : "nothing scatters or nothing lights the scene"};
 }
 

@@ -199,6 +199,32 @@ TEST(SceneLoad, InfoSaysHowCameraRaysFindTheDome) {
     EXPECT_EQ(reason({"render.lamp_sampling=distance"}).find("points"), std::string::npos);
 }
 
+// `mirage info` says when volpath's continuations head towards a lamp inside the medium
+// (render/light_lobes.h): a point light in the middle of the fog ball, not one far outside it,
+// nor with lamp_sampling = "distance".
+TEST(SceneLoad, InfoSaysWhenContinuationsHeadTowardsALampInside) {
+    std::string dir = test::tempDir();
+    fogAsset(dir);
+    auto reason = [&](const std::string& position, std::vector<std::string> sets) {
+        const std::string p = writeFile(dir, "lamp.toml",
+                                        "[[volume]]\nfile = \"fog.vdb\"\nshader = \"smoke\"\n"
+                                        "[[light]]\ntype = \"point\"\nposition = " +
+                                            position + "\npower = 100\n");
+        sets.push_back("render.integrator=volpath");
+        ColorPipeline color;
+        const Scene s = loadScene(p, LoadOptions{1, sets}, color);
+        for (const auto& t : s.physics())
+            if (t.name == "multiple scattering") return t.why;
+        return std::string();
+    };
+    const std::string inside = reason("[0, 1, 0]", {});
+    EXPECT_NE(inside.find("drawn towards the 1 lamp(s) inside the media"), std::string::npos)
+        << inside;
+    EXPECT_EQ(reason("[5, 1, 0]", {}).find("towards"), std::string::npos);
+    EXPECT_EQ(reason("[0, 1, 0]", {"render.lamp_sampling=distance"}).find("towards"),
+              std::string::npos);
+}
+
 TEST(EndToEnd, SceneAndBareVdbRenderFiniteNonBlackExr) {
     std::string dir = test::tempDir();
     std::string vdb = fogAsset(dir);

@@ -198,7 +198,7 @@ static std::unique_ptr<Medium> buildMedium(const ShaderDesc& shader, VolumeRecor
     std::vector<FloatGrid> grids =
         options.grids
             ? options.grids->loadFloatGrids(rec.file, bound, expressions, &seconds, rec.precision)
-            : quantiseGrids(loadFloatGrids(rec.file, bound, expressions, &seconds), rec.precision);
+            : loadGridsAt(rec.file, bound, expressions, &seconds, rec.precision);
     for (size_t i = 0; i < seconds.size() && i < rec.expressions.size(); ++i)
         rec.expressions[i].seconds = seconds[i];
     try {

@@ -9,6 +9,9 @@ BUILD_DIR=${1:-build}
 shift || true
 JOBS=${MIRAGE_JOBS:-$(nproc)}
 LAUNCHER=()
-if command -v ccache >/dev/null; then LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+if command -v ccache >/dev/null; then
+  LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}  # paths under the checkout hashed relative: a worktree hits
+fi
 cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE="${MIRAGE_BUILD_TYPE:-Release}" "${LAUNCHER[@]}" "$@" >/dev/null
 ninja -C "$BUILD_DIR" -j "$JOBS"

@@ -19,7 +19,10 @@ RSS_MB=${FUZZ_RSS_MB:-2048}
 BUILD_DIR=build-fuzz
 OUT=out/fuzz
 LAUNCHER=()
-if command -v ccache >/dev/null; then LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+if command -v ccache >/dev/null; then
+  LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}  # paths under the checkout hashed relative: a worktree hits
+fi
 
 CC=clang CXX=clang++ cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   "${LAUNCHER[@]}" -DMIRAGE_FUZZ=ON -DMIRAGE_BUILD_BENCH=OFF >/dev/null

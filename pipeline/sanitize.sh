@@ -17,7 +17,10 @@ pipeline/install-deps.sh fuzz
 JOBS=${MIRAGE_JOBS:-$(nproc)}
 CTEST_JOBS=${CTEST_JOBS:-$(nproc)}
 LAUNCHER=()
-if command -v ccache >/dev/null; then LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+if command -v ccache >/dev/null; then
+  LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}  # paths under the checkout hashed relative: a worktree hits
+fi
 export ASAN_SYMBOLIZER_PATH=${ASAN_SYMBOLIZER_PATH:-$(command -v llvm-symbolizer || true)}
 # The tests exercising threads: same result on 1 and 2 threads (photon pass, photon map), the
 # tiled renderer's callbacks and resume, the volume estimate, the parallel leaf read and the

@@ -1,9 +1,6 @@
 #include "volume/mapped_file_pages.h"
 
 #include <sys/mman.h>
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
 
 #include <cstdint>
 #include <cstdio>
@@ -27,12 +24,6 @@ void releaseMappedPages(const std::string& path) {
             continue;
         madvise(reinterpret_cast<void*>(uintptr_t(start)), size_t(end - start), MADV_DONTNEED);
     }
-}
-
-void releaseFreedHeapPages() {
-#if defined(__GLIBC__)
-    malloc_trim(0);
-#endif
 }
 
 }  // namespace mirage

@@ -22,10 +22,11 @@ void printGrids(const std::string& file, const VdbFileInfo& info) {
         std::printf("    [%zu] %s  type %s, class %s, compression %s\n", i,
                     g.name.empty() ? "(unnamed)" : ("'" + g.name + "'").c_str(),
                     g.valueType.c_str(), g.gridClass.c_str(), g.compression.c_str());
-        std::printf("        voxel size (%g, %g, %g) m, index bbox [%lld %lld %lld]..[%lld %lld %lld]\n",
-                    g.voxelSize.x, g.voxelSize.y, g.voxelSize.z, (long long)g.indexMin[0],
-                    (long long)g.indexMin[1], (long long)g.indexMin[2], (long long)g.indexMax[0],
-                    (long long)g.indexMax[1], (long long)g.indexMax[2]);
+        std::printf(
+            "        voxel size (%g, %g, %g) m, index bbox [%lld %lld %lld]..[%lld %lld %lld]\n",
+            g.voxelSize.x, g.voxelSize.y, g.voxelSize.z, (long long)g.indexMin[0],
+            (long long)g.indexMin[1], (long long)g.indexMin[2], (long long)g.indexMax[0],
+            (long long)g.indexMax[1], (long long)g.indexMax[2]);
         std::printf("        world bounds (%g, %g, %g)..(%g, %g, %g) m\n", g.objectBounds.lo.x,
                     g.objectBounds.lo.y, g.objectBounds.lo.z, g.objectBounds.hi.x,
                     g.objectBounds.hi.y, g.objectBounds.hi.z);
@@ -63,11 +64,11 @@ void printGridUse(const VolumeInfo& v) {
             dense = g.precision != GridPrecision::Float ? "no dense copy (quantised)"
                                                         : "no dense copy (over its memory budget)";
         std::printf(
-            "    slot '%s' ← grid '%s': %llu active voxels, NanoVDB %s at precision %s, "
-            "%s, max %g\n",
+            "    slot '%s' ← grid '%s': %llu active voxels, NanoVDB %s at precision %s "
+            "(%s), %s, max %g\n",
             g.slot.c_str(), g.grid.c_str(), (unsigned long long)g.activeVoxels,
-            formatBytes(g.treeBytes).c_str(), precisionName(g.precision), dense.c_str(),
-            g.maxValue);
+            formatBytes(g.treeBytes).c_str(), precisionName(g.precision), g.precisionWhy.c_str(),
+            dense.c_str(), g.maxValue);
     }
     printPrecisionTable(v.slots);
     for (const ExpressionRecord& e : v.expressions)

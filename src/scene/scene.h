@@ -51,6 +51,7 @@ struct VolumeRecord {
     std::vector<std::string> unusedGrids;
     float densityScale = 1;
     PrecisionSpec precision;  // precision, precision_tolerance: how its scalar grids are held
+    std::string precisionWhy;  // why that precision (scene/precision_loader.h, choosePrecision)
     VelocityRecord velocity;  // motion blur: the velocity grid bound, or why there is none
     std::vector<std::string> notes;  // a bare VDB: how its grids were bound, and why
 };

@@ -26,6 +26,7 @@ std::vector<SlotInfo> slotsOf(const VolumeRecord& v, const Medium& m) {
                       g.treeBytes(),       g.denseBytes(),       g.maxValue(),
                       g.precision(),       g.leafCount(),        {}};
         for (GridPrecision p : kAllPrecisions) slot.bytesAt[size_t(p)] = g.treeBytesAt(p);
+        slot.precisionWhy = v.precisionWhy;
         slots.push_back(slot);
     }
     return slots;

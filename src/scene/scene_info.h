@@ -29,6 +29,7 @@ struct SlotInfo {
     GridPrecision precision = GridPrecision::Float;
     uint64_t leaves = 0;
     std::array<uint64_t, std::size(kAllPrecisions)> bytesAt = {};
+    std::string precisionWhy;  // stated, or the default's reason (scene/precision_loader.h)
 };
 
 // An emissive grid volume: what the photon pass emits from (photon/medium_emitter.h).

@@ -179,9 +179,20 @@ static std::unique_ptr<Medium> buildMedium(const ShaderDesc& shader, VolumeRecor
     for (const std::string& u : unbound)
         if (std::find(toRead.begin(), toRead.end(), u) == toRead.end())
             rec.unusedGrids.push_back(u);
+    // The file's metadata (cheap: no voxels are read): each grid's storage and in-core size.
+    const VdbFileInfo info = inspectVdbFile(rec.file);
+    std::vector<GridInfo> readInfo;
+    for (const std::string& gridName : toRead)
+        for (size_t i = 0; i < info.grids.size(); ++i)
+            if (info.grids[i].name == gridName || gridIndexName(i) == gridName)
+                readInfo.push_back(info.grids[i]);
+    bool expressionWrites = false;
+    for (const ExpressionRecord& e : rec.expressions)
+        expressionWrites = expressionWrites || !e.access.writes.empty();
+    const PrecisionChoice precision = choosePrecision(rec.precision, readInfo, expressionWrites);
+    rec.precision = precision.spec;
+    rec.precisionWhy = precision.why;
     if (options.beforeGridLoad) {
-        // In-core size from the file's metadata (cheap: no voxels are read).
-        VdbFileInfo info = inspectVdbFile(rec.file);
         for (const std::string& gridName : toRead) {
             uint64_t bytes = 0;
             for (size_t i = 0; i < info.grids.size(); ++i)
@@ -198,7 +209,7 @@ static std::unique_ptr<Medium> buildMedium(const ShaderDesc& shader, VolumeRecor
     std::vector<FloatGrid> grids =
         options.grids
             ? options.grids->loadFloatGrids(rec.file, bound, expressions, &seconds, rec.precision)
-            : quantiseGrids(loadFloatGrids(rec.file, bound, expressions, &seconds), rec.precision);
+            : loadGridsAt(rec.file, bound, expressions, &seconds, rec.precision);
     for (size_t i = 0; i < seconds.size() && i < rec.expressions.size(); ++i)
         rec.expressions[i].seconds = seconds[i];
     try {

@@ -63,8 +63,7 @@ std::vector<FloatGrid> GridCache::loadFloatGrids(const std::string& path,
         for (const auto& [name, grid] : e.bindings) key += "  " + name + "=" + grid + '\n';
     }
     Entry entry = lookup(key, [&](Entry* e) {
-        e->grids = quantiseGrids(mirage::loadFloatGrids(path, gridNames, expressions, &e->seconds),
-                                 precision);
+        e->grids = loadGridsAt(path, gridNames, expressions, &e->seconds, precision);
     });
     if (expressionSeconds) *expressionSeconds = entry.seconds;
     return entry.grids;

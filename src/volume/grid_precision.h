@@ -29,6 +29,9 @@ enum class GridPrecision { Float, Half, Fp8, Fp4, FpN };
 struct PrecisionSpec {
     GridPrecision precision = GridPrecision::Float;
     float relativeTolerance = kDefaultFpnTolerance;
+    // Whether the scene said it (`precision` or `precision_tolerance`); unstated, the loader
+    // chooses (scene/precision_loader.h, choosePrecision).
+    bool stated = false;
     static constexpr float kDefaultFpnTolerance = 1e-3f;
     bool operator==(const PrecisionSpec& o) const {
         return precision == o.precision &&

@@ -64,4 +64,13 @@ std::vector<FloatGrid> quantiseGrids(std::vector<FloatGrid> grids, const Precisi
     return grids;
 }
 
+std::vector<FloatGrid> loadGridsAt(const std::string& path,
+                                   const std::vector<std::string>& gridNames,
+                                   const std::vector<GridExpression>& expressions,
+                                   std::vector<double>* expressionSeconds,
+                                   const PrecisionSpec& spec) {
+    return quantiseGrids(
+        loadFloatGrids(path, gridNames, expressions, expressionSeconds, spec.precision), spec);
+}
+
 }  // namespace mirage

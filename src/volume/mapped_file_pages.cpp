@@ -1,6 +1,9 @@
 #include "volume/mapped_file_pages.h"
 
 #include <sys/mman.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include <cstdint>
 #include <cstdio>
@@ -24,6 +27,12 @@ void releaseMappedPages(const std::string& path) {
             continue;
         madvise(reinterpret_cast<void*>(uintptr_t(start)), size_t(end - start), MADV_DONTNEED);
     }
+}
+
+void releaseFreedHeapPages() {
+#if defined(__GLIBC__)
+    malloc_trim(0);
+#endif
 }
 
 }  // namespace mirage

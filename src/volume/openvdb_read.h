@@ -68,15 +68,18 @@ public:
     bool failed() const { return mFailed; }
 
     // `leaves` more leaves are done: the bar's steps add up to the grid's size. Every
-    // kReleaseMegabytes read, the file's mapped pages are given back (mapped_file_pages.h), by
-    // one thread at a time.
+    // kReleaseMegabytes read, the file's mapped pages and the freed leaves' heap pages are given
+    // back (mapped_file_pages.h), by one thread at a time.
     void advance(size_t leaves) {
         const size_t before = mDone.fetch_add(leaves);
         const uint64_t from = megabytesBefore(before), to = megabytesBefore(before + leaves);
         mProgress.advance(to - from);
         if (from / kReleaseMegabytes != to / kReleaseMegabytes) {
             std::unique_lock<std::mutex> lock(mReleaseMutex, std::try_to_lock);
-            if (lock) releaseMappedPages(mPath);
+            if (lock) {
+                releaseMappedPages(mPath);
+                releaseFreedHeapPages();
+            }
         }
     }
 

@@ -1,18 +1,21 @@
-// An OpenVDB float grid → a NanoVDB float grid, each leaf's values read from the file, copied
-// and freed in one step, so that a big cache never holds both trees' values at once (the
-// OpenVDB tree of a 10⁹-voxel cache and its NanoVDB copy are ~4 GB each).
+// An OpenVDB float grid → a NanoVDB grid at float, Fp16, Fp8 or Fp4, each leaf's values read
+// from the file, encoded and freed in one step, so that a big cache never holds both trees'
+// values at once (the OpenVDB tree of a 10⁹-voxel cache and its NanoVDB copy are ~4 GB each),
+// and a quantised grid is never held as floats.
 //
-// The buffer is byte for byte what NanoVDB 32.4's converter makes with
+// A float buffer is byte for byte what NanoVDB 32.4's converter makes with
 // nanovdb::openToNanoVDB(grid, StatsMode::All, ChecksumMode::Partial) followed by the voxel
-// rule (sanitizeScalarVoxels, which redoes the statistics when it changes a value): the same
-// breadth-first layout (nanovdb/util/OpenToNanoVDB.h: grid, tree, root and its tiles, upper,
-// lower and leaf nodes in depth-first order), the same fields, and the node statistics of
-// nanovdb/util/GridStats.h — each leaf's statistics by the same running mean and variance over
-// its active voxels in mask order, each node's merged from its active tiles then its children in
-// order. Only the order of the work differs: the voxel rule is applied as the values are copied,
-// and the leaves and their statistics are done a lower node at a time, lower nodes in parallel
-// (NanoVDB's statistics pass is serial), which gives the same numbers since every node's merge
-// order is kept.
+// rule (sanitizeScalarVoxels, which redoes the statistics when it changes a value); a quantised
+// one is what that float grid becomes through volume/grid_quantise.h (back to OpenVDB, then
+// openToNanoVDB at Fp16, Fp8 or Fp4): the same breadth-first layout
+// (nanovdb/util/OpenToNanoVDB.h: grid, tree, root and its tiles, upper, lower and leaf nodes in
+// depth-first order), the same fields, NanoVDB's leaf encoding (volume/leaf_codec.h), and the
+// node statistics of nanovdb/util/GridStats.h — each leaf's statistics by the same running mean
+// and variance over its active voxels as decoded, in mask order, each node's merged from its
+// active tiles then its children in order. Only the order of the work differs: the voxel rule
+// is applied as the values are copied, and the leaves and their statistics are done a lower
+// node at a time, lower nodes in parallel (NanoVDB's statistics pass is serial), which gives the
+// same numbers since every node's merge order is kept.
 //
 // Includes OpenVDB: only vdb_file.cpp includes it.
 #pragma once
@@ -33,6 +36,8 @@
 #include <vector>
 
 #include "core/error.h"
+#include "volume/grid_precision.h"
+#include "volume/leaf_codec.h"
 #include "volume/openvdb_read.h"
 #include "volume/voxel_rule.h"
 
@@ -45,12 +50,6 @@ using OpenRoot = OpenTree::RootNodeType;
 using OpenUpper = OpenRoot::ChildNodeType;
 using OpenLower = OpenUpper::ChildNodeType;
 using OpenLeaf = OpenLower::ChildNodeType;
-using NanoGrid = nanovdb::NanoGrid<float>;
-using NanoTree = nanovdb::NanoTree<float>;
-using NanoRoot = nanovdb::NanoRoot<float>;
-using NanoUpper = nanovdb::NanoUpper<float>;
-using NanoLower = nanovdb::NanoLower<float>;
-using NanoLeaf = nanovdb::NanoLeaf<float>;
 using Stats = nanovdb::Stats<float>;
 
 // What GridStats keeps of a node while it merges: the statistics of its active values and
@@ -109,21 +108,24 @@ void finishInternal(Data* data, const NodeStats& total) {
     }
 }
 
-// The bytes of a NanoVDB float grid whose root has `rootEntries` tiles and children, over
-// `upper`, `lower` and `leaves` nodes: where each level starts, and its end.
+// The bytes of a NanoVDB grid at BuildT (float, Fp16, Fp8, Fp4) whose root has `rootEntries`
+// tiles and children, over `upper`, `lower` and `leaves` nodes: where each level starts, and its
+// end.
+template <typename BuildT = float>
 struct NanoOffsets {
     uint64_t tree = 0, root = 0, upper = 0, lower = 0, leaf = 0, end = 0;
     NanoOffsets(uint64_t rootEntries, uint64_t uppers, uint64_t lowers, uint64_t leaves) {
-        tree = NanoGrid::memUsage();
-        root = tree + NanoTree::memUsage();
-        upper = root + NanoRoot::memUsage(uint32_t(rootEntries));
-        lower = upper + NanoUpper::memUsage() * uppers;
-        leaf = lower + NanoLower::memUsage() * lowers;
-        end = leaf + sizeof(NanoLeaf) * leaves;
+        tree = nanovdb::NanoGrid<BuildT>::memUsage();
+        root = tree + nanovdb::NanoTree<BuildT>::memUsage();
+        upper = root + nanovdb::NanoRoot<BuildT>::memUsage(uint32_t(rootEntries));
+        lower = upper + nanovdb::NanoUpper<BuildT>::memUsage() * uppers;
+        leaf = lower + nanovdb::NanoLower<BuildT>::memUsage() * lowers;
+        end = leaf + sizeof(nanovdb::NanoLeaf<BuildT>) * leaves;
     }
 };
 
-// The OpenVDB nodes in the order of their NanoVDB copies, and where each level starts.
+// The OpenVDB nodes in the order of their NanoVDB copies at BuildT, and where each level starts.
+template <typename BuildT>
 struct Layout {
     std::vector<OpenUpper*> uppers;
     std::vector<OpenLower*> lowers;
@@ -147,7 +149,7 @@ struct Layout {
         firstLower.push_back(lowers.size());
         firstLeaf.push_back(leaves.size());
         rootTiles = uint32_t(openRoot.getTableSize());
-        const NanoOffsets at(rootTiles, uppers.size(), lowers.size(), leaves.size());
+        const NanoOffsets<BuildT> at(rootTiles, uppers.size(), lowers.size(), leaves.size());
         tree = at.tree;
         root = at.root;
         upper = at.upper;
@@ -157,8 +159,17 @@ struct Layout {
     }
 };
 
-// Writes one NanoVDB tree into a buffer laid out by Layout.
+// Writes one NanoVDB tree at BuildT into a buffer laid out by Layout.
+template <typename BuildT>
 class Converter {
+    using NanoGrid = nanovdb::NanoGrid<BuildT>;
+    using NanoTree = nanovdb::NanoTree<BuildT>;
+    using NanoRoot = nanovdb::NanoRoot<BuildT>;
+    using NanoUpper = nanovdb::NanoUpper<BuildT>;
+    using NanoLower = nanovdb::NanoLower<BuildT>;
+    using NanoLeaf = nanovdb::NanoLeaf<BuildT>;
+    using Codec = LeafCodec<BuildT>;
+
 public:
     Converter(openvdb::FloatGrid& open, LeafReads<OpenLeaf>& reads, bool releaseLeaves)
         : mOpen(open), mLayout(open.tree()), mReads(reads), mRelease(releaseLeaves) {}
@@ -195,7 +206,8 @@ public:
     }
 
     // After run(): the largest value the leaves store, inactive voxels too, under the voxel
-    // rule (0 without leaves): what FloatGrid's maximum would read them all again for.
+    // rule and as decoded (0 without leaves): what FloatGrid's maximum would read them all
+    // again for.
     float leafMaximum() const { return mLeafMaximum; }
 
 private:
@@ -209,36 +221,36 @@ private:
     NanoLower* lower(size_t i) const { return at<NanoLower>(mLayout.lower) + i; }
     NanoLeaf* leaf(size_t i) const { return at<NanoLeaf>(mLayout.leaf) + i; }
 
-    // Leaf i, a child of `lowerOf`: its values read and copied under the voxel rule (then,
-    // when asked, the leaf deleted from the OpenVDB tree, a tile in its place), their maximum
-    // kept in *maximum. False when the leaf could not be read.
+    // Leaf i, a child of `lowerOf`: its values read and encoded under the voxel rule (then,
+    // when asked, the leaf deleted from the OpenVDB tree, a tile in its place), their decoded
+    // maximum kept in *maximum. False when the leaf could not be read.
     bool fillLeaf(size_t i, OpenLower& lowerOf, SanitizeCounts& count, float* maximum) {
         OpenLeaf& open = *mLayout.leaves[i];
         auto* data = leaf(i)->data();
         data->mFlags = data->mBBoxDif[2] = data->mBBoxDif[1] = data->mBBoxDif[0] = 0u;
-        data->mMaximum = data->mMinimum = 0.f;
-        data->mStdDevi = data->mAverage = 0.f;
+        Codec::clearStats(*data);
         data->setOrigin(open.origin());
         data->mValueMask = open.valueMask();
         if (!mReads.load(open)) return false;
         const float* src = open.buffer().data();
-        // Nearly every leaf keeps the rule already: a test of all its values at once, then a
-        // copy; the rule value by value only where one breaks it.
+        // Nearly every leaf keeps the rule already: a test of all its values at once, with
+        // their range; the rule value by value, on a copy, only where one breaks it.
         uint32_t broken = 0;
-        float m = *maximum;
+        float lo = src[0], hi = src[0];
         for (uint32_t n = 0; n < OpenLeaf::SIZE; ++n) {
             broken |= uint32_t(!(src[n] >= 0.f && src[n] <= kMaxVoxelValue));
-            m = src[n] > m ? src[n] : m;
+            lo = src[n] < lo ? src[n] : lo;
+            hi = src[n] > hi ? src[n] : hi;
         }
-        std::memcpy(data->mValues, src, sizeof(data->mValues));
+        float fixed[OpenLeaf::SIZE];
         if (broken) {
-            m = *maximum;
-            for (float& v : data->mValues) {
-                applyScalarVoxelRule(v, 1, count);
-                m = std::max(m, v);
-            }
+            std::memcpy(fixed, src, sizeof(fixed));
+            for (float& v : fixed) applyScalarVoxelRule(v, 1, count);
+            lo = *std::min_element(fixed, fixed + OpenLeaf::SIZE);
+            hi = *std::max_element(fixed, fixed + OpenLeaf::SIZE);
+            src = fixed;
         }
-        *maximum = m;
+        *maximum = std::max(*maximum, Codec::encode(*data, src, lo, hi));
         // The leaf goes as soon as it is copied, on this thread: freeing two million leaves
         // with the tree afterwards took half a second on one core.
         if (mRelease) delete lowerOf.template stealNode<OpenLeaf>(open.origin(), 0.f, false);
@@ -254,7 +266,7 @@ private:
         uint32_t count[kLeafGroup];
         uint32_t common = OpenLeaf::SIZE;
         for (size_t k = 0; k < n; ++k) {
-            count[k] = activeValues(*leaf(first + k)->data(), active[k]);
+            count[k] = Codec::activeValues(*leaf(first + k)->data(), active[k]);
             common = std::min(common, count[k]);
         }
         RunningStats running[kLeafGroup];
@@ -273,22 +285,6 @@ private:
             for (uint32_t v = common; v < count[k]; ++v) running[k].add(active[k][v]);
             out[k] = finishLeaf(first + k, running[k]);
         }
-    }
-
-    // A leaf's active values in mask order (GridStats' order), into `out`; returns their count.
-    static uint32_t activeValues(const typename NanoLeaf::DataType& data, float* out) {
-        uint32_t n = 0;
-        for (uint32_t w = 0; w < OpenLeaf::SIZE / 64; ++w) {
-            uint64_t word = data.mValueMask.template getWord<uint64_t>(w);
-            const float* values = data.mValues + 64 * w;
-            if (word == ~uint64_t(0)) {
-                std::memcpy(out + n, values, 64 * sizeof(float));
-                n += 64;
-                continue;
-            }
-            for (; word != 0; word &= word - 1) out[n++] = values[__builtin_ctzll(word)];
-        }
-        return n;
     }
 
     // GridStats on a leaf: its bbox of active voxels, its statistics and flags.
@@ -434,7 +430,7 @@ private:
         data->mGridClass = mOpen.getGridClass() == openvdb::GRID_FOG_VOLUME
                                ? nanovdb::GridClass::FogVolume
                                : nanovdb::GridClass::Unknown;
-        data->mGridType = nanovdb::GridType::Float;
+        data->mGridType = nanovdb::mapToGridType<BuildT>();
         const auto affine = mOpen.transform().baseMap()->getAffineMap();
         const openvdb::Vec3d voxel = affine->voxelSize();
         data->mVoxelSize = mOpen.hasUniformVoxels() ? nanovdb::Vec3d(voxel[0])
@@ -469,7 +465,7 @@ private:
     }
 
     openvdb::FloatGrid& mOpen;
-    Layout mLayout;
+    Layout<BuildT> mLayout;
     uint8_t* mBuffer = nullptr;
     LeafReads<OpenLeaf>& mReads;
     bool mRelease;
@@ -488,22 +484,49 @@ inline bool convertsDirectly(const openvdb::FloatGrid& grid) {
            grid.getName().size() < nanovdb::GridData::MaxNameSize;
 }
 
-// The NanoVDB grid of `grid` (convertsDirectly), under the voxel rule, whose changes are
-// returned in *sanitized, and the largest value its leaves store in *leafMaximum. Leaves still
-// in the file (delayed loading) are read in parallel, on a bar when the grid's `fileBytes` in
-// file `path` call for one; with `releaseLeaves`, each leaf's values are freed once copied (the
-// OpenVDB grid keeps its topology only). Throws MirageError naming the file and `label` when a
-// leaf cannot be read.
-inline nanovdb::GridHandle<nanovdb::HostBuffer> convertFloatGrid(
-    openvdb::FloatGrid& grid, uint64_t fileBytes, const std::string& path, const std::string& label,
-    bool releaseLeaves, SanitizeCounts* sanitized, float* leafMaximum) {
-    MIRAGE_CHECK(convertsDirectly(grid));
-    LeafReads<openvdbtonano::OpenLeaf> reads(fileBytes, grid.tree().leafCount(), path, label);
-    openvdbtonano::Converter converter(grid, reads, releaseLeaves);
+namespace openvdbtonano {
+
+template <typename BuildT>
+nanovdb::GridHandle<nanovdb::HostBuffer> convert(openvdb::FloatGrid& grid,
+                                                 LeafReads<OpenLeaf>& reads, bool releaseLeaves,
+                                                 SanitizeCounts* sanitized, float* leafMaximum) {
+    Converter<BuildT> converter(grid, reads, releaseLeaves);
     nanovdb::GridHandle<nanovdb::HostBuffer> handle(nanovdb::HostBuffer::create(converter.bytes()));
     *sanitized = converter.run(handle.data());
     *leafMaximum = converter.leafMaximum();
     return handle;
+}
+
+}  // namespace openvdbtonano
+
+// Whether convertFloatGrid encodes precision p itself: float and the fixed-width codecs. FpN
+// picks each leaf's width against a tolerance relative to the grid's largest value, unknown
+// until every leaf is read (volume/grid_quantise.h does it afterwards).
+inline bool streamsPrecision(GridPrecision p) { return p != GridPrecision::FpN; }
+
+// The NanoVDB grid of `grid` (convertsDirectly) at `precision` (streamsPrecision), under the
+// voxel rule, whose changes are returned in *sanitized, and the largest value a lookup decodes
+// from its leaves in *leafMaximum. Leaves still in the file (delayed loading) are read in
+// parallel, on a bar when the grid's `fileBytes` in file `path` call for one; with
+// `releaseLeaves`, each leaf's values are freed once encoded (the OpenVDB grid keeps its
+// topology only). No float copy of a quantised grid is made: its leaves are encoded as they are
+// read. Throws MirageError naming the file and `label` when a leaf cannot be read.
+inline nanovdb::GridHandle<nanovdb::HostBuffer> convertFloatGrid(
+    openvdb::FloatGrid& grid, GridPrecision precision, uint64_t fileBytes, const std::string& path,
+    const std::string& label, bool releaseLeaves, SanitizeCounts* sanitized, float* leafMaximum) {
+    using namespace openvdbtonano;
+    MIRAGE_CHECK(convertsDirectly(grid) && streamsPrecision(precision));
+    LeafReads<OpenLeaf> reads(fileBytes, grid.tree().leafCount(), path, label);
+    switch (precision) {
+        case GridPrecision::Half:
+            return convert<nanovdb::Fp16>(grid, reads, releaseLeaves, sanitized, leafMaximum);
+        case GridPrecision::Fp8:
+            return convert<nanovdb::Fp8>(grid, reads, releaseLeaves, sanitized, leafMaximum);
+        case GridPrecision::Fp4:
+            return convert<nanovdb::Fp4>(grid, reads, releaseLeaves, sanitized, leafMaximum);
+        default:
+            return convert<float>(grid, reads, releaseLeaves, sanitized, leafMaximum);
+    }
 }
 
 }  // namespace mirage

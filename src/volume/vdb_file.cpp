@@ -1,4 +1,4 @@
-// OpenVDB and NanoVDB files → NanoVDB float grids. One of the three translation units allowed
+// OpenVDB and NanoVDB files → NanoVDB grids (float; half, fp8, fp4 as read). One of the TUs allowed
 // to include OpenVDB (with asset_writer.cpp and grid_expression.cpp): it costs ~28 s and ~1 GB
 // to compile. Grid expressions run here, between reading and conversion, through
 // openvdb_expression.h (the AX headers stay in grid_expression.cpp).
@@ -301,20 +301,23 @@ GridInfo openVdbGridInfo(const std::string& path, const FileLayout& layout, int 
 }
 
 // The NanoVDB grid of a fog volume from readFogVolume, under the voxel rule (what it changed in
-// *sanitized): its leaves read from the file (`fileBytes` of it: the bar's length) as they are
-// converted. With `releaseLeaves` the OpenVDB grid keeps only its topology afterwards, so that a
-// big grid's values are never held twice (openvdb_to_nano.h); *leafMaximum is the largest
-// value its leaves store. The grids that converter does not take (a staggered class, a long
-// name) go through NanoVDB's own, and *leafMaximum is nullopt.
+// *sanitized), at `streamed` where openvdb_to_nano.h encodes it, else float: its leaves read
+// from the file (`fileBytes` of it: the bar's length) as they are converted. With
+// `releaseLeaves` the OpenVDB grid keeps only its topology afterwards, so that a big grid's
+// values are never held twice; *leafMaximum is the largest value its leaves store. The grids
+// that converter does not take (a staggered class, a long name) go through NanoVDB's own, at
+// float, and *leafMaximum is nullopt.
 nanovdb::GridHandle<nanovdb::HostBuffer> toNanoVdb(const std::string& path,
                                                    const std::string& label,
                                                    openvdb::FloatGrid& grid, uint64_t fileBytes,
-                                                   bool releaseLeaves, SanitizeCounts* sanitized,
+                                                   bool releaseLeaves, GridPrecision streamed,
+                                                   SanitizeCounts* sanitized,
                                                    std::optional<float>* leafMaximum) {
     if (convertsDirectly(grid)) {
         float maximum = 0.f;
         auto handle =
-            convertFloatGrid(grid, fileBytes, path, label, releaseLeaves, sanitized, &maximum);
+            convertFloatGrid(grid, streamsPrecision(streamed) ? streamed : GridPrecision::Float,
+                             fileBytes, path, label, releaseLeaves, sanitized, &maximum);
         *leafMaximum = maximum;
         return handle;
     }
@@ -351,8 +354,7 @@ GridTopology readGridTopology(const std::string& path, const std::string& gridNa
     const FileLayout layout = vdbformat::scanFile(path);
     const int index = requireGrid(path, layout, gridName);
     const vdbformat::TreeCounts n = vdbformat::countOpenVdbTree(path, layout, index);
-    return {n.leaves,
-            openvdbtonano::NanoOffsets(n.rootEntries, n.upper, n.lower, n.leaves).end};
+    return {n.leaves, openvdbtonano::NanoOffsets<>(n.rootEntries, n.upper, n.lower, n.leaves).end};
 }
 
 VdbFileInfo inspectVdbFile(const std::string& path) {
@@ -374,7 +376,8 @@ VdbFileInfo inspectVdbFile(const std::string& path) {
     return info;
 }
 
-FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName) {
+FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName,
+                        GridPrecision streamed) {
     const FileLayout layout = vdbformat::scanFile(path);
     const int index = requireGrid(path, layout, gridName);
     const GridRecord& record = layout.grids[size_t(index)];
@@ -397,8 +400,8 @@ FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName) {
         sanitized = sanitizeScalarVoxels(handle);
     } else {
         handle = toNanoVdb(path, label, *readFogVolume(path, layout, index),
-                           record.endPos - record.gridPos, /*releaseLeaves=*/true, &sanitized,
-                           &leafMaximum);
+                           record.endPos - record.gridPos, /*releaseLeaves=*/true, streamed,
+                           &sanitized, &leafMaximum);
     }
     return finishGrid(path, layout, index, std::move(handle), label, sanitized, leafMaximum);
 }
@@ -406,11 +409,13 @@ FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName) {
 std::vector<FloatGrid> loadFloatGrids(const std::string& path,
                                       const std::vector<std::string>& gridNames,
                                       const std::vector<GridExpression>& expressions,
-                                      std::vector<double>* expressionSeconds) {
+                                      std::vector<double>* expressionSeconds,
+                                      GridPrecision streamed) {
     if (expressionSeconds) expressionSeconds->clear();
     std::vector<FloatGrid> out;
     if (expressions.empty()) {
-        for (const std::string& name : gridNames) out.push_back(loadFloatGrid(path, name));
+        for (const std::string& name : gridNames)
+            out.push_back(loadFloatGrid(path, name, streamed));
         return out;
     }
     const FileLayout layout = vdbformat::scanFile(path);
@@ -475,8 +480,8 @@ std::vector<FloatGrid> loadFloatGrids(const std::string& path,
         // twice, so its leaves stay.
         SanitizeCounts sanitized;
         std::optional<float> leafMaximum;
-        auto handle = toNanoVdb(path, label, *grids[index], 0, /*releaseLeaves=*/false, &sanitized,
-                                &leafMaximum);
+        auto handle = toNanoVdb(path, label, *grids[index], 0, /*releaseLeaves=*/false, streamed,
+                                &sanitized, &leafMaximum);
         if (written.count(index)) label += " (after its expression)";
         out.push_back(
             finishGrid(path, layout, index, std::move(handle), label, sanitized, leafMaximum));

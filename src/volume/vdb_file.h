@@ -19,7 +19,6 @@
 
 namespace mirage {
 
-
 struct GridInfo {
     std::string name;       // may be empty: unnamed grids are addressed as "#<index>"
     std::string valueType;  // "float", "half" (stored as half), "double", "vec3s", "bool", ...
@@ -57,7 +56,13 @@ VdbFileInfo inspectVdbFile(const std::string& path);
 // the file, grid and counts (the documented rule, see docs/hostile-input.md, "Input rules").
 // Throws MirageError if the file or grid is missing, or the grid is not a scalar fog volume
 // (level set, vector, bool or integer grid, background other than 0, non-affine transform).
-FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName);
+//
+// `streamed` half, fp8 or fp4: an OpenVDB grid's leaves are encoded at that precision as they
+// are read (volume/openvdb_to_nano.h), no float copy made; the grids that converter does not
+// take (NanoVDB files, a staggered class, a name too long for NanoVDB's header), and fpn, come
+// back as float, for quantiseGrid to finish (loadGridsAt, volume/grid_quantise.h, does both).
+FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName,
+                        GridPrecision streamed = GridPrecision::Float);
 
 // Reads one 3-vector grid (velocity: vec3s or vec3d, collocated or staggered, vector_grid.h)
 // from an OpenVDB file as a NanoVDB Vec3f grid. The vector voxel rule applies: vectors with a
@@ -76,11 +81,13 @@ VectorGrid loadVectorGridFromScalars(const std::string& path, const std::string&
 // expression produced becomes 0 like one read from the file. `expressionSeconds`, when given,
 // receives each expression's compile + run time. Throws MirageError at the expression's
 // location when it names a grid the file lacks (listing the file's grids), when the file is a
-// NanoVDB file (AX runs on OpenVDB grids), or when AX cannot compile or run it.
+// NanoVDB file (AX runs on OpenVDB grids), or when AX cannot compile or run it. `streamed` as
+// for loadFloatGrid.
 std::vector<FloatGrid> loadFloatGrids(const std::string& path,
                                       const std::vector<std::string>& gridNames,
                                       const std::vector<GridExpression>& expressions,
-                                      std::vector<double>* expressionSeconds = nullptr);
+                                      std::vector<double>* expressionSeconds = nullptr,
+                                      GridPrecision streamed = GridPrecision::Float);
 
 // A scalar grid's leaf count and the bytes of its NanoVDB tree at float precision, from the
 // topology of OpenVDB grid `gridName` alone: no voxel is read (gridReadCount stays). Throws

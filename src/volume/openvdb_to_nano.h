@@ -33,6 +33,7 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "core/error.h"
@@ -85,8 +86,22 @@ public:
     }
 };
 
+template <typename Data, typename = void>
+struct IsQuantised : std::false_type {};
+template <typename Data>
+struct IsQuantised<Data, std::void_t<decltype(Data::mQuantum)>> : std::true_type {};
+
+// A quantised leaf's statistics are codes relative to its range: on a leaf of one value the
+// quantum is 0 and NanoVDB's setters would convert 0/0 to an integer (undefined behaviour). Its
+// four codes are 0 then, the bytes x86 gives that conversion, so the grid stays NanoVDB's own.
 template <typename Data>
 void setStats(Data* data, const Stats& s) {
+    if constexpr (IsQuantised<Data>::value) {
+        if (data->mQuantum == 0.0f) {
+            data->mMin = data->mMax = data->mAvg = data->mDev = 0;
+            return;
+        }
+    }
     data->setMin(s.min());
     data->setMax(s.max());
     data->setAvg(s.avg());

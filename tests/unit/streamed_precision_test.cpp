@@ -2,12 +2,13 @@
 // volume/leaf_codec.h): at half, fp8 and fp4 the NanoVDB grid a load makes is byte for byte the
 // one NanoVDB's own encoder makes of the loaded float grid (volume/grid_quantise.h), on a
 // generated pyro cache (half floats), on the reference cache, on bad values under the voxel
-// rule, on leaves of one value (whose codes NanoVDB leaves to an integer conversion of a NaN),
-// after an expression; and the largest value kept on the way is the decoded grid's own.
+// rule, after an expression; leaves of one value decode exactly, their statistics coded 0; and
+// the largest value kept on the way is the decoded grid's own.
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <limits>
+#include <type_traits>
 
 #include "test_grids.h"
 #include "test_support.h"
@@ -69,24 +70,71 @@ TEST(StreamedPrecision, SameBytesAsNanoVdbsEncoderOnTheReferenceCache) {
     expectStreamedIsNanoVdbs(smoke, "density");
 }
 
-// Bad values (the voxel rule on the way), leaves of one value (active, and inactive beside an
-// active voxel), tiles of both internal levels, a fog volume and a grid of no stated class.
-TEST(StreamedPrecision, SameBytesUnderTheVoxelRuleAndOnLeavesOfOneValue) {
+// Bad values (the voxel rule on the way), inactive values beside active ones, tiles of both
+// internal levels, a fog volume and a grid of no stated class. Every leaf holds two values at
+// least: on a leaf of one value NanoVDB's encoder converts 0/0 to an integer (see below).
+TEST(StreamedPrecision, SameBytesUnderTheVoxelRule) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const double inf = std::numeric_limits<double>::infinity();
     for (const char* cls : {"fog volume", "unknown"}) {
         TestGridSpec spec;
         spec.gridClass = cls;
-        spec.voxels = {{0, 0, 0, 1.0},  {1, 0, 0, nan}, {2, 0, 0, -3.0},  {3, 0, 0, inf},
-                       {4, 0, 0, 1e12}, {9, 9, 9, 0.5}, {-20, 5, 7, 2.0}, {40, 41, 42, -inf}};
+        spec.voxels = {{0, 0, 0, 1.0},   {1, 0, 0, nan},     {2, 0, 0, -3.0},
+                       {3, 0, 0, inf},   {4, 0, 0, 1e12},    {9, 9, 9, 0.5},
+                       {-20, 5, 7, 2.0}, {40, 41, 42, -inf}, {41, 41, 42, 3.0}};
         spec.inactiveVoxels = {{5, 0, 0, nan}, {6, 0, 0, -1.0}, {7, 0, 0, 1e11}};
-        for (int n = 0; n < 512; ++n) spec.voxels.push_back({16 + n % 8, n / 8 % 8, n / 64, 0.75});
-        spec.voxels.push_back({33, 1, 1, 0.0});  // a leaf of zeros, one of them active
+        for (int n = 0; n < 511; ++n) spec.voxels.push_back({16 + n % 8, n / 8 % 8, n / 64, 0.75});
+        spec.voxels.push_back({23, 7, 7, 0.25});  // a full leaf of two values
         spec.tiles = {{64, 0, 0, 1, -2.0}, {0, 512, 0, 2, nan}, {300, 0, 0, 2, 0.25}};
         const std::string path = test::tempDir() + "/bad_values.vdb";
         writeTestGrid(path, spec);
         SCOPED_TRACE(cls);
         expectStreamedIsNanoVdbs(path, "density");
+    }
+}
+
+template <typename Data, typename = void>
+struct IsQuantised : std::false_type {};
+template <typename Data>
+struct IsQuantised<Data, std::void_t<decltype(Data::mQuantum)>> : std::true_type {};
+
+// A leaf of one value has quantum 0: it decodes to that value exactly, and its statistics'
+// codes are 0, the bytes x86 makes of NanoVDB's conversion of 0/0 (undefined behaviour, so the
+// encoder is not run on it here). Active values of 0.75 filling a leaf, one active zero, and
+// −∞ made 0 by the voxel rule.
+TEST(StreamedPrecision, LeavesOfOneValueDecodeExactlyWithStatisticsCodedZero) {
+    TestGridSpec spec;
+    for (int n = 0; n < 512; ++n) spec.voxels.push_back({16 + n % 8, n / 8 % 8, n / 64, 0.75});
+    spec.voxels.push_back({33, 1, 1, 0.0});
+    spec.voxels.push_back({40, 41, 42, -std::numeric_limits<double>::infinity()});
+    const std::string path = test::tempDir() + "/one_valued.vdb";
+    writeTestGrid(path, spec);
+    const FloatGrid f = loadFloatGrid(path, "density");
+    for (GridPrecision p : kStreamed) {
+        SCOPED_TRACE(precisionName(p));
+        const FloatGrid streamed = loadFloatGrid(path, "density", p);
+        ASSERT_EQ(streamed.precision(), p);
+        EXPECT_EQ(streamed.maxValue(), 0.75f);
+        EXPECT_EQ(streamed.activeVoxels(), f.activeVoxels());
+        EXPECT_EQ(streamed.sanitizedVoxels(), 1u);
+        const uint32_t leaves = streamed.visit([&](const auto& grid) {
+            const auto& tree = grid.tree();
+            const auto* leaf = tree.getFirstLeaf();
+            for (uint32_t i = 0; i < tree.nodeCount(0); ++i) {
+                const auto& data = *leaf[i].data();
+                if constexpr (IsQuantised<std::decay_t<decltype(data)>>::value) {
+                    EXPECT_EQ(data.mQuantum, 0.0f);
+                    EXPECT_EQ(data.mMin + data.mMax + data.mAvg + data.mDev, 0);
+                }
+                for (uint32_t v = 0; v < 512; ++v) {
+                    const nanovdb::Coord ijk = leaf[i].offsetToGlobalCoord(v);
+                    EXPECT_EQ(leaf[i].getValue(v), f.grid()->tree().getValue(ijk))
+                        << ijk[0] << " " << ijk[1] << " " << ijk[2];
+                }
+            }
+            return tree.nodeCount(0);
+        });
+        EXPECT_EQ(leaves, 3u);
     }
 }
 

@@ -39,6 +39,7 @@
 #include "core/error.h"
 #include "volume/grid_precision.h"
 #include "volume/leaf_codec.h"
+#include "volume/mapped_file_pages.h"
 #include "volume/openvdb_read.h"
 #include "volume/voxel_rule.h"
 
@@ -507,6 +508,7 @@ nanovdb::GridHandle<nanovdb::HostBuffer> convert(openvdb::FloatGrid& grid,
                                                  SanitizeCounts* sanitized, float* leafMaximum) {
     Converter<BuildT> converter(grid, reads, releaseLeaves);
     nanovdb::GridHandle<nanovdb::HostBuffer> handle(nanovdb::HostBuffer::create(converter.bytes()));
+    adviseHugePages(handle.data(), handle.size());
     *sanitized = converter.run(handle.data());
     *leafMaximum = converter.leafMaximum();
     return handle;

@@ -11,7 +11,7 @@ set -euo pipefail
 
 PACKAGES=(
   build-essential cmake ninja-build pkg-config ccache
-  libopenvdb-dev libnanovdb-dev libboost-iostreams-dev libblosc-dev libopenvdb-tools
+  libopenvdb-dev libnanovdb-dev libboost-iostreams-dev libblosc-dev zlib1g-dev libopenvdb-tools
   libopenvdb-ax-dev
   libembree-dev libtinyobjloader-dev
   libopenimageio-dev openimageio-tools fonts-dejavu-core

@@ -2,7 +2,9 @@
 // by leaf in parallel: OpenVDB's own reader decompresses the leaves (Blosc or zip) and widens
 // half floats one after the other, which dominates the load of a big cache; touching each
 // leaf's buffer from TBB's threads does the same work on every core. A progress bar reports the
-// grid's bytes in the file read so far (core/progress.h).
+// grid's bytes in the file read so far (core/progress.h). A float grid's leaves are decoded
+// from the file by Mirage itself where the tree walk indexed them (vdb_leaf_values.h), faster
+// than OpenVDB's per-leaf streams.
 // Includes OpenVDB: only vdb_file.cpp includes it.
 #pragma once
 
@@ -22,6 +24,7 @@
 #include "core/progress.h"
 #include "volume/load_progress.h"
 #include "volume/mapped_file_pages.h"
+#include "volume/vdb_leaf_values.h"
 
 namespace mirage {
 
@@ -37,9 +40,11 @@ inline std::vector<std::shared_ptr<void>>& brokenLeafBuffers() {
 template <typename LeafT>
 class LeafReads {
 public:
+    // With `decoder`, values() decodes the leaves from the file itself (vdb_leaf_values.h).
     LeafReads(uint64_t fileBytes, size_t leafCount, const std::string& path,
-              const std::string& gridLabel)
-        : mPath(path),
+              const std::string& gridLabel, const LeafValueReader* decoder = nullptr)
+        : mDecoder(decoder),
+          mPath(path),
           mLabel(gridLabel),
           mLeaves(leafCount),
           mMegabytes(fileBytes / 1000000 + 1),
@@ -67,6 +72,22 @@ public:
     }
     bool failed() const { return mFailed; }
 
+    // The values of `leaf`, the i-th in depth-first order: decoded into `scratch` (512 floats)
+    // by the decoder where there is one, else loaded by OpenVDB into the leaf's own buffer.
+    // Null when they could not be read.
+    const float* values(size_t i, LeafT& leaf, float* scratch) {
+        if (!mDecoder) return load(leaf) ? leaf.buffer().data() : nullptr;
+        if (mFailed) return nullptr;
+        uint64_t mask[LeafT::SIZE / 64];
+        for (uint32_t w = 0; w < LeafT::SIZE / 64; ++w)
+            mask[w] = leaf.valueMask().template getWord<uint64_t>(w);
+        std::string error;
+        if (mDecoder->read(i, mask, scratch, &error)) return scratch;
+        std::lock_guard<std::mutex> lock(mErrorMutex);
+        if (!mFailed.exchange(true)) mError = error;
+        return nullptr;
+    }
+
     // `leaves` more leaves are done: the bar's steps add up to the grid's size. Every
     // kReleaseMegabytes read, the file's mapped pages and the freed leaves' heap pages are given
     // back (mapped_file_pages.h), by one thread at a time.
@@ -88,8 +109,9 @@ public:
     void finish() {
         mProgress.finish();
         if (mFailed)
-            throw MirageError(FileLoc{mPath}, "OpenVDB could not read grid " + mLabel + ": " +
-                                                  boundedMessage(mError));
+            throw MirageError(FileLoc{mPath},
+                              std::string(mDecoder ? "cannot" : "OpenVDB could not") +
+                                  " read grid " + mLabel + ": " + boundedMessage(mError));
     }
 
 private:
@@ -98,6 +120,7 @@ private:
         return mLeaves == 0 ? 0 : uint64_t(double(mMegabytes) * double(i) / double(mLeaves));
     }
 
+    const LeafValueReader* mDecoder;
     std::string mPath, mLabel;
     size_t mLeaves;
     uint64_t mMegabytes;

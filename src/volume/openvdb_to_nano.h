@@ -32,6 +32,7 @@
 #include <atomic>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -247,8 +248,9 @@ private:
         Codec::clearStats(*data);
         data->setOrigin(open.origin());
         data->mValueMask = open.valueMask();
-        if (!mReads.load(open)) return false;
-        const float* src = open.buffer().data();
+        float decoded[OpenLeaf::SIZE];
+        const float* src = mReads.values(i, open, decoded);
+        if (!src) return false;
         // Nearly every leaf keeps the rule already: a test of all its values at once, with
         // their range; the rule value by value, on a copy, only where one breaks it.
         uint32_t broken = 0;
@@ -527,13 +529,20 @@ inline bool streamsPrecision(GridPrecision p) { return p != GridPrecision::FpN; 
 // parallel, on a bar when the grid's `fileBytes` in file `path` call for one; with
 // `releaseLeaves`, each leaf's values are freed once encoded (the OpenVDB grid keeps its
 // topology only). No float copy of a quantised grid is made: its leaves are encoded as they are
-// read. Throws MirageError naming the file and `label` when a leaf cannot be read.
+// read. Where the tree walk indexed the leaves' data (`leafIndex`, one offset per leaf), they
+// are decoded from the file by vdb_leaf_values.h, else read by OpenVDB. Throws MirageError
+// naming the file and `label` when a leaf cannot be read.
 inline nanovdb::GridHandle<nanovdb::HostBuffer> convertFloatGrid(
     openvdb::FloatGrid& grid, GridPrecision precision, uint64_t fileBytes, const std::string& path,
-    const std::string& label, bool releaseLeaves, SanitizeCounts* sanitized, float* leafMaximum) {
+    const std::string& label, bool releaseLeaves, SanitizeCounts* sanitized, float* leafMaximum,
+    const vdbformat::LeafDataIndex* leafIndex = nullptr) {
     using namespace openvdbtonano;
     MIRAGE_CHECK(convertsDirectly(grid) && streamsPrecision(precision));
-    LeafReads<OpenLeaf> reads(fileBytes, grid.tree().leafCount(), path, label);
+    std::optional<LeafValueReader> decoder;
+    if (leafIndex && leafIndex->offsets.size() == grid.tree().leafCount())
+        decoder.emplace(path, *leafIndex);
+    LeafReads<OpenLeaf> reads(fileBytes, grid.tree().leafCount(), path, label,
+                              decoder ? &*decoder : nullptr);
     switch (precision) {
         case GridPrecision::Half:
             return convert<nanovdb::Fp16>(grid, reads, releaseLeaves, sanitized, leafMaximum);

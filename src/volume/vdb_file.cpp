@@ -85,13 +85,14 @@ void checkFogClass(const std::string& path, const std::string& label, const std:
 // not copied, until the grid is dropped), then on every core (openvdb_read.h).
 enum class ReadMode { Metadata, Values, Lazy };
 
+// With `leaves`, a float tree's leaf data are indexed by the walk (vdb_tree.h).
 openvdb::GridBase::Ptr readOpenVdbGrid(const std::string& path, const FileLayout& layout, int index,
-                                       ReadMode mode) {
+                                       ReadMode mode, vdbformat::LeafDataIndex* leaves = nullptr) {
     const GridRecord& record = layout.grids[size_t(index)];
     const std::string label = vdbformat::gridLabel(layout, index);
     // The tree's counts and block sizes are checked before OpenVDB trusts them (vdb_tree.h).
     if (mode != ReadMode::Metadata) {
-        vdbformat::checkOpenVdbTree(path, layout, index);
+        vdbformat::checkOpenVdbTree(path, layout, index, leaves);
         ++gGridReads;
     }
     initOpenVdb();
@@ -131,15 +132,15 @@ openvdb::GridBase::Ptr readOpenVdbGrid(const std::string& path, const FileLayout
 // as half come back as float already), after checking that it is a scalar fog volume. A float
 // grid's leaves are still in the file (delayed loading): toNanoVdb or readLeavesInParallel
 // reads them.
-openvdb::FloatGrid::Ptr readFogVolume(const std::string& path, const FileLayout& layout,
-                                      int index) {
+openvdb::FloatGrid::Ptr readFogVolume(const std::string& path, const FileLayout& layout, int index,
+                                      vdbformat::LeafDataIndex* leaves = nullptr) {
     const GridRecord& record = layout.grids[size_t(index)];
     const std::string label = vdbformat::gridLabel(layout, index);
     const std::string valueType = vdbformat::valueTypeOf(record);
     if (valueType != "float" && valueType != "half" && valueType != "double")
         fail(path, "grid " + label + " holds " + describeValueType(valueType) +
                        " values, expected a scalar float fog volume (density)");
-    openvdb::GridBase::Ptr base = readOpenVdbGrid(path, layout, index, ReadMode::Lazy);
+    openvdb::GridBase::Ptr base = readOpenVdbGrid(path, layout, index, ReadMode::Lazy, leaves);
     checkFogClass(path, label, openvdb::GridBase::gridClassToString(base->getGridClass()));
     if (!base->transform().baseMap()->isLinear())
         fail(path, "grid " + label + " has a " + base->transform().mapType() +
@@ -306,18 +307,16 @@ GridInfo openVdbGridInfo(const std::string& path, const FileLayout& layout, int 
 // `releaseLeaves` the OpenVDB grid keeps only its topology afterwards, so that a big grid's
 // values are never held twice; *leafMaximum is the largest value its leaves store. The grids
 // that converter does not take (a staggered class, a long name) go through NanoVDB's own, at
-// float, and *leafMaximum is nullopt.
-nanovdb::GridHandle<nanovdb::HostBuffer> toNanoVdb(const std::string& path,
-                                                   const std::string& label,
-                                                   openvdb::FloatGrid& grid, uint64_t fileBytes,
-                                                   bool releaseLeaves, GridPrecision streamed,
-                                                   SanitizeCounts* sanitized,
-                                                   std::optional<float>* leafMaximum) {
+// float, and *leafMaximum is nullopt. `leaves`: where the walk found the leaves' data.
+nanovdb::GridHandle<nanovdb::HostBuffer> toNanoVdb(
+    const std::string& path, const std::string& label, openvdb::FloatGrid& grid, uint64_t fileBytes,
+    bool releaseLeaves, GridPrecision streamed, SanitizeCounts* sanitized,
+    std::optional<float>* leafMaximum, const vdbformat::LeafDataIndex* leaves = nullptr) {
     if (convertsDirectly(grid)) {
         float maximum = 0.f;
         auto handle =
             convertFloatGrid(grid, streamsPrecision(streamed) ? streamed : GridPrecision::Float,
-                             fileBytes, path, label, releaseLeaves, sanitized, &maximum);
+                             fileBytes, path, label, releaseLeaves, sanitized, &maximum, leaves);
         *leafMaximum = maximum;
         return handle;
     }
@@ -399,9 +398,10 @@ FloatGrid loadFloatGrid(const std::string& path, const std::string& gridName,
                            ", expected 0 for a fog volume (is it a level set?)");
         sanitized = sanitizeScalarVoxels(handle);
     } else {
-        handle = toNanoVdb(path, label, *readFogVolume(path, layout, index),
+        vdbformat::LeafDataIndex leaves;
+        handle = toNanoVdb(path, label, *readFogVolume(path, layout, index, &leaves),
                            record.endPos - record.gridPos, /*releaseLeaves=*/true, streamed,
-                           &sanitized, &leafMaximum);
+                           &sanitized, &leafMaximum, &leaves);
     }
     return finishGrid(path, layout, index, std::move(handle), label, sanitized, leafMaximum);
 }

@@ -82,8 +82,8 @@ uint64_t maskHash(const Words& words) {
 class TreeWalker {
 public:
     TreeWalker(Reader& r, const GridRecord& g, const TreeLayout& t, const std::string& label,
-               Progress* progress = nullptr)
-        : mR(r), mGrid(g), mTree(t), mLabel(label), mProgress(progress) {}
+               Progress* progress = nullptr, LeafDataIndex* index = nullptr)
+        : mR(r), mGrid(g), mTree(t), mLabel(label), mProgress(progress), mIndex(index) {}
 
     // The topology alone: the node counts, without the leaves' values.
     TreeCounts topology() {
@@ -133,7 +133,13 @@ private:
     }
 
     void root() {
-        skip(mTree.valueBytes, "root background value");
+        if (mIndex) {
+            mIndex->background = pod<float>("root background value");
+            mIndex->savedAsHalf = mGrid.savedAsHalf;
+            mIndex->compression = mGrid.compression;
+        } else {
+            skip(mTree.valueBytes, "root background value");
+        }
         const uint32_t tiles = pod<uint32_t>("root tile count");
         const uint32_t children = pod<uint32_t>("root child count");
         mCounts.rootEntries = uint64_t(tiles) + children;
@@ -204,6 +210,7 @@ private:
                     skip(kLeafMaskBytes + kCoordBytes, "mask leaf data");
                     break;
                 case LeafKind::Values: {
+                    if (mIndex) mIndex->offsets.push_back(mR.pos());
                     const auto m = leafMask("leaf data mask");
                     if (maskHash(m) != mLeaves[i].hash || popcount(m) != mLeaves[i].active)
                         corrupt("leaf " + num(i) + "'s mask at byte " +
@@ -267,9 +274,9 @@ private:
             std::memcpy(&nbytes, header + 4, 4);
             std::memcpy(&cbytes, header + 12, 4);
             if (nbytes != rawBytes || cbytes != bytes)
-                corrupt(std::string(what) + ": the Blosc block at byte " + num(start) +
-                        " claims " + num(cbytes) + " of " + num(bytes) + " bytes, holding " +
-                        num(nbytes) + " of the " + num(rawBytes) + " expected");
+                corrupt(std::string(what) + ": the Blosc block at byte " + num(start) + " claims " +
+                        num(cbytes) + " of " + num(bytes) + " bytes, holding " + num(nbytes) +
+                        " of the " + num(rawBytes) + " expected");
             skip(bytes - sizeof(header), what);
         } else {
             skip(bytes, what);
@@ -283,6 +290,7 @@ private:
     std::vector<LeafRecord> mLeaves;
     TreeCounts mCounts;
     Progress* mProgress;
+    LeafDataIndex* mIndex;  // null, or filled for a float tree
 };
 
 }  // namespace
@@ -296,14 +304,16 @@ bool treeIsWalkable(const FileLayout& layout, int index) {
     return g.topologyPos != 0 && layoutOf(g.type, &t);
 }
 
-void checkOpenVdbTree(const std::string& path, const FileLayout& layout, int index) {
+void checkOpenVdbTree(const std::string& path, const FileLayout& layout, int index,
+                      LeafDataIndex* leaves) {
     const std::string label = gridLabel(layout, index);
     auto fail = [&](const std::string& msg) { throw MirageError(FileLoc{path}, msg); };
     if (layout.format != Format::OpenVdb) fail("not an OpenVDB file");
     const int owner = treeOwner(layout, index);
     if (owner < 0)
-        fail("grid " + label + " is an instance of a grid the file does not hold (or of "
-                               "another instance)");
+        fail("grid " + label +
+             " is an instance of a grid the file does not hold (or of "
+             "another instance)");
     const GridRecord& g = layout.grids[size_t(owner)];
     if (layout.fileVersion < 222)
         fail("grid " + label + ": OpenVDB file format version " + num(layout.fileVersion) +
@@ -320,7 +330,9 @@ void checkOpenVdbTree(const std::string& path, const FileLayout& layout, int ind
     Reader r(path, in, layout.fileSize);
     LoadStage progress("checking", path, gridLabel(layout, index), g.endPos - g.gridPos,
                        (g.endPos - g.blockPos) / 1000000, "MB");
-    TreeWalker(r, g, tree, gridLabel(layout, owner), &progress).walk();
+    const bool floats = g.type == "Tree_float_5_4_3";
+    if (leaves) *leaves = LeafDataIndex();
+    TreeWalker(r, g, tree, gridLabel(layout, owner), &progress, floats ? leaves : nullptr).walk();
     progress.finish();
 }
 

@@ -24,7 +24,9 @@
 // This file does not include OpenVDB headers.
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "volume/vdb_format.h"
 
@@ -35,10 +37,21 @@ namespace mirage::vdbformat {
 // vec3i, bool or mask values (an instance: that of its parent). Point grids are not.
 bool treeIsWalkable(const FileLayout& layout, int index);
 
+// Where a float tree's leaves keep their values in the file, found by the walk below, for
+// volume/vdb_leaf_values.h to decode them without OpenVDB's delayed loading.
+struct LeafDataIndex {
+    std::vector<uint64_t> offsets;  // each leaf's data (its mask first), depth-first order
+    float background = 0.f;         // the root's: what mask compression leaves out
+    bool savedAsHalf = false;
+    uint32_t compression = 0;  // the grid's OpenVDB flags (vdb_format.h)
+};
+
 // Walks the tree of OpenVDB grid `index` (that of its instance parent for an instance) and
 // throws MirageError naming the file, the grid and the first byte that does not fit. Call it
-// before OpenVDB reads the grid's topology or data.
-void checkOpenVdbTree(const std::string& path, const FileLayout& layout, int index);
+// before OpenVDB reads the grid's topology or data. With `leaves`, a float tree's leaf data are
+// indexed there (other trees leave it empty).
+void checkOpenVdbTree(const std::string& path, const FileLayout& layout, int index,
+                      LeafDataIndex* leaves = nullptr);
 
 // The nodes of a grid's tree, from its topology: what its NanoVDB copy's size follows from.
 struct TreeCounts {

@@ -150,5 +150,43 @@ TEST(ParallelLoad, TheMaximumKeptOnTheWayCountsInactiveVoxelsAndTiles) {
     EXPECT_EQ(maximumReadAfterwards(tiled).maxValue(), 6.f);
 }
 
+// The leaves decoded from the file by Mirage itself (volume/vdb_leaf_values.h), against
+// OpenVDB's reader, under every mask-compression flag a fog volume's writer picks — 0 (the
+// inactive values are the background), 2 (one other value), 4 (the background and one other),
+// 5 (two others), 6 (more: every value stored) — with leaves wholly active and wholly inactive,
+// stored as floats and as half floats, Blosc, zip and uncompressed.
+TEST(ParallelLoad, LeavesDecodedByMirageAreOpenVdbsUnderEveryMaskCompression) {
+    TestGridSpec spec;
+    spec.gridClass = "unknown";  // OpenVDB zips no fog volume
+    auto leaf = [&](int x, std::vector<double> inactive) {
+        for (int n = 0; n < 512; n += 3)
+            spec.voxels.push_back({x + n / 64, n / 8 % 8, n % 8, 0.5 + n});
+        for (size_t k = 0; k < inactive.size(); ++k)
+            for (int n = 1 + int(k); n < 512; n += 3)
+                spec.inactiveVoxels.push_back({x + n / 64, n / 8 % 8, n % 8, inactive[k]});
+    };
+    leaf(0, {});            // flag 0
+    leaf(8, {0.25, 0.25});  // flag 2
+    leaf(16, {0.25});       // flag 4: the third of the voxels left at the background
+    leaf(24, {0.25, 7.0});  // flag 4 or 5
+    for (int n = 0; n < 512; ++n) {
+        spec.voxels.push_back({32 + n / 64, n / 8 % 8, n % 8, 1.0 + 0.001 * n});   // all active
+        spec.inactiveVoxels.push_back({40 + n / 64, n / 8 % 8, n % 8, 0.01 * n});  // flag 6
+    }
+    spec.voxels.push_back({40, 0, 0, 3.0});
+    for (const char* compression : {"blosc", "zip", "none"})
+        for (bool half : {false, true}) {
+            spec.saveAsHalf = half;
+            const std::string path = test::tempDir() + "/flags_" + compression + ".vdb";
+            writeTestGrid(path, spec, compression);
+            SCOPED_TRACE(std::string(compression) + (half ? " half" : " float"));
+            const FloatGrid loaded = loadFloatGrid(path, "density");
+            const std::string eager = eagerNanoVdbForTest(path, "density");
+            ASSERT_EQ(loaded.grid()->gridSize(), eager.size());
+            EXPECT_TRUE(bytesOf(loaded.grid(), loaded.grid()->gridSize()) == eager);
+            EXPECT_EQ(loaded.sanitizedVoxels(), 0u);
+        }
+}
+
 }  // namespace
 }  // namespace mirage

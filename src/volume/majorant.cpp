@@ -365,24 +365,29 @@ std::vector<float> MajorantGrid::cellMaximaOf(const Grid& g, Progress& progress)
     std::vector<float> cells(mValues.size(), 0.f);
     Splatter<Grid> splatter(g, mBounds, mRes, mCellSize, cells);
 
-    if constexpr (std::is_same_v<Grid, nanovdb::FloatGrid>) {
-        // Leaves: all 512 values, inactive ones included (the sampler reads them); voxel by voxel
-        // where the map allows, else the leaf's maximum over the leaf's footprint. In parallel,
-        // each thread onto cells of its own, merged by maximum: exact, so the same cells for any
-        // thread count. A fine majorant grid (over kParallelCells cells) is splatted by one thread.
+    // Leaves: all 512 values, inactive ones included (the sampler reads them), as a lookup
+    // decodes them at a quantised precision (a bound of the floats would not bound what the
+    // lookups return); voxel by voxel where the map allows, else the leaf's maximum over the
+    // leaf's footprint.
+    auto splatLeaf = [](Splatter<Grid>& s, const auto& leaf, float* decoded) {
+        const float* v = leafValues(leaf, decoded);
+        if (s.splatVoxels(leaf.origin(), v)) return;
+        float m = 0.f;
+        for (int k = 0; k < 512; ++k) m = std::max(m, v[k]);
+        s.splat(leaf.origin(), 8, m);
+    };
+    const std::array<AxisCells, 3> table = splatter.cellTable();
+    splatter.useTable(&table);
+    constexpr size_t kParallelCells = size_t(1) << 24;
+    if constexpr (!std::is_same_v<typename Grid::BuildType, nanovdb::FpN>) {
+        // Leaves of one size, indexed from the first: in parallel, each thread onto cells of
+        // its own, merged by maximum: exact, so the same cells for any thread count. A fine
+        // majorant grid (over kParallelCells cells) is splatted by one thread.
         const auto* leaf = tree.getFirstLeaf();
-        const std::array<AxisCells, 3> table = splatter.cellTable();
-        splatter.useTable(&table);
         auto splatLeaves = [&](Splatter<Grid>& s, uint32_t begin, uint32_t end) {
-            for (uint32_t i = begin; i < end; ++i) {
-                const float* v = leaf[i].data()->mValues;
-                if (s.splatVoxels(leaf[i].origin(), v)) continue;
-                float m = 0.f;
-                for (int k = 0; k < 512; ++k) m = std::max(m, v[k]);
-                s.splat(leaf[i].origin(), 8, m);
-            }
+            float decoded[512];
+            for (uint32_t i = begin; i < end; ++i) splatLeaf(s, leaf[i], decoded);
         };
-        constexpr size_t kParallelCells = size_t(1) << 24;
         if (cells.size() > kParallelCells) {
             splatLeaves(splatter, 0, tree.nodeCount(0));
         } else {
@@ -399,18 +404,9 @@ std::vector<float> MajorantGrid::cellMaximaOf(const Grid& g, Progress& progress)
                 for (size_t c = 0; c < cells.size(); ++c) cells[c] = std::max(cells[c], o[c]);
         }
     } else {
-        // Leaves: all 512 values, inactive ones included (the sampler reads them), as a lookup
-        // decodes them at a quantised precision (a bound of the floats would not bound what the
-        // lookups return); voxel by voxel where the map allows, else the leaf's maximum over the
-        // leaf's footprint.
+        // FpN leaves vary in size: one thread, through their lower nodes (stored_values.h).
         float decoded[512];
-        forEachLeaf(tree, [&](const auto& leaf) {
-            const float* v = leafValues(leaf, decoded);
-            if (splatter.splatVoxels(leaf.origin(), v)) return;
-            float m = 0.f;
-            for (int k = 0; k < 512; ++k) m = std::max(m, v[k]);
-            splatter.splat(leaf.origin(), 8, m);
-        });
+        forEachLeaf(tree, [&](const auto& leaf) { splatLeaf(splatter, leaf, decoded); });
     }
     // Tiles of the lower (8³-voxel tiles) and upper (128³) internal nodes and of the root
     // (4096³). Inactive tiles count too: their value is what a lookup there returns.

@@ -34,6 +34,7 @@
 #include "volume/openvdb_expression.h"
 #include "volume/openvdb_read.h"
 #include "volume/openvdb_to_nano.h"
+#include "volume/openvdb_topology.h"
 #include "volume/vdb_format.h"
 #include "volume/vdb_tree.h"
 #include "volume/voxel_rule.h"
@@ -85,7 +86,8 @@ void checkFogClass(const std::string& path, const std::string& label, const std:
 // not copied, until the grid is dropped), then on every core (openvdb_read.h).
 enum class ReadMode { Metadata, Values, Lazy };
 
-// With `leaves`, a float tree's leaf data are indexed by the walk (vdb_tree.h).
+// With `leaves`, a float tree's leaf data are indexed by the walk (vdb_tree.h) and OpenVDB reads
+// its topology alone (openvdb_topology.h): its leaves are then for the index's decoder only.
 openvdb::GridBase::Ptr readOpenVdbGrid(const std::string& path, const FileLayout& layout, int index,
                                        ReadMode mode, vdbformat::LeafDataIndex* leaves = nullptr) {
     const GridRecord& record = layout.grids[size_t(index)];
@@ -101,12 +103,16 @@ openvdb::GridBase::Ptr readOpenVdbGrid(const std::string& path, const FileLayout
         // voxels): a stage of one step.
         LoadStage topology("reading the topology of", path, label,
                            mode == ReadMode::Lazy ? record.endPos - record.gridPos : 0, 1, "step");
+        const bool topologyOnly = leaves && !leaves->offsets.empty() && mode == ReadMode::Lazy &&
+                                  record.instanceParent.empty();
         openvdb::io::File file(path);
         file.setCopyMaxBytes(0);
-        file.open(/*delayLoad=*/mode == ReadMode::Lazy);
+        file.open(/*delayLoad=*/mode == ReadMode::Lazy && !topologyOnly);
         const std::string name = openvdb::io::GridDescriptor::nameAsString(record.uniqueName);
-        openvdb::GridBase::Ptr grid =
-            mode == ReadMode::Metadata ? file.readGridMetadata(name) : file.readGrid(name);
+        openvdb::GridBase::Ptr grid;
+        if (topologyOnly) grid = readFloatTopology(file, path, layout, record, name, *leaves);
+        if (!grid)
+            grid = mode == ReadMode::Metadata ? file.readGridMetadata(name) : file.readGrid(name);
         file.close();
         topology.advance(1);
         topology.finish();

@@ -188,5 +188,20 @@ TEST(ParallelLoad, LeavesDecodedByMirageAreOpenVdbsUnderEveryMaskCompression) {
         }
 }
 
+// A grid the converter does not take (a name too long for NanoVDB's header) is read whole by
+// OpenVDB instead, not as the topology the decoder fills.
+TEST(ParallelLoad, AGridOfALongNameIsReadWholeByOpenVdb) {
+    TestGridSpec spec;
+    spec.name = std::string(300, 'd');
+    for (int n = 0; n < 700; ++n) spec.voxels.push_back({n % 20, n / 20 % 20, n / 400, 0.5 + n});
+    const std::string path = test::tempDir() + "/long_name.vdb";
+    writeTestGrid(path, spec);
+    const FloatGrid loaded = loadFloatGrid(path, spec.name);
+    const std::string eager = eagerNanoVdbForTest(path, spec.name);
+    ASSERT_EQ(loaded.grid()->gridSize(), eager.size());
+    EXPECT_TRUE(bytesOf(loaded.grid(), loaded.grid()->gridSize()) == eager);
+    EXPECT_EQ(loaded.maxValue(), 699.5f);
+}
+
 }  // namespace
 }  // namespace mirage

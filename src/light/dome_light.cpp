@@ -114,11 +114,16 @@ public:
     bool sampleLi(const Vec3&, float u1, float u2, const SampledWavelengths& w,
                   LightSample* out) const override {
         float pdf;
-        const Vec3 d = sampleDirection(u1, u2, &pdf);
+        size_t texel;
+        const Vec3 d = sampleDirection(u1, u2, &pdf, &texel);
         if (!(pdf > 0.f)) return false;
         out->wi = d;
         out->distance = kInfinity;
-        out->Li = radiance(d, w) / pdf;
+        // The drawn cell's own radiance, whose density pdf is: mapping d back to the image (an
+        // arc cosine and an arc tangent per shadow ray) found the same pixel, or at its edge a
+        // neighbour.
+        out->Li =
+            (mDistribution.empty() ? mConstant.sample(w) : texelRadiance(mTexels[texel], w)) / pdf;
         out->pdf = pdf;
         return !out->Li.isZero();
     }
@@ -259,13 +264,14 @@ private:
         mSun = LightLobe{normalize(Vec3(mean)), float(power / (kLambdaMax - kLambdaMin))};
     }
 
-    Vec3 sampleDirection(float u1, float u2, float* pdf) const {
+    // A direction ∝ p(ω), with its density and, for an image, the pixel drawn (*texel).
+    Vec3 sampleDirection(float u1, float u2, float* pdf, size_t* texel = nullptr) const {
         if (mDistribution.empty()) {
             *pdf = kInv4Pi;
             return sampleUniformSphere(u1, u2);
         }
         float u, v, pdfUv;
-        mDistribution.sample(u1, u2, &u, &v, &pdfUv);
+        mDistribution.sample(u1, u2, &u, &v, &pdfUv, texel);
         const float sinT = std::sin(kPi * v);
         *pdf = sinT > 0.f ? pdfUv * kInv2Pi2 / sinT : 0.f;
         return latLongDirection(u, v, mRotation);

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -43,6 +44,31 @@ TEST(Distribution1D, SamplesFollowTheDensity) {
     }
 }
 
+// The bin drawn for u is the one whose CDF interval [c_i, c_i+1) holds it, found by a linear
+// scan (empty bins, whose intervals are empty, never drawn), at the edges of every interval and
+// between them: the branch-free search finds std::upper_bound's answer.
+TEST(Distribution1D, BinIsTheIntervalHoldingU) {
+    for (const auto& weights : weightSets()) {
+        const Distribution1D d(weights);
+        double total = 0.0;
+        for (double w : weights) total += w;
+        std::vector<double> cdf(1, 0.0);
+        for (double w : weights) cdf.push_back(cdf.back() + (total > 0.0 ? w : 1.0));
+        for (double& c : cdf) c /= cdf.back();
+        std::vector<float> us;
+        for (double c : cdf) us.insert(us.end(), {float(c), std::nextafter(float(c), 0.f)});
+        for (int k = 0; k < 1000; ++k) us.push_back(float(k) / 1000.f);
+        for (float u : us) {
+            if (!(u >= 0.f && u < 1.f)) continue;
+            size_t expected = 0;
+            while (expected + 1 < weights.size() && !(double(u) < cdf[expected + 1])) ++expected;
+            size_t bin;
+            d.sample(u, &bin);
+            EXPECT_EQ(bin, expected) << "u " << u;
+        }
+    }
+}
+
 TEST(Distribution2D, CellsFollowTheDensity) {
     constexpr int kWidth = 16, kHeight = 8, kSamples = 200000;
     std::vector<double> weights(kWidth * kHeight);
@@ -54,8 +80,10 @@ TEST(Distribution2D, CellsFollowTheDensity) {
     std::vector<double> observed(weights.size(), 0.0), expected(weights.size());
     for (int i = 0; i < kSamples; ++i) {
         float u, v, pdf;
-        d.sample(uniform(rng), uniform(rng), &u, &v, &pdf);
+        size_t drawn;
+        d.sample(uniform(rng), uniform(rng), &u, &v, &pdf, &drawn);
         const size_t cell = size_t(v * kHeight) * kWidth + size_t(u * kWidth);
+        ASSERT_EQ(drawn, cell);  // the cell the dome takes its radiance from
         ASSERT_FLOAT_EQ(pdf, d.pdf(u, v));
         observed[cell] += 1.0;
     }

@@ -183,8 +183,13 @@ public:
     std::unique_ptr<PhotonProjection> projection(const ProjectionTargets& t) const override;
 
     // A constant dome's colour is one spectrum everywhere (render/achromatic_film.h films it
-    // exactly); an image's varies over directions.
+    // exactly); an image's varies over directions, within the span of the three basis windows.
     const Spectrum* spectrum() const override { return mWidth == 0 ? &mConstant : nullptr; }
+    // An image's radiance is Σ_k c_k(ω) B_k(λ) everywhere: three shapes, whatever the image.
+    std::vector<const Spectrum*> spectralShapes() const override {
+        if (mWidth == 0) return {&mConstant};
+        return {&mBasis[0], &mBasis[1], &mBasis[2]};
+    }
     std::string describe() const override {
         char buf[160];
         if (mDistribution.empty())

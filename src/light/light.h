@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/math.h"
 #include "core/rng.h"
@@ -104,6 +105,13 @@ public:
     // spectrum times a factor independent of λ: every light here. Null for a light whose
     // colour varies over directions or points (render/achromatic_film.h then samples colour).
     virtual const Spectrum* spectrum() const { return nullptr; }
+    // The fixed spectra whose combination, with coefficients free of λ that may vary over
+    // directions or points, is everything the light sends: its spectrum() where it has one; an
+    // image dome's three basis windows (light/dome_light.cpp). Empty: none such.
+    virtual std::vector<const Spectrum*> spectralShapes() const {
+        if (const Spectrum* s = spectrum()) return {s};
+        return {};
+    }
     // A light at a point (point, spot): where it is. The others: nothing.
     virtual std::optional<LightOrigin> origin() const { return std::nullopt; }
     // A light at infinity most of whose power comes from one small patch of sky (a sun in a

@@ -34,10 +34,15 @@ bool positiveEverywhere(const Spectrum& s) {
 // pin down with margin (render/achromatic_film.h).
 constexpr size_t kMaxColours = 3;
 
-// The lights' distinct shapes and each light's among them.
+// The lights' distinct shapes and each light's among them (kSeveralShapes: a light of several,
+// an image dome, whose photons' colours vary and are not one light's XYZ).
+constexpr size_t kSeveralShapes = ~size_t(0);
 struct LightShapes {
     std::vector<Spectrum> shapes;
     std::vector<size_t> ofLight;
+    bool severalOfOneLight() const {
+        return std::find(ofLight.begin(), ofLight.end(), kSeveralShapes) != ofLight.end();
+    }
 };
 
 bool emits(const RenderScene& scene) {
@@ -55,19 +60,22 @@ std::optional<LightShapes> lightShapes(const RenderScene& scene, std::string* wh
     }
     LightShapes out;
     for (const auto& light : scene.lights) {
-        const Spectrum* s = light->spectrum();
-        if (!s) {
+        const std::vector<const Spectrum*> shapes = light->spectralShapes();
+        if (shapes.empty()) {
             *why = "a light whose colour varies over directions or points";
             return std::nullopt;
         }
-        if (!positiveEverywhere(*s)) {
-            *why = "a light spectrum with zeros";
-            return std::nullopt;
-        }
         size_t k = 0;
-        while (k < out.shapes.size() && !sameShape(*s, out.shapes[k])) ++k;
-        if (k == out.shapes.size()) out.shapes.push_back(*s);
-        out.ofLight.push_back(k);
+        for (const Spectrum* s : shapes) {
+            if (!positiveEverywhere(*s)) {
+                *why = "a light spectrum with zeros";
+                return std::nullopt;
+            }
+            k = 0;
+            while (k < out.shapes.size() && !sameShape(*s, out.shapes[k])) ++k;
+            if (k == out.shapes.size()) out.shapes.push_back(*s);
+        }
+        out.ofLight.push_back(shapes.size() == 1 ? k : kSeveralShapes);
     }
     if (out.shapes.size() > kMaxColours) {
         *why = "lights of more than " + std::to_string(kMaxColours) + " colours";
@@ -98,6 +106,8 @@ std::optional<AchromaticFilm> AchromaticFilm::forScene(const RenderScene& scene,
         return std::nullopt;
     std::string why;
     LightShapes ls = *lightShapes(scene, &why);
+    // A photon carries its light's one XYZ per watt: an image dome's photons have none.
+    if (integrator.info().photonPass && ls.severalOfOneLight()) return std::nullopt;
     std::vector<Vec3> xyz, shapePerWatt, perWatt;
     for (const Spectrum& shape : ls.shapes) {
         const Vec3d c = spectrumToXyz(shape);
@@ -105,7 +115,8 @@ std::optional<AchromaticFilm> AchromaticFilm::forScene(const RenderScene& scene,
         xyz.push_back(Vec3(float(c.x), float(c.y), float(c.z)));
         shapePerWatt.push_back(Vec3(float(w.x), float(w.y), float(w.z)));
     }
-    for (size_t shape : ls.ofLight) perWatt.push_back(shapePerWatt[shape]);
+    for (size_t shape : ls.ofLight)
+        perWatt.push_back(shape == kSeveralShapes ? Vec3(0.f) : shapePerWatt[shape]);
     return AchromaticFilm(std::move(ls.shapes), std::move(xyz), std::move(perWatt),
                           exactEmission && emits(scene));
 }
@@ -171,7 +182,12 @@ bool sampledColour(const RenderScene& scene, const IntegratorInfo& integrator, s
         *why = "4 wavelengths per sample (" + part + ")";
         return true;
     }
-    const size_t colours = lightShapes(scene, why)->shapes.size();
+    const LightShapes shapes = *lightShapes(scene, why);
+    const size_t colours = shapes.shapes.size();
+    if (integrator.photonPass && shapes.severalOfOneLight()) {
+        *why = "4 wavelengths per sample (an image dome's photons, each of its own colour)";
+        return true;
+    }
     if (emits(scene)) {
         *why = "grey media glowing by their temperature: " + integrator.name +
                " adds each emission event's exact XYZ (the blackbody's at its temperature)" +

@@ -1,13 +1,15 @@
 // Colour without chromatic noise (render/achromatic_film.h): taken exactly when nothing in the
 // scene is spectral, the same mean as the spectral film per channel, and every pixel exactly
 // the light's chromaticity; the photon mapper's photons carry the light's exact colour with the
-// same mean flux per channel as photons at their own wavelengths.
+// same mean flux per channel as photons at their own wavelengths; an image dome is filmed as
+// its three basis colours.
 #include "render/achromatic_film.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "light/dome_light.h"
 #include "photon/photon_pass.h"
 #include "photon/volume_estimate.h"
 #include "render/photon_integrator.h"
@@ -36,7 +38,6 @@ RenderScene greyScene(const Spectrum& lightColour) {
     scene.camera.fovDeg = 24.f;
     return scene;
 }
-
 
 Vec3d meanXyz(const Film& film) {
     Vec3d sum(0.0);
@@ -328,4 +329,40 @@ TEST(AchromaticFilm, EachPhotonCarriesItsLightsColour) {
     }
     EXPECT_GT(of[0], 100);
     EXPECT_GT(of[1], 100);
+}
+
+// An image dome (light/dome_light.cpp) sends Σ_k c_k(ω) B_k(λ): three fixed shapes whatever its
+// pixels, so a grey medium under it is filmed by colour like three lights, with the spectral
+// film's mean per channel. Its photons each have their pixel's colour, not one per light: the
+// photon mapper samples colour.
+TEST(AchromaticFilm, AnImageDomeIsThreeColours) {
+    LatLongImage sky;
+    sky.width = 8;
+    sky.height = 4;
+    for (int j = 0; j < sky.height; ++j)
+        for (int i = 0; i < sky.width; ++i)
+            sky.rgb.insert(sky.rgb.end(), {j < 2 ? 0.3f : 1.2f, 0.6f, j < 2 ? 1.5f : 0.2f});
+    RenderScene scene = greyScene(kWarm);
+    scene.lights.clear();
+    scene.lights.push_back(makeDomeLight(sky, 2.f, Mat3(), DomeSettings()));
+    auto volpath = makeVolPathIntegrator();
+    const auto film = AchromaticFilm::forScene(scene, *volpath);
+    ASSERT_TRUE(film);
+    EXPECT_EQ(film->colours(), 3u);
+    std::string why;
+    EXPECT_FALSE(sampledColour(scene, integratorInfo("volpath"), &why));
+    EXPECT_NE(why.find("3 light colours"), std::string::npos) << why;
+    PhotonIntegratorSettings ps;
+    EXPECT_FALSE(AchromaticFilm::forScene(scene, *makePhotonIntegrator(ps)));
+    EXPECT_TRUE(sampledColour(scene, integratorInfo("photon"), &why));
+    EXPECT_NE(why.find("image dome"), std::string::npos) << why;
+
+    const RenderSettings rs = test::smallRenderSettings(64, 5, 16, 16);
+    const Vec3d exact = meanXyz(render(scene, *volpath, rs, nullptr));
+    test::SpectralFilmVolpath spectralFilm;
+    const Vec3d spectral = meanXyz(render(scene, spectralFilm, rs, nullptr));
+    for (int c = 0; c < 3; ++c) {
+        ASSERT_GT(exact[c], 0.0);
+        EXPECT_NEAR(spectral[c] / exact[c], 1.0, 0.02) << "channel " << c;
+    }
 }

@@ -122,8 +122,7 @@ public:
         // The drawn cell's own radiance, whose density pdf is: mapping d back to the image (an
         // arc cosine and an arc tangent per shadow ray) found the same pixel, or at its edge a
         // neighbour.
-        out->Li =
-            (mDistribution.empty() ? mConstant.sample(w) : texelRadiance(mTexels[texel], w)) / pdf;
+        out->Li = (mDistribution.empty() ? radiance(d, w) : texelRadiance(mTexels[texel], w)) / pdf;
         out->pdf = pdf;
         return !out->Li.isZero();
     }

@@ -64,9 +64,7 @@ public:
             using Buffer = typename LeafT::Buffer;
             auto* broken = new Buffer();
             broken->swap(leaf.buffer());
-            std::lock_guard<std::mutex> lock(mErrorMutex);
-            brokenLeafBuffers().emplace_back(broken, [](void*) {});
-            if (!mFailed.exchange(true)) mError = e.what();
+            fail(e.what(), broken);
             return false;
         }
     }
@@ -83,8 +81,7 @@ public:
             mask[w] = leaf.valueMask().template getWord<uint64_t>(w);
         std::string error;
         if (mDecoder->read(i, mask, scratch, &error)) return scratch;
-        std::lock_guard<std::mutex> lock(mErrorMutex);
-        if (!mFailed.exchange(true)) mError = error;
+        fail(error);
         return nullptr;
     }
 
@@ -115,6 +112,13 @@ public:
     }
 
 private:
+    // Keeps the first failure's message, and parks a broken leaf buffer where there is one.
+    void fail(const std::string& why, void* brokenBuffer = nullptr) {
+        std::lock_guard<std::mutex> lock(mErrorMutex);
+        if (brokenBuffer) brokenLeafBuffers().emplace_back(brokenBuffer, [](void*) {});
+        if (!mFailed.exchange(true)) mError = why;
+    }
+
     static constexpr uint64_t kReleaseMegabytes = 128;
     uint64_t megabytesBefore(size_t i) const {
         return mLeaves == 0 ? 0 : uint64_t(double(mMegabytes) * double(i) / double(mLeaves));

@@ -45,8 +45,9 @@ TEST(Distribution1D, SamplesFollowTheDensity) {
 }
 
 // The bin drawn for u is the one whose CDF interval [c_i, c_i+1) holds it, found by a linear
-// scan (empty bins, whose intervals are empty, never drawn), at the edges of every interval and
-// between them: the branch-free search finds std::upper_bound's answer.
+// scan (empty bins, whose intervals are empty, never drawn), at the edges of every interval, at
+// the edges of the guide table's n equal parts of [0, 1) (where u·n may round up onto the next
+// part) and between them: the guided search finds a binary search's answer.
 TEST(Distribution1D, BinIsTheIntervalHoldingU) {
     for (const auto& weights : weightSets()) {
         const Distribution1D d(weights);
@@ -58,6 +59,11 @@ TEST(Distribution1D, BinIsTheIntervalHoldingU) {
         std::vector<float> us;
         for (double c : cdf) us.insert(us.end(), {float(c), std::nextafter(float(c), 0.f)});
         for (int k = 0; k < 1000; ++k) us.push_back(float(k) / 1000.f);
+        const size_t n = weights.size();
+        for (size_t k = 1; k < n; ++k) {
+            const float edge = float(double(k) / double(n));
+            us.insert(us.end(), {edge, std::nextafter(edge, 0.f), std::nextafter(edge, 1.f)});
+        }
         for (float u : us) {
             if (!(u >= 0.f && u < 1.f)) continue;
             size_t expected = 0;

@@ -24,7 +24,7 @@ std::vector<SlotInfo> slotsOf(const VolumeRecord& v, const Medium& m) {
         const FloatGrid& g = m.binding().grids()[b];
         SlotInfo slot{v.bindings[b].first, v.bindings[b].second, g.activeVoxels(),
                       g.treeBytes(),       g.denseBytes(),       g.maxValue(),
-                      g.precision(),       g.leafCount(),        {}};
+                      g.precision(),       g.leafCount(),        {},                   {}};
         for (GridPrecision p : kAllPrecisions) slot.bytesAt[size_t(p)] = g.treeBytesAt(p);
         slot.precisionWhy = v.precisionWhy;
         slots.push_back(slot);

@@ -79,7 +79,8 @@ void escapeToDome(const RenderScene& scene, const CameraPath& path, ThreadState&
                     escapedRadiance(scene, path.ray.d, path.wavelengths, path.depth == 0));
     else if (path.escapePdf > 0.f)
         rec.litByEscape(path.throughput.beta * path.escapeShare,
-                        skyAtEscape(scene, path.ray, path.escapePdf, path.wavelengths, ts));
+                        skyAtEscape(scene, path.ray, path.escapePdf, path.escapeSkyRate,
+                                    path.wavelengths, ts));
 }
 
 }  // namespace mirage

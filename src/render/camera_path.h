@@ -27,14 +27,18 @@ struct CameraPath : PathSegment {
     int depth = 0;              // vertices before the current ray (scattering and specular)
     bool specularChain = true;  // every vertex so far a mirror or glass: escapes see the dome
     // The phase function's density of the ray's direction, where the medium vertex that drew
-    // it left the lights at infinity to the ray (MediumLights::SkyByEscape), and the share of
-    // that vertex's estimates against lobe walks; 0 and 1 otherwise.
+    // it left the lights at infinity to the ray (MediumLights::SkyByEscape), the share of
+    // that vertex's estimates against lobe walks, and the rate it drew those lights' own
+    // samples at (render/direct_light.h: SkyDraws); 0, 1 and 1 otherwise.
     float escapePdf = 0.f;
     float escapeShare = 1.f;
-    void leaveSkyToEscape(float pdf, float share) {
+    float escapeSkyRate = 1.f;
+    void leaveSkyToEscape(float pdf, float share, float skyRate) {
         escapePdf = pdf;
         escapeShare = share;
+        escapeSkyRate = skyRate;
     }
+    bool skyDark = false;  // SkyDraws::dark, carried to the next medium vertex
     // Lobe walks (render/light_lobes.h, volpath.cpp): whether the path draws them, the
     // probability s that a medium vertex starts one (lobeWalkStart), and the sum
     // Σ_j s r_j q^(k−1−j) over the medium vertices of the run the current ray ends.

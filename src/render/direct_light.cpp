@@ -199,10 +199,33 @@ private:
 // 1.85 s: 3.8× at equal time. Inside such a cloud most shadow rays are ratio-tracked through
 // tens of optical depths for a transmittance of ~0, while the continuation, the path itself,
 // carries the light of the many scatterings beyond.
+//
+// Deep in such a cloud under a map with a sun, the lights' own samples still cost a shadow ray
+// at every vertex, and most find T ~ 0. So a vertex that leaves the lights at infinity to its
+// escape draws their samples with a probability (SkyDraws): 1, but kDarkSkyRate after a drawn
+// sample of the path found no light, until one finds some again. A drawn sample then counts
+// 1/rate of itself and its density in the power heuristic is rate · pdf, on both sides
+// (skyAtEscape), so the two strategies still sum to one estimate of the light (Veach 1997,
+// §9.2.4: a strategy's sample count enters the heuristic). Where it skips, the escape takes the
+// light alone; it draws a sun's narrow cone rarely, so a vertex just coming out of the dark pays
+// with 1/rate: the rate is a function of the path so far, so the estimate stays unbiased.
+// Measured on the sky-hdr regime (64 samples, two seeds, relMSE against the reference × CPU
+// seconds): kDarkSkyRate 1 (every vertex), 1.07; 0.7, 0.96; 0.5, 0.89; 0.35, 0.96 (seed noise,
+// 32 samples: 0.1 lost, 2.2).
+constexpr float kDarkSkyRate = 0.5f;
+
 SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, const Vec3& wo,
                                   Sampler& sampler, ThreadState& ts, const LampSampling* lamps,
-                                  MediumLights which) {
+                                  MediumLights which, SkyDraws* sky) {
     SampledSpectrum L(0.f);
+    // Whether this vertex draws the lights at infinity's own samples (SkyDraws): one draw for
+    // all of them, made only where the rate is below 1.
+    float skyRate = 1.f;
+    bool drawsSky = true, skyDrawn = false, skyFound = false;
+    if (sky && which == MediumLights::SkyByEscape) {
+        skyRate = sky->dark ? kDarkSkyRate : 1.f;
+        drawsSky = skyRate >= 1.f || sampler.get1D() < skyRate;
+    }
     const Medium& m = ts.tracking.medium(c.medium);
     const SampledWavelengths& w = ts.tracking.wavelengths();
     SampledSpectrum* split = ts.startLightSplit();
@@ -222,12 +245,17 @@ SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, 
         if (!(share > 0.f)) continue;
         // A uniform dome is drawn by the phase function alone (above).
         const bool phaseOnly = light->uniformRadiance() && !ts.curved;
-        if (phaseOnly && which == MediumLights::SkyByEscape) continue;
+        const bool escapes = which == MediumLights::SkyByEscape && light->infinite();
+        if (escapes && (phaseOnly || !drawsSky)) continue;
         float u1, u2;
         sampler.get2D(&u1, &u2);  // one pair of dimensions: stratified over the light
         SampledSpectrum term(0.f);
         LightSample ls;
         const bool sampled = !phaseOnly && light->sampleLi(c.p, u1, u2, w, &ls);
+        if (sampled && escapes && skyRate < 1.f) {
+            ls.Li /= skyRate;
+            ls.pdf *= skyRate;
+        }
         const bool curved = curvedConnection(ts, *light, sampled ? &ls : nullptr);
         if (curved) {
             term = curvedLightTerm(*light, sampled ? &ls : nullptr, PhaseLobe(m, c, wo), share,
@@ -239,7 +267,6 @@ SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, 
                 ls.pdf > 0.f ? powerHeuristic(ls.pdf, m.phasePdf(c.mp, -wo, ls.wi)) : share;
             if (!phase.isZero() && mis > 0.f) term += shadowed(ls) * phase * mis;
         }
-        const bool escapes = which == MediumLights::SkyByEscape && light->infinite();
         if (!curved && !escapes && (phaseOnly || ls.pdf > 0.f)) {
             // The phase function's sample, for a light a direction can hit (its samples have a pdf)
             // that the point sees the emitting side of.
@@ -254,21 +281,30 @@ SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, 
         // The share weighs every strategy but a delta light's sample, which took it as its
         // weight (curved paths' too: curvedLightTerm's deltaWeight).
         if (!(sampled && !(ls.pdf > 0.f))) term *= share;
+        if (escapes) {
+            skyDrawn = true;
+            skyFound = skyFound || !term.isZero();
+        }
         L += term;
         if (split) split[scene.lightGroupSlot(i)] += term;
+    }
+    if (sky) {
+        sky->rate = skyRate;
+        if (skyDrawn) sky->dark = !skyFound;
     }
     return L;
 }
 
 SampledSpectrum skyAtEscape(const RenderScene& scene, const Ray& ray, float phasePdf,
-                            const SampledWavelengths& w, ThreadState& ts) {
+                            float skyRate, const SampledWavelengths& w, ThreadState& ts) {
     SampledSpectrum L(0.f);
     SampledSpectrum* split = ts.startLightSplit();
     for (size_t i = 0; i < scene.lights.size(); ++i) {
         const Light& light = *scene.lights[i];
         LightSample hs;
         if (!light.infinite() || !light.hitLi(ray.o, ray.d, w, &hs)) continue;
-        const float mis = light.uniformRadiance() ? 1.f : powerHeuristic(phasePdf, hs.pdf);
+        const float mis =
+            light.uniformRadiance() ? 1.f : powerHeuristic(phasePdf, skyRate * hs.pdf);
         const SampledSpectrum term = hs.Li * mis;
         L += term;
         if (split) split[scene.lightGroupSlot(i)] += term;

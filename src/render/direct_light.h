@@ -29,22 +29,35 @@ inline float powerHeuristic(float a, float b) {
     return b2 > 0.f ? a2 / b2 : 0.f;
 }
 
+// Where a path's medium vertices leave the lights at infinity to their escapes
+// (MediumLights::SkyByEscape), whether a vertex also draws those lights' own samples: with
+// probability `rate`, 1 unless the last sample the path drew found no light (`dark`), then
+// kDarkSkyRate (direct_light.cpp says why). The path keeps `dark` from vertex to vertex; the
+// vertex's rate weighs its escape (skyAtEscape).
+struct SkyDraws {
+    bool dark = false;  // in: the path's last drawn sample found no light; out: this vertex's
+    float rate = 1.f;   // out: the probability this vertex drew them with
+};
+
 // Σ_lights p(−wi, wo) · Li · T(shadow ray). wo is the direction the light leaves towards the
 // viewer (the reverse of the incoming path direction). With `lamps`, the segment c lies on
 // draws points towards the point and spot lights and the lights at infinity too
 // (render/lamp_sampling.h), and each light's term here carries its weight against them (a
-// light of weight 0 draws no shadow ray).
+// light of weight 0 draws no shadow ray). With `sky` (SkyByEscape only), the lights at
+// infinity are drawn at its rate.
 SampledSpectrum directLightMedium(const RenderScene& scene, const Collision& c, const Vec3& wo,
                                   Sampler& sampler, ThreadState& ts,
                                   const LampSampling* lamps = nullptr,
-                                  MediumLights which = MediumLights::All);
+                                  MediumLights which = MediumLights::All,
+                                  SkyDraws* sky = nullptr);
 
 // The lights at infinity seen by a path's continuation that left the scene along `ray` after a
 // medium point estimated with MediumLights::SkyByEscape, which drew the ray's direction with
-// density phasePdf: the phase function's strategy of those lights, weighed against their own
-// samples by the power heuristic, and its split by light group in ts.lightSplit.
+// density phasePdf and the lights' own samples at `skyRate` (SkyDraws): the phase function's
+// strategy of those lights, weighed against their own samples by the power heuristic, and its
+// split by light group in ts.lightSplit.
 SampledSpectrum skyAtEscape(const RenderScene& scene, const Ray& ray, float phasePdf,
-                            const SampledWavelengths& w, ThreadState& ts);
+                            float skyRate, const SampledWavelengths& w, ThreadState& ts);
 
 // Σ_lights f(wo, wi) |cos θi| · Li · T(shadow ray) at a diffuse surface point; wo (world, unit)
 // points towards the viewer. Light arriving from the other side of the surface than wo is not

@@ -1,6 +1,6 @@
 // Where the light is, for paths in strongly forward media (sea water's particles, HG g 0.92:
 // p(0) = 26/sr against a mean of 1/4π): lobes about the directions towards the lights, which
-// the path tracer's lobe walks draw from (render/volpath.cpp, "Lobe walks").
+// the path tracer's lobe walks draw from (render/lobe_walk.h).
 //
 // Why. A medium vertex's next-event estimate scores p(θ) of the angle between the path's last
 // segment and the light. In such a medium the light seen just past the forward lobe — an

@@ -69,15 +69,13 @@
 #include "render/lamp_sampling.h"
 #include "render/light_lobes.h"
 #include "render/line_emission.h"
+#include "render/lobe_walk.h"
 #include "transport/path_vertex.h"
 #include "transport/reemission.h"
 
 namespace mirage {
 
 namespace {
-
-// The probability that a lobe walk goes on past each of its vertices (lobeWalk).
-constexpr float kLobeWalkGoesOn = 0.75f;
 
 // Lobes towards lamps. Where a lamp sits inside a medium (render/light_lobes.h: lampsInMedia),
 // the continuation from an unguided medium vertex is drawn from a one-sample mixture: the
@@ -355,7 +353,7 @@ private:
         }
         const LightLobes lobes(scene, x.p, path.wavelengths);
         if (!lobes.empty() && (path.walkStart >= 1.f || sampler.get1D() < path.walkStart))
-            walkFromMedium(scene, lobes, x, path, sampler, ts, rec);
+            walkFromMedium(scene, lobes, x, path, mMaxDepth, sampler, ts, rec);
         float pdf;
         const Vec3 dir = samplePhase(m, x, path.ray.d, sampler, &path.throughput, &pdf);
         if (escapes) path.leaveSkyToEscape(pdf, 1.f / (1.f + ratios), sky.rate);
@@ -396,7 +394,7 @@ private:
         path.emissionWeight = 1.f;  // a surface draws no line sample
         const bool walks = path.guided && !mat.specular() && path.depth + 1 < mMaxDepth;
         const LightLobes lobes = walks ? LightLobes(scene, hit.p, path.wavelengths) : LightLobes();
-        if (!lobes.empty()) walkFromSurface(scene, lobes, hit, path, sampler, ts, rec);
+        if (!lobes.empty()) walkFromSurface(scene, lobes, hit, path, mMaxDepth, sampler, ts, rec);
         const Vec3 dirIn = path.ray.d;
         if (!continueAtSurface(mat, hit, path.wavelengths, TransportMode::Radiance, sampler, &path))
             return false;
@@ -434,18 +432,6 @@ private:
         return dir;
     }
 
-    // The next direction from the medium's phase function; β times its weight p/pdf.
-    static Vec3 samplePhase(const Medium& m, const Collision& c, const Vec3& dir, Sampler& sampler,
-                            PathThroughput* path, float* pdfOut = nullptr) {
-        SampledSpectrum weight;
-        float pdf;
-        const float uc = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
-        const Vec3 wo = m.phaseSample(c.mp, dir, uc, u1, u2, &weight, &pdf);
-        if (pdfOut) *pdfOut = pdf;
-        path->beta *= weight;
-        return wo;
-    }
-
     // The inelastic event at a collision in a fluorescent medium (the top of the file). True
     // when it was chosen, and the flight ends: *f says Reemitted (β hero-only, as after
     // dispersion), or Absorbed when no λi feeds λo (β = 0). Not chosen, β carries the ordinary
@@ -469,128 +455,6 @@ private:
             f->wi = in.wi;
         }
         return true;
-    }
-
-    // Lobe walks (render/light_lobes.h). In a strongly forward medium under a light, the
-    // light a medium vertex receives after more scatterings comes mostly along the light's
-    // beam: the next vertices' phase functions score up to p(0) there (26/sr for sea water's
-    // particles), and a path that turns up the beam meets several such vertices in a row. The
-    // path's phase samples, drawn about its own direction, find the beam rarely and brightly.
-    // So each medium vertex x_i also starts a walk whose first direction is drawn from the
-    // lobes about the lights and whose next ones from the phase function, going on past each
-    // of its real collisions with probability q (kLobeWalkGoesOn), scoring next-event
-    // estimates on the way; it ends at a surface, at an absorption, outside the media. Its
-    // vertices leave the lights at infinity to its continuation as the path's do, the escape
-    // counting 1/q of itself: on the sky-hdr regime (a cloud under a map with a sun,
-    // docs/regimes.md; 64 samples, two seeds, relMSE × CPU seconds) 1.07 against 1.60 with a
-    // second shadow ray of their own, whose phase sample the continuation's duplicated.
-    //
-    // A next-event estimate at the k-th vertex of a run of medium vertices can then come from
-    // the path itself or from the walk started at any earlier vertex j of the run. Their
-    // densities differ in one direction and in the q's, so the balance heuristic (Veach 1997,
-    // §9.2) weighs every one of them by
-    //     1 / (1 + Σ_j s r_j q^(k−1−j)),  r_j = pdf_lobes(ω_j) / pdf_phase(ω_j),
-    // on the directions the estimate's own path took, with its throughput taken as if every
-    // direction had been drawn from the phase function (p/pdf_phase), and s the probability
-    // that a medium vertex starts a walk (render/light_lobes.h: lobeWalkStart; 1 but in media
-    // of albedo above 0.96, whose paths are long). The sum is kept along the path
-    // (CameraPath::lobeRatios: S ← q S + s r at each medium vertex, + r at a diffuse one). No walk
-    // crosses a surface or a re-emission, so the sum restarts there; a diffuse surface starts a
-    // walk of its own, the BSDF in the phase function's place, and its r begins the next run (the
-    // sand under a sunlit sea, the walls of a lit water box). Weights never exceed one, and the
-    // path's own throughput is untouched, so the long paths of a dense sea gain no product of
-    // weights (a one-sample mixture of phase and lobes at each vertex, weighing p / (½ p + ½
-    // pdf_lobes), up to 2, made bright outliers in green water).
-    //
-    // Measured on the gallery's underwater scene (24×16 pixels, 1024 samples, relMSE against
-    // 4× the samples): 0.26 with guided surface continuations alone, 0.020 with walks from
-    // medium vertices (q = 0.75; 0.022 at q = 0.5, 0.020 at 0.9 for more time), 0.013 with
-    // walks from the sand too, for 1.32× the instructions per sample (callgrind, 64 samples):
-    // 15× less time to the same error.
-
-    // The walk from a medium vertex x, started with the path as it reached x (its ray, its
-    // throughput, the run's sum there).
-    void walkFromMedium(const RenderScene& scene, const LightLobes& lobes, const Collision& x,
-                        const CameraPath& path, Sampler& sampler, ThreadState& ts,
-                        const PathRecorder& rec) const {
-        const float ul = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
-        const Vec3 dir = lobes.sample(ul, u1, u2);
-        const Medium& m = ts.tracking.medium(x.medium);
-        const Vec3 dirIn = path.ray.d;
-        const float pdf = m.phasePdf(x.mp, dirIn, dir);
-        if (!(pdf > 0.f)) return;
-        CameraPath walk = path;
-        walk.throughput.beta *= m.phaseEval(x.mp, dirIn, dir) / pdf;
-        walk.ray = Ray{x.p, dir, kInfinity};
-        walk.lobeRatios = kLobeWalkGoesOn * path.lobeRatios + path.walkStart * lobes.pdf(dir) / pdf;
-        lobeWalk(scene, walk, sampler, ts, rec.branch());
-    }
-
-    // The walk from a diffuse surface vertex, where a run of medium vertices begins: the BSDF
-    // takes the phase function's place (f |cos| and its pdf).
-    void walkFromSurface(const RenderScene& scene, const LightLobes& lobes, const SurfaceHit& hit,
-                         const CameraPath& path, Sampler& sampler, ThreadState& ts,
-                         const PathRecorder& rec) const {
-        const float ul = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
-        const Vec3 dir = lobes.sample(ul, u1, u2);
-        const Vec3 dirIn = path.ray.d;
-        // A Lambertian surface reflects only: a lobe's direction through it scores f = 0.
-        if ((dot(dir, hit.ng) > 0.f) != (dot(-dirIn, hit.ng) > 0.f)) return;
-        const Material& mat = scene.geometry->materialAt(hit);
-        const Frame frame(hit.ns);
-        const Vec3 woL = frame.toLocal(-dirIn), wiL = frame.toLocal(dir);
-        const float pdf = mat.pdf(woL, wiL);
-        if (!(pdf > 0.f)) return;
-        CameraPath walk = path;
-        walk.throughput.beta *= mat.eval(woL, wiL, path.wavelengths) * (std::abs(wiL.z) / pdf);
-        walk.ray = spawnRay(hit, dir);
-        walk.lobeRatios = lobes.pdf(dir) / pdf;
-        lobeWalk(scene, walk, sampler, ts, rec.branch());
-    }
-
-    // A lobe walk from its first ray on, its first direction's weight in its throughput and its
-    // run's sum in its lobeRatios; rec is its branch of the path's record.
-    void lobeWalk(const RenderScene& scene, CameraPath walk, Sampler& sampler, ThreadState& ts,
-                  PathRecorder rec) const {
-        PathThroughput& throughput = walk.throughput;
-        for (++walk.depth; throughput.alive() && walk.depth < mMaxDepth; ++walk.depth) {
-            const SurfaceAhead ahead = surfaceAhead(scene, walk.ray);
-            std::optional<Collision> y;
-            const bool through =
-                trackCollisions(ts.tracking, walk.ray, ahead.tEnd, sampler, [&](const Collision& c) {
-                    const MediumEvent e = chooseEvent(c, throughput, sampler).event;
-                    if (e == MediumEvent::Null) return Track::Continue;
-                    if (e == MediumEvent::Scattered) y = c;
-                    return Track::Stop;
-                });
-            if (!y) {
-                if (through && !ahead.hit) escapeToDome(scene, walk, ts, rec);
-                return;
-            }
-            // As on the path (scatterInMedium), the lights at infinity are left to the walk's
-            // continuation, which goes on with probability q: its escape counts 1/q of itself.
-            const bool escapes = !ts.curved && walk.depth + 1 < mMaxDepth;
-            const float share = 1.f / (1.f + walk.lobeRatios);
-            SkyDraws sky{walk.skyDark};
-            rec.litInMedium(throughput.beta * share,
-                            directLightMedium(scene, *y, -walk.ray.d, sampler, ts, nullptr,
-                                              escapes ? MediumLights::SkyByEscape
-                                                      : MediumLights::All,
-                                              &sky),
-                            y->t);
-            rec.scatteredInMedium(y->t);
-            walk.skyDark = sky.dark;
-            walk.escapePdf = 0.f;
-            if (sampler.get1D() >= kLobeWalkGoesOn) return;
-            float pdf;
-            const Vec3 dir = samplePhase(ts.tracking.medium(y->medium), *y, walk.ray.d, sampler,
-                                         &throughput, &pdf);
-            if (escapes) walk.leaveSkyToEscape(pdf, share / kLobeWalkGoesOn, sky.rate);
-            walk.lobeRatios =
-                kLobeWalkGoesOn * walk.lobeRatios +
-                walk.walkStart * LightLobes(scene, y->p, walk.wavelengths).pdf(dir) / pdf;
-            walk.ray = Ray{y->p, dir, kInfinity};
-        }
     }
 
     int mMaxDepth;

@@ -44,4 +44,15 @@ bool continueAtSurface(const Material& material, const SurfaceHit& hit, const Sa
     return true;
 }
 
+Vec3 samplePhase(const Medium& m, const Collision& c, const Vec3& dir, Sampler& sampler,
+                 PathThroughput* path, float* pdfOut) {
+    SampledSpectrum weight;
+    float pdf;
+    const float uc = sampler.get1D(), u1 = sampler.get1D(), u2 = sampler.get1D();
+    const Vec3 wo = m.phaseSample(c.mp, dir, uc, u1, u2, &weight, &pdf);
+    if (pdfOut) *pdfOut = pdf;
+    path->beta *= weight;
+    return wo;
+}
+
 }  // namespace mirage

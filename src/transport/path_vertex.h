@@ -103,6 +103,11 @@ void scoreEmission(const Collision& c, const Medium& medium, const PathThroughpu
                    SampledSpectrum* L);
 CollisionOutcome chooseEvent(const Collision& c, PathThroughput& path, Sampler& sampler);
 
+// The next direction from medium m's phase function at the real collision c of a path
+// travelling along dir; β times its weight p/pdf, *pdfOut the density it was drawn with.
+Vec3 samplePhase(const Medium& m, const Collision& c, const Vec3& dir, Sampler& sampler,
+                 PathThroughput* path, float* pdfOut = nullptr);
+
 // The continuation of a path at the surface its ray reached: a BSDF sample (three numbers), β
 // weighted by f |cos θi| / pdf, the hero wavelength alone after a dispersive sample. A sample
 // that the shading normal sends to the other side of the geometric surface than its lobe says

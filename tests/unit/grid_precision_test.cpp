@@ -101,7 +101,9 @@ TEST(GridPrecision, LookupsWithinHalfAQuantisationStep) {
                 worst = std::max(worst, std::abs(q.sample(qacc, x) - f.sample(facc, x)));
             EXPECT_LE(worst, bound) << precisionName(p) << " tolerance " << tolerance;
             // The bound is the codec's, not a loose one: fp4 comes within a factor of 2 of it.
-            if (p == GridPrecision::Fp4) EXPECT_GT(worst, 0.5f * bound);
+            if (p == GridPrecision::Fp4) {
+                EXPECT_GT(worst, 0.5f * bound);
+            }
             if (p != GridPrecision::FpN) break;
         }
     }

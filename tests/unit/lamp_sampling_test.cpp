@@ -87,7 +87,9 @@ TEST(Equiangular, ConeIntervalMatchesAScanOfTheCone) {
             const bool hit = coneInterval(o, d, Cone{apex, axis, cosCone}, &t0, &t1);
             if (lo > hi) {
                 // A miss, or a graze thinner than the scan's step.
-                if (hit) EXPECT_LT(t1 - t0, 2 * (b - a) / 2000.f);
+                if (hit) {
+                    EXPECT_LT(t1 - t0, 2 * (b - a) / 2000.f);
+                }
                 continue;
             }
             ASSERT_TRUE(hit);

@@ -149,9 +149,12 @@ const LampSampling::SkyPoint* LampSampling::findSky(int medium) const {
 float LampSampling::scatterPointWeight(size_t light, const Collision& c) const {
     const Lamp* lamp = find(light);
     if (lamp) return powerWeight(scatterProxy(c.mp), lamp->segment.pdf(c.t));
-    const SkyPoint* sky = mScene->lights[light]->infinite() ? findSky(c.medium) : nullptr;
-    if (sky && !mForks) return powerWeight(scatterProxy(c.mp), sky->density(c.sigmaMaj));
-    return 1.f;
+    return mScene->lights[light]->infinite() ? skyWeight(c) : 1.f;
+}
+
+float LampSampling::skyWeight(const Collision& c) const {
+    const SkyPoint* sky = mForks ? nullptr : findSky(c.medium);
+    return sky ? powerWeight(scatterProxy(c.mp), sky->density(c.sigmaMaj)) : 1.f;
 }
 
 bool LampSampling::keepsScatterPoint(const Collision& c, Sampler& sampler) const {

@@ -89,9 +89,6 @@ public:
     LampSampling(const RenderScene& scene, const Ray& ray, float tEnd, bool on, Sampler& sampler,
                  TrackingContext* sky = nullptr, bool forks = false);
     bool empty() const { return mCount == 0 && mSkyCount == 0; }
-    // Whether the points for the lights at infinity weigh next-event estimation at delta
-    // tracking's scattering points (which then keep those lights to their shadow rays).
-    bool weighsSky() const { return mSkyCount > 0 && !mForks; }
     // Where the points fork: whether the path goes on from delta tracking's scattering point
     // at c, with the probability of its weight against the points (lamp_sampling.h).
     bool keepsScatterPoint(const Collision& c, Sampler& sampler) const;
@@ -108,6 +105,11 @@ public:
     // scattering point that delta tracking found at c on this segment: 0 for a light at
     // infinity where the segment's point of c's medium takes its light.
     float scatterPointWeight(size_t light, const Collision& c) const;
+    // The weight of the lights at infinity at such a point against the segment's points for
+    // them (the power heuristic; 1 where it drew none, or where they fork): what its
+    // next-event estimate of them carries, and its continuation's escape where it leaves them
+    // to it (render/direct_light.h: MediumLights::SkyByEscape).
+    float skyWeight(const Collision& c) const;
 
     // The points' estimates, one per lamp and one per medium for the lights at infinity, each
     // recorded as light gathered in the medium at its t: beta is the path's throughput at the

@@ -13,6 +13,7 @@
 
 #include "chi_square.h"
 #include "render/integrator.h"
+#include "render/lamp_sampling.h"
 #include "render/light_lobes.h"
 #include "test_support.h"
 
@@ -279,6 +280,21 @@ TEST(DomeLight, WhiteFurnaceOfAnImageDomeOfOneColour) {
         ASSERT_FALSE(scene.lights[0]->uniformRadiance());
         scene.equiangular = skyPoints;
         expectWhiteFurnace(scene, 22, skyPoints ? "sky points" : "no sky points");
+    }
+}
+
+// The white furnace where the camera ray crosses more than kForkDepth of majorant depth (σs 20
+// over the 2 m cube: 40), so that its points for the dome weigh against delta tracking's
+// scattering point, which leaves the dome to its continuation: the escape carries that
+// point's weight (LampSampling::skyWeight). Counted whole, it read 1.0035 (and the furnace
+// above, at σs 8, 1.0065).
+TEST(DomeLight, WhiteFurnaceOfADenseCubeBehindTheDomePoints) {
+    for (bool image : {false, true}) {
+        RenderScene scene = furnaceScene(image ? makeDomeLight(oneColourImage(), 1.f, kXyz, {})
+                                               : makeDomeLight(Spectrum(1.f), {}),
+                                         20.f, 0.6f);
+        ASSERT_TRUE(skyPointsFork(scene));
+        expectWhiteFurnace(scene, 24, image ? "image" : "constant");
     }
 }
 

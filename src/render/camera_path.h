@@ -39,7 +39,7 @@ struct CameraPath : PathSegment {
         escapeSkyRate = skyRate;
     }
     bool skyDark = false;  // SkyDraws::dark, carried to the next medium vertex
-    // Lobe walks (render/light_lobes.h, volpath.cpp): whether the path draws them, the
+    // Lobe walks (render/lobe_walk.h): whether the path draws them, the
     // probability s that a medium vertex starts one (lobeWalkStart), and the sum
     // Σ_j s r_j q^(k−1−j) over the medium vertices of the run the current ray ends.
     bool guided = false;

@@ -49,6 +49,22 @@ float volumeScale(const Medium::Context& ctx) {
     return float(std::abs(ctx.objectToWorld().linear.determinant()));
 }
 
+// The object-space box of g's cells whose value is > 0.
+Bounds3 glowBox(const MajorantGrid& g, const std::vector<float>& values) {
+    Bounds3 box;
+    const Vec3 h = g.cellSize();
+    for (int z = 0, c = 0; z < g.res(2); ++z)
+        for (int y = 0; y < g.res(1); ++y)
+            for (int x = 0; x < g.res(0); ++x, ++c) {
+                if (!(values[size_t(c)] > 0.f)) continue;
+                const Vec3 lo(g.bounds().lo.x + float(x) * h.x, g.bounds().lo.y + float(y) * h.y,
+                              g.bounds().lo.z + float(z) * h.z);
+                box.expand(lo);
+                box.expand(lo + h);
+            }
+    return box;
+}
+
 }  // namespace
 
 std::vector<double> EmissionLight::addMedium(size_t index, const Medium& medium, int resolution) {
@@ -98,6 +114,7 @@ std::unique_ptr<EmissionLight> EmissionLight::forScene(const RenderScene& scene,
         }
         grid.density.addCells(values);
         grid.floor = float(double(kDistanceFloor) * sum / emitting);
+        grid.glow = glowBox(grid.density, values);
     }
     return light;
 }
@@ -131,61 +148,109 @@ float EmissionLight::pdf(const Vec3& x, const Vec3& wi, TrackingContext& trackin
     for (const Grid& grid : mGrids) {
         const Medium::Context& ctx = tracking.context(grid.medium);
         const Transform& w2o = ctx.worldToObject();
+        const Vec3 o = w2o.point(x), d = w2o.vector(wi);
+        float tMin, tMax;  // cells beyond the box that glows hold nothing
+        if (grid.glow.empty() || !grid.glow.intersect(o, d, 0.f, kInfinity, &tMin, &tMax))
+            continue;
         float part = 0.f;
         // ∫ t² dt over each cell's span, (t1³ − t0³)/3 in a form that keeps its digits.
-        grid.density.traverse(w2o.point(x), w2o.vector(wi), 0.f, kInfinity,
-                              [&](float t0, float t1, float density) {
-                                  part += density * (t1 - t0) * (t1 * t1 + t1 * t0 + t0 * t0);
-                                  return true;
-                              });
+        grid.density.traverse(o, d, tMin, tMax, [&](float t0, float t1, float density) {
+            part += density * (t1 - t0) * (t1 * t1 + t1 * t0 + t0 * t0);
+            return true;
+        });
         sum += part / (3.f * volumeScale(ctx));
     }
     return sum;
 }
 
 template <typename F>
-void EmissionLight::walkLine(const Ray& ray, float tEnd, TrackingContext& tracking, F&& f) const {
-    for (const Grid& grid : mGrids) {
+void EmissionLight::walkLine(const Ray& ray, float tEnd, TrackingContext& tracking, bool floor,
+                             F&& f) const {
+    for (size_t g = 0; g < mGrids.size(); ++g) {
+        const Grid& grid = mGrids[g];
         const Medium::Context& ctx = tracking.context(grid.medium);
         const Ray r = ctx.toObject(ray);
-        const float perWorld = 1.f / volumeScale(ctx);
-        const bool on = grid.density.traverse(
-            r.o, r.d, 0.f, tEnd,
-            [&](float t0, float t1, float v) { return f(t0, t1, (v + grid.floor) * perWorld); });
+        float tMin = 0.f, tMax = tEnd;
+        if (!floor &&
+            (grid.glow.empty() || !grid.glow.intersect(r.o, r.d, 0.f, tEnd, &tMin, &tMax)))
+            continue;
+        const float add = floor ? grid.floor : 0.f, perWorld = 1.f / volumeScale(ctx);
+        const bool on = grid.density.traverse(r.o, r.d, tMin, tMax, [&](float t0, float t1,
+                                                                        float v) {
+            return f(t0, t1, (v + add) * perWorld, g);
+        });
         if (!on) return;
     }
 }
 
+float EmissionLight::densityAt(const Vec3& p, TrackingContext& tracking, bool floor,
+                               size_t skip) const {
+    float sum = 0.f;
+    for (size_t g = 0; g < mGrids.size(); ++g) {
+        if (g == skip) continue;
+        const Grid& grid = mGrids[g];
+        const Medium::Context& ctx = tracking.context(grid.medium);
+        const Vec3 q = ctx.worldToObject().point(p);
+        if (grid.density.bounds().contains(q))
+            sum += (grid.density.at(q) + (floor ? grid.floor : 0.f)) / volumeScale(ctx);
+    }
+    return sum;
+}
+
 bool EmissionLight::sampleDistance(const Ray& ray, float tEnd, TrackingContext& tracking, float u,
-                                   float* t, float* pdf) const {
+                                   bool floor, LinePoint* point) const {
+    // One walk for the total, keeping the spans it passes (a 32-cell grid's ray crosses ≤ 96
+    // cells); a line through more takes a second walk instead.
+    struct Span {
+        float t0, t1, density;
+        size_t grid;
+    };
+    constexpr size_t kKeptSpans = 128;
+    Span spans[kKeptSpans];
+    size_t kept = 0;
+    bool all = true;
     float total = 0.f;
-    walkLine(ray, tEnd, tracking, [&](float t0, float t1, float density) {
+    walkLine(ray, tEnd, tracking, floor, [&](float t0, float t1, float density, size_t g) {
         total += density * (t1 - t0);
+        if (kept < kKeptSpans)
+            spans[kept++] = {t0, t1, density, g};
+        else
+            all = false;
         return true;
     });
     if (!(total > 0.f)) return false;
     // The span where the running sum passes u × total, and the point there; rounding that
-    // leaves the target past the last span takes the last span's end.
-    float left = u * total, last = 0.f, lastDensity = 0.f;
-    bool found = false;
-    walkLine(ray, tEnd, tracking, [&](float t0, float t1, float density) {
-        const float mass = density * (t1 - t0);
-        last = t1;
-        lastDensity = density;
+    // leaves the target past the last span takes the last span's end. Where media overlap, the
+    // others' density at the point adds to the span's.
+    float left = u * total, density = 0.f;
+    size_t grid = 0;
+    auto find = [&](float t0, float t1, float d, size_t g) {
+        const float mass = d * (t1 - t0);
+        point->t = t1;
+        density = d;
+        grid = g;
         if (left < mass) {
-            *t = t0 + left / density;
-            *pdf = density / total;
-            found = true;
+            point->t = t0 + left / d;
             return false;
         }
         left -= mass;
         return true;
-    });
-    if (!found) {
-        *t = last;
-        *pdf = lastDensity / total;
+    };
+    if (all) {
+        size_t i = 0;
+        while (i < kept && find(spans[i].t0, spans[i].t1, spans[i].density, spans[i].grid)) ++i;
+    } else {
+        walkLine(ray, tEnd, tracking, floor, find);
     }
-    return *pdf > 0.f;
+    if (mGrids.size() > 1) density += densityAt(ray.at(point->t), tracking, floor, grid);
+    point->pdf = density / total;
+    point->mass = total;
+    return point->pdf > 0.f;
+}
+
+float EmissionLight::distancePdf(const Ray& ray, float t, float mass, bool floor,
+                                 TrackingContext& tracking) const {
+    return densityAt(ray.at(t), tracking, floor, mGrids.size()) / mass;
 }
 
 }  // namespace mirage

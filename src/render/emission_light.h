@@ -69,35 +69,53 @@ public:
     // p_L(wi) from x (1/sr), wi a unit vector: 0 where the ray meets no emitting cell.
     float pdf(const Vec3& x, const Vec3& wi, TrackingContext& tracking) const;
 
-    // A distance t along ray (a unit direction) in (0, tEnd), drawn ∝ the emitted power per
-    // volume of the cells it crosses plus a floor over each emissive medium's bounds (below),
-    // with its density (1/m); one number. False where the ray meets no emissive medium's
-    // bounds before tEnd (then it meets no emission either).
-    bool sampleDistance(const Ray& ray, float tEnd, TrackingContext& tracking, float u, float* t,
-                        float* pdf) const;
+    // A distance along a ray (a unit direction) over (0, tEnd) drawn ∝ the emitted power per
+    // volume of the cells it crosses, plus, where `floor`, a floor over each emissive medium's
+    // bounds (above; the line sample's, whose estimate needs a density wherever anything glows).
+    // Without it only the cells that emit are drawn from (a flight's point,
+    // render/flight_emission.h, whose collisions find the rest), and a ray that misses their
+    // box walks nothing. The point t, its density pdf (1/m), and the line's mass, the integral
+    // of the unnormalised density over (0, tEnd) (1/m², world) that distancePdf divides by.
+    struct LinePoint {
+        float t = 0.f, pdf = 0.f, mass = 0.f;
+    };
+    // One number. False where the ray meets nothing to draw from before tEnd (then it meets no
+    // emission that the table holds either).
+    bool sampleDistance(const Ray& ray, float tEnd, TrackingContext& tracking, float u, bool floor,
+                        LinePoint* point) const;
+    // The density sampleDistance draws the distance t along ray with (1/m), given the line's
+    // mass: the media overlapping at t add theirs.
+    float distancePdf(const Ray& ray, float t, float mass, bool floor,
+                      TrackingContext& tracking) const;
 
     double power() const { return mPower; }         // W over 360–830 nm, the table's
     size_t cells() const { return mCells.size(); }  // cells that emit
 
 private:
     // One medium's grid: per cell P_c / (P V_c,object) (1/m³), walked by the majorant's DDA;
-    // the floor of its distance density (1/m³, object space).
+    // the floor of its distance density (1/m³, object space); the box of the cells that emit
+    // (object space), beyond which the power is 0.
     struct Grid {
         size_t medium;
         MajorantGrid density;
         float floor = 0.f;
+        Bounds3 glow;
     };
     struct CellRef {
         uint32_t grid, cell;  // cell: index in the order of MajorantGrid::cell()
     };
     EmissionLight() = default;
-    // Calls f(t0, t1, density) for each span of ray over (0, tEnd) in a cell of each grid in
-    // turn, density the distance sampler's per world volume (1/m³), until f returns false.
+    // Calls f(t0, t1, density, grid) for each span of ray over (0, tEnd) in a cell of each grid
+    // in turn, density the distance sampler's per world volume (1/m³) with or without its
+    // floor, until f returns false; without the floor only the spans in the box that glows.
     template <typename F>
-    void walkLine(const Ray& ray, float tEnd, TrackingContext& tracking, F&& f) const;
+    void walkLine(const Ray& ray, float tEnd, TrackingContext& tracking, bool floor, F&& f) const;
     // Medium `index`'s cells' power (W), summed from its photon emitter's table, appended to
     // mGrids (with no density yet) when it emits.
     std::vector<double> addMedium(size_t index, const Medium& medium, int resolution);
+    // The distance sampler's density per world volume (1/m³) at the world point p, with or
+    // without its floor, over every grid but `skip`.
+    float densityAt(const Vec3& p, TrackingContext& tracking, bool floor, size_t skip) const;
 
     std::vector<Grid> mGrids;
     std::vector<CellRef> mCells;  // the cells that emit

@@ -32,8 +32,9 @@ SampledSpectrum recordLineEmission(const EmissionLight& light, TrackingContext& 
                                    const Ray& ray, float tEnd, const SampledSpectrum& scale,
                                    Sampler& sampler, PathRecorder& rec) {
     SampledSpectrum sum(0.f);
-    float t, pdf;
-    if (!light.sampleDistance(ray, tEnd, tracking, sampler.get1D(), &t, &pdf)) return sum;
+    EmissionLight::LinePoint point;
+    if (!light.sampleDistance(ray, tEnd, tracking, sampler.get1D(), true, &point)) return sum;
+    const float t = point.t, pdf = point.pdf;
     // The emission at t first: where it is 0 (the floor's points), no transmittance is tracked.
     std::array<MediumPoint, kMaxEmissiveMedia> at;
     size_t glowing = 0;

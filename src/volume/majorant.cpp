@@ -149,6 +149,14 @@ std::vector<Vec3> MajorantGrid::cellComponentBounds(const VectorGrid& velocity) 
     return bounds;
 }
 
+float MajorantGrid::at(const Vec3& p) const {
+    if (mValues.empty() || !mBounds.contains(p)) return 0.f;
+    int c[3];
+    for (int a = 0; a < 3; ++a)
+        c[a] = std::min(int((p[a] - mBounds.lo[a]) / mCellSize[a]), mRes[a] - 1);
+    return cell(c[0], c[1], c[2]);
+}
+
 float MajorantGrid::maxValue() const {
     float m = 0.f;
     for (float v : mValues) m = std::max(m, v);

@@ -47,6 +47,10 @@ public:
         return mValues[(size_t(z) * mRes[1] + y) * mRes[0] + x];
     }
     float maxValue() const;
+    // The value of the cell holding the object-space point p (a point on a cell's face takes
+    // either cell's; the walks below tell the same cells apart only up to such points), 0 outside
+    // the bounds.
+    float at(const Vec3& p) const;
 
     // Walks the cells a ray crosses in [tMin, tMax] (object-space ray; d need not be unit,
     // t is the ray parameter). Calls f(t0, t1, sigmaMaj) per segment in order; stops when f

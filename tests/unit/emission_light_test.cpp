@@ -1,7 +1,9 @@
 // Emissive media as a light (render/emission_light.h, render/line_emission.h): the directions
 // drawn towards the coarse power grid follow the density p_L that the 3D-DDA sums (Pearson's χ²
 // on an equal-area grid of the sphere, and ∫ p_L dω = 1), from outside and from inside a
-// rotated, unevenly scaled volume; and the line estimate's mean is ∫ T σa Le dt in closed form
+// rotated, unevenly scaled volume; the distances drawn along a line follow theirs (χ² again,
+// with the line sample's floor and without, one volume and two overlapping); and the line
+// estimate's mean is ∫ T σa Le dt in closed form
 // through an isothermal, homogeneous block.
 #include "render/emission_light.h"
 
@@ -79,12 +81,76 @@ void checkDirections(const RenderScene& scene, const Vec3& x) {
     EXPECT_LT(c.fit.statistic, test::chiSquareCritical(c.fit.dof));
 }
 
+// χ² of distances drawn along ray over (0, tEnd) against distancePdf in 64 equal bins (its
+// integral over each by the midpoint rule on 100 sub-steps), ∫ pdf dt = 1, and the density a
+// draw reports is distancePdf's at its point; with the line sample's floor and without.
+void checkDistances(const RenderScene& scene, const Ray& ray, float tEnd) {
+    const auto light = EmissionLight::forScene(scene);
+    ASSERT_TRUE(light);
+    ThreadState ts(scene);
+    ts.tracking.setWavelengths(SampledWavelengths::sampleVisible(0.4f));
+    for (const bool floor : {true, false}) {
+        constexpr int kBins = 64, kSub = 100, kDraws = 200000;
+        std::vector<double> observed(kBins, 0.0), expected(kBins, 0.0);
+        Sampler s(4, 0, 0);
+        float mass = 0.f;
+        int drawn = 0, other = 0;
+        for (int i = 0; i < kDraws; ++i) {
+            EmissionLight::LinePoint p;
+            if (!light->sampleDistance(ray, tEnd, ts.tracking, s.get1D(), floor, &p)) continue;
+            ++drawn;
+            mass = p.mass;
+            // A point that rounding puts on a cell's face may read the neighbour's density.
+            if (std::abs(p.pdf - light->distancePdf(ray, p.t, p.mass, floor, ts.tracking)) >
+                1e-4f * p.pdf)
+                ++other;
+            observed[size_t(std::min(int(p.t / tEnd * kBins), kBins - 1))] += 1.0;
+        }
+        ASSERT_EQ(drawn, kDraws);
+        double integral = 0.0;
+        for (int b = 0; b < kBins; ++b)
+            for (int k = 0; k < kSub; ++k) {
+                const float t = (float(b) + (float(k) + 0.5f) / kSub) * tEnd / kBins;
+                const double p = double(light->distancePdf(ray, t, mass, floor, ts.tracking)) *
+                                 tEnd / (kBins * kSub);
+                expected[size_t(b)] += p * kDraws;
+                integral += p;
+            }
+        const test::ChiSquare fit = test::chiSquare(observed, expected);
+        std::printf("floor %d: ∫ p dt = %.4f, χ² %.1f on %d degrees of freedom, %d of %d draws "
+                    "off their density\n",
+                    int(floor), integral, fit.statistic, fit.dof, other, drawn);
+        EXPECT_NEAR(integral, 1.0, 0.01);
+        EXPECT_LT(fit.statistic, test::chiSquareCritical(fit.dof));
+        EXPECT_LE(other, kDraws / 10000);
+    }
+}
+
 }  // namespace
 
 TEST(EmissionLight, DirectionsFollowTheirDensityChiSquare) {
     const RenderScene scene = twoFlames();
     checkDirections<24>(scene, Vec3(1.0f, 0.9f, 1.4f));  // outside the volume
     checkDirections<6>(scene, Vec3(0.1f, 0.6f, 0.45f));  // inside it, beside both flames
+}
+
+// Along a line through both flames of the rotated, stretched volume, and through the same
+// volume overlapped by a second one shifted along x (where both glow, their densities add).
+TEST(EmissionLight, DistancesFollowTheirDensityChiSquare) {
+    RenderScene scene = twoFlames();
+    const Transform xf =
+        Transform::rotate(30.0, Vec3d(0, 0, 1)) * Transform::scale(Vec3d(1, 1.5, 1));
+    const Vec3 a = xf.point(Vec3(0.25f, 0.21f, 0.33f)), b = xf.point(Vec3(0.71f, 0.33f, 0.625f));
+    const Ray ray{a - (b - a), normalize(b - a), kInfinity};
+    checkDistances(scene, ray, 3.f * length(b - a));
+    scene.media.push_back(glowingMedium(
+        [](int, int, int) { return 1.f; },
+        [](int i, int j, int k) {
+            const double d2 = (i - 12) * (i - 12) + (j - 8) * (j - 8) + (k - 10) * (k - 10);
+            return float(300.0 + 1400.0 * std::exp(-d2 / 16.0));
+        },
+        0.5f, 2.f, Transform::translate(Vec3d(0.3, 0.1, 0.0)) * xf));
+    checkDistances(scene, ray, 3.f * length(b - a));
 }
 
 // Cold media emit nothing: no grid, no light.

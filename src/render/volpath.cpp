@@ -11,10 +11,13 @@
 // towards lamps", below): the lamp seen past after a bounce.
 // Emissive media are a light too: every real scattering vertex draws a line towards their
 // glow and estimates its emission whole, the next flight's emission weighed against it
-// (render/line_emission.h): smoke lit by its own flames.
+// (render/line_emission.h): smoke lit by its own flames. There a straight flight also draws a
+// point along its ray towards the glow, which shares the emission with its collisions
+// (render/flight_emission.h): thin flames that few collisions find.
 //
 // Weights (per wavelength; see transport/tracking.h):
-//   emission      β σa Le / σ̄                    at every tentative collision
+//   emission      β σa Le / σ̄                    at every tentative collision (shared with the
+//                                                 flight's point where media glow)
 //   real          β ← β σs / (σ̄ (P_a + P_s))     it scatters, absorption a weight; then NEE
 //                                                 and β ← β p/pdf (= 1 for one lobe)
 //   null          β ← β σn / (σ̄ P_n)
@@ -70,6 +73,7 @@
 #include "render/integrator.h"
 #include "render/lamp_sampling.h"
 #include "render/light_lobes.h"
+#include "render/flight_emission.h"
 #include "render/line_emission.h"
 #include "render/lobe_walk.h"
 #include "transport/path_vertex.h"
@@ -149,6 +153,14 @@ public:
     }
 
 private:
+    // The point of a straight flight along ray that shares its emission with its collisions
+    // (render/flight_emission.h), where the scene's glowing media are a light.
+    FlightEmission flightEmission(const Ray& ray, float tEnd, Sampler& sampler,
+                                  ThreadState& ts) const {
+        if (!mEmission || ts.curved) return FlightEmission();
+        return FlightEmission(*mEmission, ray, tEnd, sampler, ts.tracking);
+    }
+
     // A second path from the camera ray's point for the lights at infinity (skyPointsFork,
     // render/lamp_sampling.h), past its first vertex, with its branch of the sample's record.
     struct Fork {
@@ -177,7 +189,8 @@ private:
                                sky ? &ts.tracking : nullptr, sky && forks);
             const SampledSpectrum betaAtStart = path.throughput.beta;
             const Flight f = bends ? flyCurved(scene, lamps, sampler, ts, path, rec, &ahead)
-                                   : fly(straightTrack(ts, path.ray, ahead.tEnd, sampler), lamps,
+                                   : fly(straightTrack(ts, path.ray, ahead.tEnd, sampler),
+                                         flightEmission(path.ray, ahead.tEnd, sampler, ts), lamps,
                                          sampler, ts, path, rec);
             std::optional<SkyFork> skyFork;
             if (!lamps.empty()) lamps.gather(scene, betaAtStart, sampler, ts, rec, &skyFork);
@@ -235,12 +248,13 @@ private:
     // real event in it ends the path with nothing. The lamps' points on the segment read their
     // transmittance off the flight (render/lamp_sampling.h).
     template <typename Tracker>
-    static Flight fly(Tracker&& track, LampSampling& lamps, Sampler& sampler, ThreadState& ts,
-                      CameraPath& path, PathRecorder& rec) {
+    static Flight fly(Tracker&& track, FlightEmission emission, LampSampling& lamps,
+                      Sampler& sampler, ThreadState& ts, CameraPath& path, PathRecorder& rec) {
         Flight f;
         CameraRayData* data = rec.cameraRayData();
         PathThroughput& throughput = path.throughput;
         const bool reached = track([&](const Collision& c) {
+            emission.reached(c.t, throughput.beta * path.emissionWeight, ts.tracking, rec);
             if (data) data->seen(c);
             lamps.seen(c, ts.tracking);
             const Medium& m = ts.tracking.medium(c.medium);
@@ -253,7 +267,8 @@ private:
             if (m.emissive()) {
                 SampledSpectrum e;
                 scoreEmission(c, m, throughput, &e);
-                rec.emittedInMedium(e * path.emissionWeight, c.t, c.mp.temperature);
+                const float w = path.emissionWeight * emission.collisionShare(c, ts.tracking);
+                rec.emittedInMedium(e * w, c.t, c.mp.temperature);
             }
             if (m.fluorescent() && fluoresce(m, c, sampler, ts, throughput, &f)) return Track::Stop;
             const MediumEvent e = chooseEvent(c, throughput, sampler).event;
@@ -264,7 +279,10 @@ private:
             }
             return Track::Stop;  // scattered, or absorbed for good
         });
-        if (reached) f.end = Flight::End::Escaped;
+        if (reached) {
+            f.end = Flight::End::Escaped;
+            emission.reached(kInfinity, throughput.beta * path.emissionWeight, ts.tracking, rec);
+        }
         lamps.flightEnded(reached);
         rec.cameraFlightEnded(reached);
         return f;
@@ -294,14 +312,14 @@ private:
                                         [&](const Collision& c, float) { return visit(c); });
             return end.kind != Kind::Stopped;
         };
-        const Flight f = fly(track, lamps, sampler, ts, path, rec);
+        const Flight f = fly(track, FlightEmission(), lamps, sampler, ts, path, rec);
         path.throughput.beta *= radianceIndexScale(curved.index(end.p, lambda), nStart);
         if (end.kind == Kind::Reached || end.kind == Kind::Capped) {
             if (end.kind == Kind::Capped) mCapped.fetch_add(1, std::memory_order_relaxed);
             path.ray = Ray{end.p, end.direction, kInfinity};
             *ahead = surfaceAhead(scene, path.ray);
-            return fly(straightTrack(ts, path.ray, ahead->tEnd, sampler), lamps, sampler, ts, path,
-                       rec);
+            return fly(straightTrack(ts, path.ray, ahead->tEnd, sampler), FlightEmission(), lamps,
+                       sampler, ts, path, rec);
         }
         if (end.kind == Kind::Left) {
             path.ray = Ray{end.p, end.direction, kInfinity};

@@ -12,9 +12,9 @@
 namespace mirage {
 
 // XYZ of B(λ, T) in W·m⁻²·sr⁻¹·nm⁻¹ (Planck × 1e-9), as spectrumToXyz sums a spectrum
-// (spectrum/spectrum.h): tabulated at 2048 temperatures log-spaced over 300–100 000 K and
-// interpolated linearly in (ln T, ln X, ln Y, ln Z) (relative error below 1e-4; blackbody_xyz
-// test); summed directly outside that range. 0 for T ≤ 0.
+// (spectrum/spectrum.h): tabulated at 256 temperatures log-spaced over 300–100 000 K and
+// interpolated by cubics in (ln T, ln X, ln Y, ln Z) (relative error below 1e-5; the
+// BlackbodyXyz test); summed directly outside that range. 0 for T ≤ 0.
 Vec3 blackbodyXyz(float kelvin);
 
 }  // namespace mirage

@@ -432,10 +432,10 @@ PhotonMapLists tracePhotonMaps(const std::vector<const Light*>& lights,
 
         // Concatenated in block order: the lists are the same for any thread count.
         auto concatenate = [&](PhotonList PhotonMapLists::*member) {
-            size_t total = 0;
-            for (const auto& bp : blockPhotons) total += (bp.*member).size();
+            size_t count = 0;
+            for (const auto& bp : blockPhotons) count += (bp.*member).size();
             PhotonList& all = maps.*member;
-            all.reserve(total);
+            all.reserve(count);
             for (auto& bp : blockPhotons) {
                 all.insert(all.end(), (bp.*member).begin(), (bp.*member).end());
                 PhotonList().swap(bp.*member);

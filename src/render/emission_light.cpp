@@ -70,7 +70,7 @@ Bounds3 glowBox(const MajorantGrid& g, const std::vector<float>& values) {
 std::vector<double> EmissionLight::addMedium(size_t index, const Medium& medium, int resolution) {
     const MediumEmitter emitter(medium);
     if (!(emitter.tablePower() > 0.0)) return {};
-    Grid grid{index, MajorantGrid(medium.objectBounds(), resolution)};
+    Grid grid{index, MajorantGrid(medium.objectBounds(), resolution), 0.f, Bounds3()};
     const int n = grid.density.res(0) * grid.density.res(1) * grid.density.res(2);
     std::vector<double> power(size_t(n), 0.0);
     const Vec3 size = emitter.cellSize();

@@ -170,19 +170,22 @@ PhysicsTerm curvedPathsTerm(const Scene& scene, const std::string& integrator) {
 }
 
 // Emission, and how the integrator finds it: the photon pass emits from it; volpath's scattering
-// vertices sample it as a light by line integration (render/line_emission.h), unless the scene
-// says `[render] emission_sampling = "flight"`.
+// vertices sample it as a light by line integration (render/line_emission.h) and its flights
+// draw a point towards it that shares their collisions' score (render/flight_emission.h),
+// unless the scene says `[render] emission_sampling = "flight"`.
 PhysicsTerm emissionTerm(const RenderScene& render, const std::string& integrator,
                          const MediaPhysics& m) {
     if (!m.emission) return {"emission", false, "no shader has an [emission] table"};
     std::string why = m.emitWhy;
     if (integratorInfo(integrator).photonPass) why += "; the photon pass emits from it ∝ 4π σa·Le";
-    if (integrator == "volpath" && m.scatter)
-        why += render.emissionSampling
-                   ? "; sampled as a light at every scattering vertex (line integration, "
-                     "[render] emission_sampling = \"line\")"
-                   : "; found by the paths' flights alone ([render] emission_sampling = "
-                     "\"flight\")";
+    if (integrator == "volpath" && render.emissionSampling)
+        why += std::string(m.scatter ? "; sampled as a light at every scattering vertex (line "
+                                       "integration) and"
+                                     : ";") +
+               " by a point drawn along every flight, weighed against its collisions ([render] "
+               "emission_sampling = \"line\")";
+    else if (integrator == "volpath")
+        why += "; found by the paths' flights alone ([render] emission_sampling = \"flight\")";
     return {"emission", true, why};
 }
 

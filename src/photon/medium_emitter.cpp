@@ -93,24 +93,39 @@ MediumEmitter::MediumEmitter(const Medium& medium) : mMedium(&medium) {
         std::max(tgrid.maxValue() * e.temperatureScale + e.temperatureOffset, e.temperatureOffset);
     mTMin = e.minTemperature;
     if (!(tMax > mTMin) || !(e.intensity > 0.f)) return;
+    tabulateIntegrals(tMax);
+    tabulateSamplers(tMax);
+    const std::vector<Corner> corners = emittingCorners(tgrid);
+    mEmittingVoxels = corners.size();
+    // A dual cell's volume in world space: the voxel's, through the volume's transform.
+    const nanovdb::Vec3d h = tgrid.visit([](const auto& g) { return g.voxelSize(); });
+    mCellVolume = h[0] * h[1] * h[2] * std::abs(medium.objectToWorld().linear.determinant());
+    tabulateCells(corners);
+}
 
-    // Per linear component, ∫ σa_c(λ) B(λ,T) dλ per unit concentration over T ∈ [mTMin, tMax];
-    // the others are integrated at each point, at its concentration.
+// Per linear component, ∫ σa_c(λ) B(λ,T) dλ per unit concentration over T ∈ [mTMin, tMax]; the
+// others are integrated at each point, at its concentration. The steps are independent: built
+// in parallel (~600 steps of 471 Planck evaluations over a flame's 500–1730 K, ~6 ms on a core).
+void MediumEmitter::tabulateIntegrals(float tMax) {
+    const ShaderDesc& shader = mMedium->shader();
     int steps = std::min(kMaxIntegralSteps, int(std::ceil((tMax - mTMin) / kMaxIntegralStepK)) + 1);
     steps = std::max(steps, 2);
     mTStep = (tMax - mTMin) / float(steps - 1);
     mIntegral.resize(shader.components.size());
     for (size_t c = 0; c < shader.components.size(); ++c) {
-        if (!medium.binding().componentModel(int(c)).linear()) continue;
+        if (!mMedium->binding().componentModel(int(c)).linear()) continue;
         std::vector<float>& table = mIntegral[c];
         table.resize(size_t(steps));
-        // ~600 steps of 471 Planck evaluations over a flame's 500–1730 K: ~6 ms on one core.
         tbb::parallel_for(tbb::blocked_range<int>(0, steps, 16), [&](const auto& r) {
             for (int k = r.begin(); k < r.end(); ++k)
                 table[size_t(k)] =
                     float(planckIntegral(shader.components[c].sigmaA, mTMin + float(k) * mTStep));
         });
     }
+}
+
+// The Planck samplers B(λ, T) v(λ) every kSamplerStepK over [mTMin, tMax].
+void MediumEmitter::tabulateSamplers(float tMax) {
     const int samplers =
         std::max(2, std::min(kMaxSamplers, int(std::ceil((tMax - mTMin) / kSamplerStepK)) + 1));
     mSamplerStep = (tMax - mTMin) / float(samplers - 1);
@@ -124,19 +139,14 @@ MediumEmitter::MediumEmitter(const Medium& medium) : mMedium(&medium) {
         }
         mSamplers.emplace_back(Spectrum::fromDense(std::move(dense)));
     }
+}
 
-    // q at every emitting voxel centre of the temperature grid: the voxels found in order, their
-    // q (independent lookups) in parallel, the same table for any thread count.
-    struct Corner {
-        float q, T;
-    };
-    struct HotVoxel {
-        int i, j, k;
-        float T;
-        Vec3 p;  // object space
-    };
-    std::vector<HotVoxel> voxels;
-    auto hot = [&](float v) { return v * e.temperatureScale + e.temperatureOffset > mTMin; };
+// q at every emitting voxel centre of the temperature grid, sorted by key: the voxels found in
+// order, their q (independent lookups) in parallel, the same table for any thread count. A
+// sorted table, not a hash map, whose node per voxel cost ~6 ms on a 96³ fire.
+std::vector<MediumEmitter::Corner> MediumEmitter::emittingCorners(const FloatGrid& tgrid) const {
+    const ShaderDesc& shader = mMedium->shader();
+    const EmissionSpec& e = *shader.emission;
     // Cell keys hold 21 bits per axis (packCoord): refuse a grid whose hot voxels lie beyond.
     const nanovdb::CoordBBox box = tgrid.indexBounds();
     for (int a = 0; a < 3; ++a)
@@ -145,6 +155,13 @@ MediumEmitter::MediumEmitter(const Medium& medium) : mMedium(&medium) {
                               "': index coordinates beyond ±1048560 voxels; the emitter of "
                               "shader '" +
                               shader.name + "' expects smaller indices");
+    struct HotVoxel {
+        int i, j, k;
+        float T;
+        Vec3 p;  // object space
+    };
+    std::vector<HotVoxel> voxels;
+    auto hot = [&](float v) { return v * e.temperatureScale + e.temperatureOffset > mTMin; };
     tgrid.visit([&](const auto& g) {
         forEachStoredVoxel(g, hot, [&](int i, int j, int k, float v) {
             const nanovdb::Vec3f p = g.indexToWorldF(nanovdb::Vec3f(float(i), float(j), float(k)));
@@ -155,35 +172,37 @@ MediumEmitter::MediumEmitter(const Medium& medium) : mMedium(&medium) {
     std::vector<double> q(voxels.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, voxels.size(), 1024), [&](const auto& r) {
         std::vector<FloatGrid::Accessor> acc;
-        for (const auto& grid : medium.binding().grids()) acc.push_back(grid.accessor());
+        for (const auto& grid : mMedium->binding().grids()) acc.push_back(grid.accessor());
         for (size_t n = r.begin(); n < r.end(); ++n) q[n] = powerDensityAt(voxels[n].p, acc);
     });
-    // The emitting voxels by key (a sorted table: a hash map's node per voxel cost ~6 ms on a
-    // 96³ fire), and the keys of the cells they are corners of.
-    std::vector<std::pair<uint64_t, Corner>> corners;
-    std::vector<uint64_t> keys;
+    std::vector<Corner> corners;
     for (size_t n = 0; n < voxels.size(); ++n) {
-        if (!(q[n] > 0.0)) continue;
         const HotVoxel& v = voxels[n];
-        corners.push_back({packCoord(v.i, v.j, v.k), Corner{float(q[n]), v.T}});
-        for (int d = 0; d < 8; ++d)
-            keys.push_back(packCoord(v.i - (d & 1), v.j - ((d >> 1) & 1), v.k - ((d >> 2) & 1)));
+        if (q[n] > 0.0) corners.push_back({packCoord(v.i, v.j, v.k), float(q[n]), v.T});
     }
     std::sort(corners.begin(), corners.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
-    auto corner = [&](uint64_t key) -> const Corner* {
-        auto it = std::lower_bound(corners.begin(), corners.end(), key,
-                                   [](const auto& c, uint64_t k) { return c.first < k; });
-        return it != corners.end() && it->first == key ? &it->second : nullptr;
-    };
-    mEmittingVoxels = corners.size();
+              [](const Corner& a, const Corner& b) { return a.key < b.key; });
+    return corners;
+}
+
+// The dual cells with an emitting corner, in key order: each from its corners (in parallel),
+// then the cumulative power in that order.
+void MediumEmitter::tabulateCells(const std::vector<Corner>& corners) {
+    std::vector<uint64_t> keys;
+    keys.reserve(8 * corners.size());
+    for (const Corner& c : corners) {
+        int i, j, k;
+        unpackCoord(c.key, &i, &j, &k);
+        for (int d = 0; d < 8; ++d)
+            keys.push_back(packCoord(i - (d & 1), j - ((d >> 1) & 1), k - ((d >> 2) & 1)));
+    }
     std::sort(keys.begin(), keys.end());
     keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-
-    // A dual cell's volume in world space: the voxel's, through the volume's transform.
-    const nanovdb::Vec3d h = tgrid.visit([](const auto& g) { return g.voxelSize(); });
-    mCellVolume = h[0] * h[1] * h[2] * std::abs(medium.objectToWorld().linear.determinant());
-    // Each cell from its corners (in parallel), then the cumulative power in the keys' order.
+    auto corner = [&](uint64_t key) -> const Corner* {
+        auto it = std::lower_bound(corners.begin(), corners.end(), key,
+                                   [](const Corner& c, uint64_t k) { return c.key < k; });
+        return it != corners.end() && it->key == key ? &*it : nullptr;
+    };
     mCells.resize(keys.size());
     std::vector<double> sums(keys.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, keys.size(), 1024), [&](const auto& r) {

@@ -76,6 +76,16 @@ private:
         int32_t i, j, k;   // index of the lower corner in the temperature grid
         uint16_t sampler;  // Planck sampler of the hottest corner (mSamplers)
     };
+    // An emitting voxel of the temperature grid: its key (packed index), q (W/m³) and T (K).
+    struct Corner {
+        uint64_t key;
+        float q, T;
+    };
+    // The constructor's steps (medium_emitter.cpp).
+    void tabulateIntegrals(float tMax);
+    void tabulateSamplers(float tMax);
+    std::vector<Corner> emittingCorners(const FloatGrid& temperature) const;
+    void tabulateCells(const std::vector<Corner>& corners);
     // ∫ σa_c(λ) B(λ,T) dλ per linear component, tabulated over T (K); the Planck CDFs.
     double componentIntegral(int component, float T) const;
     int samplerIndex(float T) const;

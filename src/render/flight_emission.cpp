@@ -10,17 +10,15 @@ FlightEmission::FlightEmission(const EmissionLight& light, const Ray& ray, float
     mPending = true;
 }
 
-float FlightEmission::collisionShare(const Collision& c, TrackingContext& tracking) const {
-    if (!mLight) return 1.f;
+float FlightEmission::shareAt(const Collision& c, TrackingContext& tracking) const {
     const float p = mLight->distancePdf(mRay, c.t, mPoint.mass, false, tracking);
     // σ̄² / (σ̄² + p²) as a ratio: squares of majorants up to 1e30 (medium.h) overflow floats.
     const float r = p / c.sigmaMaj;
     return 1.f / (1.f + r * r);
 }
 
-void FlightEmission::reached(float t, const SampledSpectrum& beta, TrackingContext& tracking,
-                             PathRecorder& rec) {
-    if (!mPending || t < mPoint.t) return;
+void FlightEmission::score(const SampledSpectrum& beta, TrackingContext& tracking,
+                           PathRecorder& rec) {
     mPending = false;
     for (size_t i = 0; i < tracking.size(); ++i) {
         const Medium& m = tracking.medium(i);

@@ -53,14 +53,22 @@ public:
                    TrackingContext& tracking);
 
     // The collision's share of its score β σa Le / σ̄: σ̄² / (σ̄² + p(t)²).
-    float collisionShare(const Collision& c, TrackingContext& tracking) const;
+    float collisionShare(const Collision& c, TrackingContext& tracking) const {
+        return mLight ? shareAt(c, tracking) : 1.f;
+    }
     // Scores the point, once, when the flight has got past it: called with each tentative
     // collision's t before the collision changes β, and with tEnd when the flight got through.
-    // beta: the flight's throughput × its weight against the vertex's line sample.
-    void reached(float t, const SampledSpectrum& beta, TrackingContext& tracking,
-                 PathRecorder& rec);
+    // beta: the flight's throughput; weight: its weight against the vertex's line sample. Inline
+    // to the test: every tentative collision of every flight calls it.
+    void reached(float t, const SampledSpectrum& beta, float weight, TrackingContext& tracking,
+                 PathRecorder& rec) {
+        if (mPending && t >= mPoint.t) score(beta * weight, tracking, rec);
+    }
 
 private:
+    float shareAt(const Collision& c, TrackingContext& tracking) const;
+    void score(const SampledSpectrum& beta, TrackingContext& tracking, PathRecorder& rec);
+
     const EmissionLight* mLight = nullptr;  // null: no point
     bool mPending = false;                  // the point is still ahead of the flight
     Ray mRay;

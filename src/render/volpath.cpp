@@ -254,7 +254,7 @@ private:
         CameraRayData* data = rec.cameraRayData();
         PathThroughput& throughput = path.throughput;
         const bool reached = track([&](const Collision& c) {
-            emission.reached(c.t, throughput.beta * path.emissionWeight, ts.tracking, rec);
+            emission.reached(c.t, throughput.beta, path.emissionWeight, ts.tracking, rec);
             if (data) data->seen(c);
             lamps.seen(c, ts.tracking);
             const Medium& m = ts.tracking.medium(c.medium);
@@ -281,7 +281,7 @@ private:
         });
         if (reached) {
             f.end = Flight::End::Escaped;
-            emission.reached(kInfinity, throughput.beta * path.emissionWeight, ts.tracking, rec);
+            emission.reached(kInfinity, throughput.beta, path.emissionWeight, ts.tracking, rec);
         }
         lamps.flightEnded(reached);
         rec.cameraFlightEnded(reached);

@@ -16,6 +16,7 @@
 #include "film/color.h"
 #include "spectrum/cie.h"
 #include "test_support.h"
+#include "chi_square.h"
 
 namespace mirage {
 namespace {
@@ -112,6 +113,44 @@ TEST(CieTest, WavelengthOfZeroDensityContributesNothing) {
 }
 
 // --- Planck's law ------------------------------------------------------------------------------
+
+// The camera's wavelength sampler (SampledWavelengths::sampleVisible): its draws follow the
+// density it reports, that density is visiblePdf's at the drawn λ, and it integrates to 1 over
+// [360, 830] nm. Each of the four stratified wavelengths is binned (10-nm bins).
+TEST(SampledWavelengthsTest, DrawsFollowTheirDensityChiSquare) {
+    constexpr int kBins = 47;
+    constexpr double kLo = 360.0, kWidth = 10.0;
+    std::vector<double> observed(kBins, 0.0), expected(kBins, 0.0);
+    Sampler rng(17, 0, 0);
+    constexpr int kDraws = 100000;
+    double worst = 0.0;
+    for (int n = 0; n < kDraws; ++n) {
+        const SampledWavelengths w = SampledWavelengths::sampleVisible(rng.get1D());
+        for (int i = 0; i < kSpectrumSamples; ++i) {
+            ASSERT_GE(w.lambda[i], kLambdaMin);
+            ASSERT_LE(w.lambda[i], kLambdaMax);
+            const int b = std::min(kBins - 1, int((w.lambda[i] - kLo) / kWidth));
+            observed[size_t(b)] += 1.0;
+            const double ref = SampledWavelengths::visiblePdf(w.lambda[i]);
+            worst = std::max(worst, std::abs(w.pdf[i] - ref) / ref);
+        }
+    }
+    EXPECT_LT(worst, 1e-5) << "the reported density is visiblePdf's at the drawn wavelength";
+    double integral = 0.0;
+    for (int b = 0; b < kBins; ++b) {
+        const double a = kLo + b * kWidth, z = std::min(a + kWidth, double(kLambdaMax));
+        constexpr int kSub = 200;
+        double mass = 0.0;
+        for (int k = 0; k < kSub; ++k)
+            mass += SampledWavelengths::visiblePdf(float(a + (k + 0.5) * (z - a) / kSub)) *
+                    (z - a) / kSub;
+        integral += mass;
+        expected[size_t(b)] = mass * kDraws * kSpectrumSamples;
+    }
+    EXPECT_NEAR(integral, 1.0, 1e-4);
+    const test::ChiSquare fit = test::chiSquare(observed, expected);
+    EXPECT_LT(fit.statistic, test::chiSquareCritical(fit.dof)) << "dof " << fit.dof;
+}
 
 TEST(PlanckTest, MatchesPublishedValues) {
     // Spectral radiance in W·m⁻²·sr⁻¹·m⁻¹ (../shared/data/README.md, "Planck check values").

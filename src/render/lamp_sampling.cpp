@@ -5,6 +5,7 @@
 
 #include "light/lamp.h"
 #include "render/direct_light.h"
+#include "transport/kept_walk.h"
 
 namespace mirage {
 
@@ -169,12 +170,8 @@ void LampSampling::drawSky(TrackingContext& tracking, float tEnd, Sampler& sampl
         const Ray r = tracking.context(m).toObject(mRay);
         const float path = tracking.pathMajorant(m);
         // The first walk: the majorant's optical depth over the segment.
-        float depth = 0.f;
-        MajorantGrid::Walk walk(medium.majorant(), r.o, r.d, 0.f, tEnd);
-        for (MajorantGrid::Walk::Segment s; walk.next(&s); walk.advanceTo(s.t1)) {
-            const float sigma = path >= 0.f ? path : s.sigmaMaj;
-            if (sigma > 0.f) depth += sigma * (s.t1 - s.t0);
-        }
+        KeptWalk<> walk(medium.majorant(), r, tEnd, path);
+        const float depth = walk.depth();
         const float u = sampler.get1D();
         if (!(depth > 0.f) || !std::isfinite(depth)) continue;
         // The second: one point per stratum of [0, depth), uniform in the majorant's depth.
@@ -182,12 +179,11 @@ void LampSampling::drawSky(TrackingContext& tracking, float tEnd, Sampler& sampl
         sky.medium = int(m);
         sky.depth = depth;
         sky.count = 0;
-        MajorantGrid::Walk second(medium.majorant(), r.o, r.d, 0.f, tEnd);
         float t = 0.f, last = 0.f;
         for (int i = 0; i < kSkyStrata; ++i) {
             const float tau = (float(i) + u) * depth / float(kSkyStrata);
             float sigma;
-            if (!nextTentativeCollision(second, t, tau - last, &t, &sigma, path)) break;
+            if (!nextTentativeCollisionIn(walk, t, tau - last, &t, &sigma, path)) break;
             last = tau;
             sky.points[sky.count++] = FlightPoint{t, sky.density(sigma)};
         }

@@ -172,8 +172,8 @@ void LampSampling::drawSky(TrackingContext& tracking, float tEnd, Sampler& sampl
         // The first walk: the majorant's optical depth over the segment.
         KeptWalk<> walk(medium.majorant(), r, tEnd, path);
         const float depth = walk.depth();
-        const float u = sampler.get1D();
         if (!(depth > 0.f) || !std::isfinite(depth)) continue;
+        const float u = sampler.get1D();
         // The second: one point per stratum of [0, depth), uniform in the majorant's depth.
         SkyPoint& sky = mSky[mSkyCount];
         sky.medium = int(m);

@@ -63,8 +63,9 @@ bool trackCollisions(TrackingContext& ctx, const Ray& worldRay, float tMax, Samp
             Stream{objectRay, MajorantGrid::Walk(medium.majorant(), objectRay.o, objectRay.d, 0.f,
                                                  tMax),
                    0.f, 0.f};
-        if (!nextTentativeCollision(s.walk, 0.f, exp1(), &s.tNext, &s.sigmaMaj,
-                                    ctx.pathMajorant(i)))
+        // A ray that misses the medium's bounds draws no number for it.
+        if (s.walk.done() || !nextTentativeCollision(s.walk, 0.f, exp1(), &s.tNext, &s.sigmaMaj,
+                                                     ctx.pathMajorant(i)))
             s.tNext = kInfinity;
     }
     for (uint64_t collisions = 0;; ++collisions) {

@@ -88,6 +88,8 @@ public:
     // The next non-empty segment: [where the walk stands, the end of its cell or tMax]. False
     // when the walk has reached tMax or left the bounds.
     bool next(Segment* s);
+    // Whether nothing is left to walk (a ray that missed the bounds has nothing from the start).
+    bool done() const { return mValues == nullptr; }
     // Moves the walk to t within the segment next() gave (t = its t1 finishes the cell).
     void advanceTo(float t) { mT = t; }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 
 #include "light/lamp.h"
 #include "render/direct_light.h"
@@ -80,7 +81,7 @@ LampSampling::LampSampling(const RenderScene& scene, const Ray& ray, float tEnd,
     // A fork where the points lie no further apart than kForkDepth / kSkyStrata in the
     // majorant's optical depth (lamp_sampling.h).
     for (size_t k = 0; k < mSkyCount; ++k)
-        if (mSky[k].depth > kForkDepth) mForks = false;
+        if (mSky.at[k].depth > kForkDepth) mForks = false;
     float a = 0.f, b = 0.f;
     if (!on || !mediaSpan(scene, ray, tEnd, &a, &b)) return;
     for (size_t i = 0; i < scene.lights.size() && mCount < kMaxLamps; ++i) {
@@ -91,10 +92,10 @@ LampSampling::LampSampling(const RenderScene& scene, const Ray& ray, float tEnd,
         if (!lamp || !coneInterval(ray.o, ray.d, Cone{apex, lamp->axis, lamp->cosCone}, &t0, &t1))
             continue;
         const EquiangularSegment segment(ray.o, ray.d, t0, t1, lamp->p);
-        if (!segment.empty()) mLamps[mCount++] = Lamp{i, segment, {}};
+        if (!segment.empty()) new (&mLamps.at[mCount++]) Lamp{i, segment, {}};
     }
     for (size_t k = 0; k < mCount; ++k) {
-        Lamp& lamp = mLamps[k];
+        Lamp& lamp = mLamps.at[k];
         lamp.point.t = lamp.segment.sample(sampler.get1D());
         lamp.point.pdf = lamp.segment.pdf(lamp.point.t);
     }
@@ -106,9 +107,9 @@ void LampSampling::passPoints(float t) {
         p.ratio = mRatio;
         p.passed = true;
     };
-    for (size_t k = 0; k < mCount; ++k) pass(mLamps[k].point);
+    for (size_t k = 0; k < mCount; ++k) pass(mLamps.at[k].point);
     for (size_t k = 0; k < mSkyCount; ++k)
-        for (int i = 0; i < mSky[k].count; ++i) pass(mSky[k].points[i]);
+        for (int i = 0; i < mSky.at[k].count; ++i) pass(mSky.at[k].points[i]);
 }
 
 void LampSampling::ratioTrack(const Collision& c, const TrackingContext& tracking) {
@@ -137,13 +138,13 @@ SampledSpectrum LampSampling::toPoint(const FlightPoint& lamp, TrackingContext& 
 
 const LampSampling::Lamp* LampSampling::find(size_t light) const {
     for (size_t k = 0; k < mCount; ++k)
-        if (mLamps[k].light == light) return &mLamps[k];
+        if (mLamps.at[k].light == light) return &mLamps.at[k];
     return nullptr;
 }
 
 const LampSampling::SkyPoint* LampSampling::findSky(int medium) const {
     for (size_t k = 0; k < mSkyCount; ++k)
-        if (mSky[k].medium == medium) return &mSky[k];
+        if (mSky.at[k].medium == medium) return &mSky.at[k];
     return nullptr;
 }
 
@@ -175,7 +176,7 @@ void LampSampling::drawSky(TrackingContext& tracking, float tEnd, Sampler& sampl
         if (!(depth > 0.f) || !std::isfinite(depth)) continue;
         const float u = sampler.get1D();
         // The second: one point per stratum of [0, depth), uniform in the majorant's depth.
-        SkyPoint& sky = mSky[mSkyCount];
+        SkyPoint& sky = *new (&mSky.at[mSkyCount]) SkyPoint{};
         sky.medium = int(m);
         sky.depth = depth;
         sky.count = 0;
@@ -195,7 +196,7 @@ void LampSampling::gatherSky(const RenderScene& scene, const SampledSpectrum& be
                              Sampler& sampler, ThreadState& ts, PathRecorder& rec,
                              std::optional<SkyFork>* fork) const {
     for (size_t k = 0; k < mSkyCount; ++k) {
-        const SkyPoint& sky = mSky[k];
+        const SkyPoint& sky = mSky.at[k];
         const size_t m = size_t(sky.medium);
         if (rec.holdout(m)) continue;
         const Medium& medium = ts.tracking.medium(m);
@@ -245,7 +246,7 @@ void LampSampling::gather(const RenderScene& scene, const SampledSpectrum& beta,
     const SampledWavelengths& w = ts.tracking.wavelengths();
     const Vec3 wo = -mRay.d;
     for (size_t k = 0; k < mCount; ++k) {
-        const Lamp& lamp = mLamps[k];
+        const Lamp& lamp = mLamps.at[k];
         const float t = lamp.point.t, pe = lamp.point.pdf;
         const Vec3 x = mRay.at(t);
         // A point lamp's light at x is one direction; a sphere's is an integral over the cone

@@ -154,8 +154,13 @@ TEST(PhotonColour, FluorescentDyeBehindDispersiveGlass) {
         "[[material]]\nname = \"flint\"\ntype = \"dielectric\"\nior = 1.6\ncauchy_b = 0.02\n"
         "[[shape]]\ntype = \"sphere\"\ncenter = [0, 0, 2.2]\nradius = 0.7\n"
         "material = \"flint\"\n";
-    const Image photon = render(dir, "photon", scene, kPhoton);
-    const Image volpath = render(dir, "volpath", scene, kVolpath);
+    // Both estimates of this glow are noisy (the re-emitted light passes the ball on the hero
+    // wavelength alone): at kPhoton and kVolpath their green means moved ~9 % from seed to
+    // seed, each, so a 15 % tolerance failed about one seed in four. With 4× the photons and
+    // 8× the samples, ~3 % each (seeds 6-8: photons 0.0271-0.0287, volpath 0.0273-0.0287).
+    const Image photon =
+        render(dir, "photon", scene, "--integrator photon --set render.photons=4000000 --spp 16");
+    const Image volpath = render(dir, "volpath", scene, "--integrator volpath --spp 4096");
     expectSameColour(volpath, photon, 0.15);
 }
 

@@ -75,7 +75,7 @@ std::vector<ImageLayer> cryptomatteLayers(const std::string& type,
 
     std::vector<ImageLayer> layers(kCryptomatteRanks / 2);
     for (size_t l = 0; l < layers.size(); ++l) {
-        char suffix[8];
+        char suffix[24];  // room for any size_t: no truncation for the compiler to warn of
         std::snprintf(suffix, sizeof suffix, "%02zu", l);
         layers[l].name = type + suffix;
         layers[l].channels = {"R", "G", "B", "A"};

@@ -115,11 +115,11 @@ MediumComponent readComponent(const TableReader& c, size_t index) {
         makeChlorophyll(&mc, float(c.getNumber("g", kParticleG, -1.0, 1.0)));
     } else if (kind == "rayleigh") {
         const double diameter = c.getNumber("diameter_nm", 1.0, 1e-3, 100.0);
-        const double index = c.getNumber("particle_index", 1.33, 1.0, 10.0);
+        const double particleIndex = c.getNumber("particle_index", 1.33, 1.0, 10.0);
         const double density = c.getNumber("number_density");
         if (!(density >= 0 && density <= 1e35))
             c.fail("number_density", "expected particles per m³ within [0, 1e35]");
-        makeRayleighParticles(&mc, diameter, index, density);
+        makeRayleighParticles(&mc, diameter, particleIndex, density);
         if (!(mc.sigmaS.maxValue() < 1e12f))
             c.fail("number_density", "σs of these particles exceeds 1e12 1/m; expected fewer");
     } else {

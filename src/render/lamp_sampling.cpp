@@ -6,7 +6,6 @@
 
 #include "light/lamp.h"
 #include "render/direct_light.h"
-#include "transport/kept_walk.h"
 
 namespace mirage {
 
@@ -36,9 +35,9 @@ bool mediaSpan(const RenderScene& scene, const Ray& ray, float tEnd, float* a, f
 // tracking's density of scattering points (lamp_sampling.h).
 float scatterProxy(const MediumPoint& mp) { return mp.sigmaS.average(); }
 
-// The majorant's optical depth along the camera ray past which its points for the lights at
+// The marched optical depth of the camera ray past which its points for the lights at
 // infinity fork no path (lamp_sampling.h).
-constexpr float kForkDepth = 16.f;
+constexpr float kForkDepth = 2.f;
 
 // An index i < n drawn with probability term[i] / total (total = their sum > 0) by u ∈ [0, 1);
 // never one whose term is 0, even where u · total rounds past the last positive one.
@@ -78,10 +77,9 @@ LampSampling::LampSampling(const RenderScene& scene, const Ray& ray, float tEnd,
                            Sampler& sampler, TrackingContext* sky, bool forks)
     : mForks(forks && sky), mRay(ray), mScene(&scene) {
     if (sky) drawSky(*sky, tEnd, sampler);
-    // A fork where the points lie no further apart than kForkDepth / kSkyStrata in the
-    // majorant's optical depth (lamp_sampling.h).
+    // A fork where the ray is thin: its marched depth at most kForkDepth (lamp_sampling.h).
     for (size_t k = 0; k < mSkyCount; ++k)
-        if (mSky.at[k].depth > kForkDepth) mForks = false;
+        if (mSky.at[k].profile.depth > kForkDepth) mForks = false;
     float a = 0.f, b = 0.f;
     if (!on || !mediaSpan(scene, ray, tEnd, &a, &b)) return;
     for (size_t i = 0; i < scene.lights.size() && mCount < kMaxLamps; ++i) {
@@ -156,37 +154,55 @@ float LampSampling::scatterPointWeight(size_t light, const Collision& c) const {
 
 float LampSampling::skyWeight(const Collision& c) const {
     const SkyPoint* sky = mForks ? nullptr : findSky(c.medium);
-    return sky ? powerWeight(scatterProxy(c.mp), sky->density(c.sigmaMaj)) : 1.f;
+    return sky ? powerWeight(scatterProxy(c.mp), sky->density(c.t)) : 1.f;
 }
 
 bool LampSampling::keepsScatterPoint(const Collision& c, Sampler& sampler) const {
     const SkyPoint* sky = mForks ? findSky(c.medium) : nullptr;
     if (!sky) return true;
-    return sampler.get1D() < powerWeight(scatterProxy(c.mp), sky->density(c.sigmaMaj));
+    return sampler.get1D() < powerWeight(scatterProxy(c.mp), sky->density(c.t));
 }
 
 void LampSampling::drawSky(TrackingContext& tracking, float tEnd, Sampler& sampler) {
     for (size_t m = 0; m < tracking.size() && mSkyCount < kMaxSky; ++m) {
         const Medium& medium = tracking.medium(m);
-        const Ray r = tracking.context(m).toObject(mRay);
-        const float path = tracking.pathMajorant(m);
-        // The first walk: the majorant's optical depth over the segment.
-        KeptWalk<> walk(medium.majorant(), r, tEnd, path);
-        const float depth = walk.depth();
-        if (!(depth > 0.f) || !std::isfinite(depth)) continue;
+        Medium::Context& ctx = tracking.context(m);
+        const Ray r = ctx.toObject(mRay);
+        float a, b;
+        if (!medium.objectBounds().intersect(r.o, r.d, 0.f, tEnd, &a, &b) || !(b > a) ||
+            !std::isfinite(b))
+            continue;
+        // The march: σt at each step's midpoint (lamp_sampling.h).
+        SkyProfile profile;
+        profile.start = a;
+        profile.step = (b - a) / float(kSkyMarch);
+        for (int k = 0; k < kSkyMarch; ++k) {
+            MediumPoint mp;
+            medium.eval(r.at(a + (float(k) + 0.5f) * profile.step), ctx, &mp);
+            ++tracking.lookups;
+            profile.sigma[size_t(k)] = (mp.sigmaA + mp.sigmaS).average();
+            profile.depth += profile.sigma[size_t(k)] * profile.step;
+        }
+        if (!(profile.depth > 0.f) || !std::isfinite(profile.depth)) continue;
+        // One point per stratum of [0, depth), uniform in the profile's depth.
         const float u = sampler.get1D();
-        // The second: one point per stratum of [0, depth), uniform in the majorant's depth.
         SkyPoint& sky = *new (&mSky.at[mSkyCount]) SkyPoint{};
         sky.medium = int(m);
-        sky.depth = depth;
-        sky.count = 0;
-        float t = 0.f, last = 0.f;
+        sky.profile = profile;
+        float before = 0.f;  // the depth up to step k
+        size_t k = 0;
         for (int i = 0; i < kSkyStrata; ++i) {
-            const float tau = (float(i) + u) * depth / float(kSkyStrata);
-            float sigma;
-            if (!nextTentativeCollisionIn(walk, t, tau - last, &t, &sigma, path)) break;
-            last = tau;
-            sky.points[sky.count++] = FlightPoint{t, sky.density(sigma)};
+            const float tau = (float(i) + u) * profile.depth / float(kSkyStrata);
+            float across = profile.sigma[k] * profile.step;
+            while (k < kSkyMarch && !(before + across > tau)) {
+                before += across;
+                if (++k < kSkyMarch) across = profile.sigma[k] * profile.step;
+            }
+            if (k == kSkyMarch) break;  // rounding: the sum fell short of tau
+            const float t = a + (float(k) + (tau - before) / across) * profile.step;
+            // The step's own density: t may round onto the next step's edge.
+            const float pdf = float(kSkyStrata) * profile.sigma[k] / profile.depth;
+            sky.points[size_t(sky.count++)] = FlightPoint{t, pdf};
         }
         if (sky.count) ++mSkyCount;
     }

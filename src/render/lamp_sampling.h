@@ -24,30 +24,42 @@
 // The lights at infinity (the dome) on the camera ray. Where the camera ray crosses thin
 // medium (a cloud's edge), delta tracking scatters on a few of its samples (1 − T of them) and
 // the rest see nothing: the pixel's noise is that of a coin of probability 1 − T. So the camera
-// ray also draws, per medium, kSkyStrata points, one per stratum of the majorant's optical
-// depth D over the segment (uniform in it: density p(t) = kSkyStrata σ̄(t) / D). Each point's
-// term of the strata's sum is w_s(t) β T̂(0, t) σs(t) / p(t). One point is lit, by next-event
-// estimation through both of the dome's strategies (render/direct_light.cpp): it is chosen in
-// proportion to its term (with the transmittance the flight read where it got that far) and
-// divided by the probability of its choice, an unbiased estimate of the sum for one shadow
-// connection. Delta tracking's scattering points keep the rest: the two are weighed by the
-// power heuristic with the densities p(t) and σs(t) (the proxy of delta tracking's, as for the
-// lamps), evaluated alike on both sides, so w_s + w_dt = 1 at every t. Where the majorant is
-// loose (a wisp beside dense voxels), p ≫ σs and the points take the light; deep in dense
-// medium, σs ≫ p and delta tracking does. Measured on the sky-white regime (16 samples, seeds
-// 1 and 2): one point drawn from the majorant's exponential over the segment's first 3 optical
-// depths, delta tracking alone past them, relMSE 0.089; these, 0.044 for the same CPU time.
-// The cap left the far side of thin edges to delta tracking wherever the majorant was loose:
-// fireflies of ~60× the pixel's value.
+// ray also draws, per medium, kSkyStrata points, one per stratum of its optical depth, as a
+// march of kSkyMarch steps over the medium's box reads it: σt at each step's midpoint, constant
+// over the step (SkyProfile). The points are uniform in that depth τ̂, density
+// p(t) = kSkyStrata σ̂(t) / τ̂ — the shape of delta tracking's own σt but stratified, and as many
+// on a ray of depth 0.01 as on one of 10. Each point's term of the strata's sum is
+// w_s(t) β T̂(0, t) σs(t) / p(t). One point is lit, by next-event estimation through both of the
+// dome's strategies (render/direct_light.cpp): it is chosen in proportion to its term (with the
+// transmittance the flight read where it got that far) and divided by the probability of its
+// choice, an unbiased estimate of the sum for one shadow connection. Delta tracking's
+// scattering points keep the rest: the two are weighed by the power heuristic with the
+// densities p(t) and σs(t) (the proxy of delta tracking's, as for the lamps), evaluated alike on
+// both sides, so w_s + w_dt = 1 at every t. On a thin ray p ≫ σs and the points take the light;
+// on a deep one (τ̂ ≫ kSkyStrata), σs ≫ p and delta tracking does. The march decides nothing
+// but densities and where the path forks, and is a function of the ray alone: the sum stays
+// unbiased wherever it misreads the medium (a voxel between two midpoints: there p = 0 and
+// delta tracking keeps the weight).
+// Until 2026-11-30 the points were uniform in the majorant's optical depth D instead. Where the
+// majorant is loose — the wisps of a cloud's edge beside denser voxels, D ≫ τ — they fell
+// where σs ≪ σ̄ and left the wisps' dense voxels to delta tracking's coin; and a ray forked by D
+// (below), so a thin ray beside dense cells did not fork. Sky-white at 32 samples (seeds 11 and
+// 12, relMSE against the reference): 0.0086 by the majorant, 0.0065 by the march (64 steps, a
+// fork where τ̂ ≤ 2); the edges of alpha < 0.03 0.044 → 0.022 per pixel.
 //
 // Forks (skyPointsFork: one medium, neither emissive nor fluorescent, no surfaces, domes
 // alone). The path also goes on from the lit point: a second path whose throughput
 // is its estimate's weight, and which carries the light scattered more than once off the camera
 // ray's thin stretches. Delta tracking's scattering point then goes on only with probability
-// w_dt(t), its weight taken as a roulette. A ray of majorant depth above kForkDepth forks
-// nothing: its points lie far apart, and a second path of large weight costs more variance
-// than it saves. Sky-white, noise between two seeds at 16 samples: 0.0225 without forks,
-// 0.0194 at a depth of 16 (edges 0.0099 → 0.0056), 0.0244 with no limit (the core lost).
+// w_dt(t), its weight taken as a roulette. A ray of marched depth above kForkDepth forks
+// nothing: there delta tracking's points take most of the light, and a second path of large
+// weight costs more variance than it saves. The second path's roulette measures its throughput
+// against the weight it started with (PathThroughput::rouletteScale): on a ray of alpha 0.02 the
+// lit point's weight is ~0.02, and a roulette against 1 kept one such path in five at 0.25 —
+// the pixel's multiple scattering a coin again (sky-white, 32 samples: relMSE 0.0065 → 0.0054;
+// alpha < 0.03 0.022 → 0.0046 per pixel).
+// Sky-white, noise between two seeds at 32 samples, by the fork's depth τ̂ (with the majorant's
+// points and forks the day before, 16: 0.0086): 1, 0.0065; 2, 0.0065; 5, 0.0075; 16, 0.0084.
 //
 // T̂(0, t) comes from the path's own flight along the segment rather than a tracking pass of
 // its own: the points are drawn before the flight. Its tentative collisions are a Poisson process
@@ -130,16 +142,32 @@ private:
         EquiangularSegment segment;
         FlightPoint point;
     };
-    // A medium's points for the lights at infinity: one per stratum of the majorant's optical
-    // depth `depth` over the segment, `count` of them (fewer where rounding ends the walk).
+    // The camera ray's σt over a medium's box, as the points for the lights at infinity read
+    // it: kSkyMarch steps from `start` (object-space ray parameter), σt at each one's midpoint
+    // (the mean over the path's wavelengths), constant over the step; `depth` their sum.
+    // Sky-white, 32 samples: 32, 64 and 128 steps within the noise of each other.
+    static constexpr int kSkyMarch = 32;
+    struct SkyProfile {
+        float start = 0.f, step = 0.f, depth = 0.f;
+        std::array<float, kSkyMarch> sigma;
+        // The march's σt at t (0 outside the box).
+        float at(float t) const {
+            const float k = (t - start) / step;
+            return k >= 0.f && k < float(kSkyMarch) ? sigma[size_t(k)] : 0.f;
+        }
+    };
+    // A medium's points for the lights at infinity: one per stratum of the profile's optical
+    // depth, `count` of them (fewer where rounding ends the march).
     static constexpr int kSkyStrata = 4;
     struct SkyPoint {
         int medium;
-        float depth;
+        SkyProfile profile;
         int count = 0;
         std::array<FlightPoint, kSkyStrata> points;
-        // The strata's density of points at a point of majorant σ̄ (1/m): kSkyStrata σ̄ / depth.
-        float density(float sigmaMaj) const { return float(kSkyStrata) * sigmaMaj / depth; }
+        // The strata's density of points at t (1/m): kSkyStrata σ̂(t) / τ̂.
+        float density(float t) const {
+            return float(kSkyStrata) * profile.at(t) / profile.depth;
+        }
     };
     static constexpr size_t kMaxSky = 4;  // media beyond keep their scattering points' alone
     // The points' storage, left unconstructed until a point is drawn (as trackCollisions'

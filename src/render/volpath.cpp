@@ -231,6 +231,9 @@ private:
         Fork fork{CameraPath(camera.ray, camera.wavelengths), rec.branch()};
         CameraPath& path = fork.path;
         path.throughput.beta = x.beta;
+        // Its roulette measures against the weight it starts with, at most 1 (PathThroughput).
+        const float start = x.beta.maxValue();
+        if (start > 0.f && start < 1.f) path.throughput.rouletteScale = start;
         fork.rec.scatteredInMedium(x.at.t);
         path.specularChain = false;
         float pdf;

@@ -28,6 +28,13 @@ constexpr float kRouletteThreshold = 0.25f;
 struct PathThroughput {
     SampledSpectrum beta{1.f};
     bool heroOnly = false;
+    // What the roulette measures β against: 1 for a path from the camera. A path that starts
+    // as one term of a pixel's estimate, with that term's weight (volpath's second path from
+    // the camera ray's lit point, render/lamp_sampling.h), starts from its weight: on a thin
+    // edge the weight is the edge's coverage, and against 1 the roulette would end four paths
+    // in five at the first vertex and carry the fifth at 0.25, the pixel's multiple scattering
+    // a coin.
+    float rouletteScale = 1.f;
 
     void keepHeroOnly() {
         heroOnly = true;
@@ -35,10 +42,10 @@ struct PathThroughput {
     }
     bool alive() const { return beta.maxValue() > 0.f; }
 
-    // Russian roulette once max β < kRouletteThreshold: survives with probability
-    // max β / threshold and divides β by it, so E[β] is unchanged. False: the path ends.
+    // Russian roulette once max β / rouletteScale < kRouletteThreshold: survives with that
+    // ratio over the threshold and divides β by it, so E[β] is unchanged. False: the path ends.
     bool roulette(Sampler& sampler) {
-        const float maxBeta = beta.maxValue();
+        const float maxBeta = beta.maxValue() / rouletteScale;
         if (!(maxBeta > 0.f)) return false;
         if (maxBeta >= kRouletteThreshold) return true;
         const float survive = maxBeta / kRouletteThreshold;

@@ -33,7 +33,20 @@ void TrackingContext::setTimeOffset(float seconds) {
 
 bool nextTentativeCollision(MajorantGrid::Walk& walk, float t, float tau, float* tHit,
                             float* sigmaMaj, float pathMajorant) {
-    return nextTentativeCollisionIn(walk, t, tau, tHit, sigmaMaj, pathMajorant);
+    for (MajorantGrid::Walk::Segment s; walk.next(&s); walk.advanceTo(s.t1)) {
+        const float sigma = pathMajorant >= 0.f ? pathMajorant : s.sigmaMaj;
+        if (!(sigma > 0.f)) continue;    // empty cell: no collisions
+        const float need = tau / sigma;  // distance at which the majorant's optical depth is tau
+        if (need < s.t1 - s.t0) {
+            // A collision at exactly the last one (need = 0 from tau = 0) would stall the walk.
+            *tHit = s.t0 + need > t ? s.t0 + need : std::nextafter(t, kInfinity);
+            *sigmaMaj = sigma;
+            walk.advanceTo(*tHit);
+            return true;
+        }
+        tau -= sigma * (s.t1 - s.t0);
+    }
+    return false;
 }
 
 EventProbabilities eventProbabilities(const Collision& c, const SampledSpectrum& beta) {

@@ -71,11 +71,6 @@ private:
 // the path's wavelengths: TrackingContext::pathMajorant).
 bool nextTentativeCollision(MajorantGrid::Walk& walk, float t, float tau, float* tHit,
                             float* sigmaMaj, float pathMajorant = -1.f);
-// The same search over any walk with MajorantGrid::Walk's next() and advanceTo(): the spans of
-// a walk kept to be searched again (transport/kept_walk.h).
-template <typename WalkT>
-bool nextTentativeCollisionIn(WalkT& walk, float t, float tau, float* tHit, float* sigmaMaj,
-                              float pathMajorant);
 
 // An Exp(1) draw, the optical depth to the next tentative collision: −ln(1 − u). 1 − u is exact
 // for the sampler's 24-bit u, so logf loses nothing against log1pf and costs less (glibc's

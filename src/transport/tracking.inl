@@ -1,4 +1,4 @@
-// Template bodies of nextTentativeCollisionIn and trackCollisions (included from tracking.h).
+// Template body of trackCollisions (included from tracking.h).
 #pragma once
 
 #include <cmath>
@@ -7,25 +7,6 @@
 #include <vector>
 
 namespace mirage {
-
-template <typename WalkT>
-bool nextTentativeCollisionIn(WalkT& walk, float t, float tau, float* tHit, float* sigmaMaj,
-                              float pathMajorant) {
-    for (typename WalkT::Segment s; walk.next(&s); walk.advanceTo(s.t1)) {
-        const float sigma = pathMajorant >= 0.f ? pathMajorant : s.sigmaMaj;
-        if (!(sigma > 0.f)) continue;    // empty cell: no collisions
-        const float need = tau / sigma;  // distance at which the majorant's optical depth is tau
-        if (need < s.t1 - s.t0) {
-            // A collision at exactly the last one (need = 0 from tau = 0) would stall the walk.
-            *tHit = s.t0 + need > t ? s.t0 + need : std::nextafter(t, kInfinity);
-            *sigmaMaj = sigma;
-            walk.advanceTo(*tHit);
-            return true;
-        }
-        tau -= sigma * (s.t1 - s.t0);
-    }
-    return false;
-}
 
 template <typename F>
 bool trackCollisions(TrackingContext& ctx, const Ray& worldRay, float tMax, Sampler& sampler,

@@ -277,14 +277,16 @@ TEST(LampSampling, TheDomesPointsOnTheCameraRayKeepTheMeanAndLowerTheNoise) {
 
 // A thin wisp beside a dense slab: the majorant cells the camera ray crosses hold the slab's
 // density, 1000 times the wisp's, so the majorant's optical depth along the ray (about 12)
-// says nothing of its real one (0.012). The dome's points lie uniformly in the majorant's
-// depth over the whole segment and are weighed against delta tracking's scattering points by
-// their densities: a cap on the majorant's depth would leave most of the ray to delta
-// tracking, a coin of probability 1 % and a value a hundred times the mean (single
-// scattering: paths cut after one event). With paths of every length, the scene forks
+// says nothing of its real one (0.012). The dome's points lie uniformly in the ray's marched
+// depth and are weighed against delta tracking's scattering points by their densities: left to
+// delta tracking, the ray is a coin of probability 1 % and a value a hundred times the mean
+// (single scattering: paths cut after one event). With paths of every length, the scene forks
 // (skyPointsFork): the lit point starts a second path and delta tracking's goes on with the
 // probability of its weight; the mean stays, and the light scattered again off the slab comes
-// through the lit points too.
+// through the lit points too. There the second path's roulette measures it against its own
+// weight (~0.01; against 1, nine paths in ten ended at its first vertex). With the points by
+// the majorant's depth and that roulette, the noise at depth 16 was a third of delta
+// tracking's alone; a thirteenth now.
 TEST(LampSampling, TheDomesPointsStayQuietWhereTheMajorantIsLoose) {
     RenderScene scene;
     scene.media.push_back(
@@ -304,6 +306,6 @@ TEST(LampSampling, TheDomesPointsStayQuietWhereTheMajorantIsLoose) {
         std::printf("depth %d: the dome's points %.5g ± %.2g, delta tracking's %.5g ± %.2g\n",
                     depth, sky.mean, sky.se, dist.mean, dist.se);
         EXPECT_NEAR(sky.mean, dist.mean, 4 * std::hypot(sky.se, dist.se)) << depth;
-        EXPECT_LT(sky.se * (depth == 1 ? 8 : 2), dist.se) << depth;
+        EXPECT_LT(sky.se * 8, dist.se) << depth;
     }
 }

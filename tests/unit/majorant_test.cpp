@@ -2,7 +2,6 @@
 // wherever σt exceeds its majorant), and a DDA that partitions the clipped ray interval
 // exactly (free-flight sampling integrates over the segments it reports).
 #include "volume/majorant.h"
-#include "transport/kept_walk.h"
 #include "transport/tracking.h"
 
 #include <gtest/gtest.h>
@@ -397,64 +396,6 @@ TEST(Majorant, TraversalStopsWhenAsked) {
                                [&](float, float, float) { return ++n < 3; });
     EXPECT_FALSE(finished);
     EXPECT_EQ(n, 3);
-}
-
-// A walk kept to be walked again (transport/kept_walk.h) finds the tentative collisions a walk
-// of the grid finds, bit for bit, and the same optical depth: with room for every span, and
-// with room for 4, where it goes on past them with a walk of the grid. A grid of 24³ cells, a
-// third of them empty, under random rays and the strata of their depth; also with a path
-// majorant (every cell, empty or not, at one value).
-TEST(KeptWalk, FindsTheGridWalksCollisions) {
-    MajorantGrid grid(Bounds3{Vec3(-1.f, -2.f, 0.f), Vec3(3.f, 2.f, 4.f)}, 24);
-    Sampler rng(31, 0, 0);
-    std::vector<float> cells(size_t(grid.res(0)) * grid.res(1) * grid.res(2));
-    for (float& c : cells) c = rng.get1D() < 0.33f ? 0.f : 20.f * rng.get1D();
-    grid.addCells(cells);
-    auto strata = [&](auto&& walk, float depth, float u, float path) {
-        std::vector<std::pair<float, float>> hits;
-        float t = 0.f, last = 0.f;
-        for (int i = 0; i < 8; ++i) {
-            const float tau = (float(i) + u) * depth / 8.f;
-            float sigma = -1.f;
-            if (!nextTentativeCollisionIn(walk, t, tau - last, &t, &sigma, path)) break;
-            last = tau;
-            hits.emplace_back(t, sigma);
-        }
-        return hits;
-    };
-    int compared = 0, beyond = 0;
-    for (int n = 0; n < 400; ++n) {
-        const Vec3 o = Vec3(-3.f, -4.f, -2.f) + Vec3(9.f, 8.f, 8.f) * Vec3(rng.get1D(), rng.get1D(),
-                                                                          rng.get1D());
-        const Vec3 target = Vec3(-1.f, -2.f, 0.f) + Vec3(4.f) * Vec3(rng.get1D(), rng.get1D(),
-                                                                     rng.get1D());
-        const Vec3 d = normalize(target - o);  // towards a point of the grid
-        const float tEnd = rng.get1D() < 0.5f ? kInfinity : 8.f * rng.get1D();
-        const float path = n % 4 == 3 ? 7.5f : -1.f;
-        float depth = 0.f, fourthEnd = kInfinity;  // where the fourth span kept ends
-        int spans = 0;
-        grid.traverse(o, d, 0.f, tEnd, [&](float t0, float t1, float sigma) {
-            const float s = path >= 0.f ? path : sigma;
-            if (!(s > 0.f)) return true;
-            depth += s * (t1 - t0);
-            if (++spans == 4) fourthEnd = t1;
-            return true;
-        });
-        KeptWalk<> all(grid, Ray{o, d, kInfinity}, tEnd, path);
-        KeptWalk<4> few(grid, Ray{o, d, kInfinity}, tEnd, path);
-        ASSERT_EQ(all.depth(), depth);
-        ASSERT_EQ(few.depth(), depth);
-        if (!(depth > 0.f)) continue;
-        const float u = rng.get1D();
-        MajorantGrid::Walk walk(grid, o, d, 0.f, tEnd);
-        const auto expected = strata(walk, depth, u, path);
-        ASSERT_EQ(strata(all, depth, u, path), expected) << "ray " << n;
-        ASSERT_EQ(strata(few, depth, u, path), expected) << "ray " << n;
-        ++compared;
-        beyond += !expected.empty() && expected.back().first > fourthEnd;
-    }
-    EXPECT_GT(compared, 300);
-    EXPECT_GT(beyond, 50);  // KeptWalk<4> went on past its spans on many rays
 }
 
 }  // namespace

@@ -248,11 +248,17 @@ void LampSampling::gatherSky(const RenderScene& scene, const SampledSpectrum& be
         const float w = powerWeight(point.pdf, scatterProxy(c.mp));
         const SampledSpectrum weight =
             beta * T * c.mp.sigmaS * (w * total / term[chosen]) / point.pdf;
-        rec.litInMedium(
-            weight,
-            directLightMedium(scene, c, -mRay.d, sampler, ts, nullptr, MediumLights::InfiniteOnly),
-            c.t);
-        if (mForks && fork) *fork = SkyFork{c, weight};
+        // Where the path goes on from the point, the second path's escape is the phase
+        // function's strategy (lamp_sampling.h: Forks).
+        const bool forks = mForks && fork;
+        SkyDraws draws;
+        rec.litInMedium(weight,
+                        directLightMedium(scene, c, -mRay.d, sampler, ts, nullptr,
+                                          forks ? MediumLights::SkyByEscape
+                                                : MediumLights::InfiniteOnly,
+                                          forks ? &draws : nullptr),
+                        c.t);
+        if (forks) *fork = SkyFork{c, weight, draws};
     }
 }
 

@@ -50,7 +50,12 @@
 // Forks (skyPointsFork: one medium, neither emissive nor fluorescent, no surfaces, domes
 // alone). The path also goes on from the lit point: a second path whose throughput
 // is its estimate's weight, and which carries the light scattered more than once off the camera
-// ray's thin stretches. Delta tracking's scattering point then goes on only with probability
+// ray's thin stretches. The lit point then leaves the lights' phase-function strategy to that
+// path's escape, as every vertex past the camera ray does (MediumLights::SkyByEscape; a uniform
+// dome by the escape alone): one direction then carries the sky where it is open and the
+// cloud's light where it is not. The point's own shadow ray had scored the open sky or nothing,
+// a coin beside the second path (sky-white, 32 samples: relMSE 0.0054 → 0.0038, CPU −14 %;
+// alpha 0.1–0.3 0.020 → 0.0042 per pixel). Delta tracking's scattering point then goes on only with probability
 // w_dt(t), its weight taken as a roulette. A ray of marched depth above kForkDepth forks
 // nothing: there delta tracking's points take most of the light, and a second path of large
 // weight costs more variance than it saves. The second path's roulette measures its throughput
@@ -78,6 +83,7 @@
 #include <optional>
 #include <type_traits>
 
+#include "render/direct_light.h"
 #include "render/integrator.h"
 #include "render/path_recorder.h"
 #include "transport/equiangular.h"
@@ -85,10 +91,13 @@
 namespace mirage {
 
 // The camera ray's scattering as the points for the lights at infinity drew it, where the
-// path goes on from there (skyPointsFork): the point, and the path's throughput at it.
+// path goes on from there (skyPointsFork): the point, the path's throughput at it, and how its
+// estimate drew the lights' own samples: their phase-function strategy is the second path's
+// escape (MediumLights::SkyByEscape), as at every other vertex.
 struct SkyFork {
     Collision at;
     SampledSpectrum beta;
+    SkyDraws sky;
 };
 
 class LampSampling {

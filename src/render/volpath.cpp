@@ -236,9 +236,11 @@ private:
         if (start > 0.f && start < 1.f) path.throughput.rouletteScale = start;
         fork.rec.scatteredInMedium(x.at.t);
         path.specularChain = false;
+        path.skyDark = x.sky.dark;
         float pdf;
         const Vec3 dir = samplePhase(ts.tracking.medium(x.at.medium), x.at, path.ray.d, sampler,
                                      &path.throughput, &pdf);
+        path.leaveSkyToEscape(pdf, 1.f, x.sky.rate);
         path.ray = Ray{x.at.p, dir, kInfinity};
         path.depth = 1;
         return fork;

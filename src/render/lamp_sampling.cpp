@@ -172,38 +172,17 @@ void LampSampling::drawSky(TrackingContext& tracking, float tEnd, Sampler& sampl
         if (!medium.objectBounds().intersect(r.o, r.d, 0.f, tEnd, &a, &b) || !(b > a) ||
             !std::isfinite(b))
             continue;
-        // The march: σt at each step's midpoint (lamp_sampling.h).
-        SkyProfile profile;
-        profile.start = a;
-        profile.step = (b - a) / float(kSkyMarch);
-        for (int k = 0; k < kSkyMarch; ++k) {
-            MediumPoint mp;
-            medium.eval(r.at(a + (float(k) + 0.5f) * profile.step), ctx, &mp);
-            ++tracking.lookups;
-            profile.sigma[size_t(k)] = (mp.sigmaA + mp.sigmaS).average();
-            profile.depth += profile.sigma[size_t(k)] * profile.step;
-        }
+        const SkyProfile profile = SkyProfile::march(medium, ctx, r, a, b);
+        tracking.lookups += SkyProfile::kSteps;
         if (!(profile.depth > 0.f) || !std::isfinite(profile.depth)) continue;
         // One point per stratum of [0, depth), uniform in the profile's depth.
         const float u = sampler.get1D();
         SkyPoint& sky = *new (&mSky.at[mSkyCount]) SkyPoint{};
         sky.medium = int(m);
         sky.profile = profile;
-        float before = 0.f;  // the depth up to step k
-        size_t k = 0;
-        for (int i = 0; i < kSkyStrata; ++i) {
-            const float tau = (float(i) + u) * profile.depth / float(kSkyStrata);
-            float across = profile.sigma[k] * profile.step;
-            while (k < kSkyMarch && !(before + across > tau)) {
-                before += across;
-                if (++k < kSkyMarch) across = profile.sigma[k] * profile.step;
-            }
-            if (k == kSkyMarch) break;  // rounding: the sum fell short of tau
-            const float t = a + (float(k) + (tau - before) / across) * profile.step;
-            // The step's own density: t may round onto the next step's edge.
-            const float pdf = float(kSkyStrata) * profile.sigma[k] / profile.depth;
-            sky.points[size_t(sky.count++)] = FlightPoint{t, pdf};
-        }
+        std::array<float, kSkyStrata> t, pdf;
+        sky.count = profile.stratify(u, kSkyStrata, t.data(), pdf.data());
+        for (int i = 0; i < sky.count; ++i) sky.points[size_t(i)] = FlightPoint{t[i], pdf[i]};
         if (sky.count) ++mSkyCount;
     }
 }

@@ -25,8 +25,8 @@
 // medium (a cloud's edge), delta tracking scatters on a few of its samples (1 − T of them) and
 // the rest see nothing: the pixel's noise is that of a coin of probability 1 − T. So the camera
 // ray also draws, per medium, kSkyStrata points, one per stratum of its optical depth, as a
-// march of kSkyMarch steps over the medium's box reads it: σt at each step's midpoint, constant
-// over the step (SkyProfile). The points are uniform in that depth τ̂, density
+// march of SkyProfile::kSteps steps over the medium's box reads it: σt at each step's midpoint,
+// constant over the step (render/sky_profile.h). The points are uniform in that depth τ̂, density
 // p(t) = kSkyStrata σ̂(t) / τ̂ — the shape of delta tracking's own σt but stratified, and as many
 // on a ray of depth 0.01 as on one of 10. Each point's term of the strata's sum is
 // w_s(t) β T̂(0, t) σs(t) / p(t). One point is lit, by next-event estimation through both of the
@@ -86,6 +86,7 @@
 #include "render/direct_light.h"
 #include "render/integrator.h"
 #include "render/path_recorder.h"
+#include "render/sky_profile.h"
 #include "transport/equiangular.h"
 
 namespace mirage {
@@ -150,20 +151,6 @@ private:
         size_t light;
         EquiangularSegment segment;
         FlightPoint point;
-    };
-    // The camera ray's σt over a medium's box, as the points for the lights at infinity read
-    // it: kSkyMarch steps from `start` (object-space ray parameter), σt at each one's midpoint
-    // (the mean over the path's wavelengths), constant over the step; `depth` their sum.
-    // Sky-white, 32 samples: 32, 64 and 128 steps within the noise of each other.
-    static constexpr int kSkyMarch = 32;
-    struct SkyProfile {
-        float start = 0.f, step = 0.f, depth = 0.f;
-        std::array<float, kSkyMarch> sigma;
-        // The march's σt at t (0 outside the box).
-        float at(float t) const {
-            const float k = (t - start) / step;
-            return k >= 0.f && k < float(kSkyMarch) ? sigma[size_t(k)] : 0.f;
-        }
     };
     // A medium's points for the lights at infinity: one per stratum of the profile's optical
     // depth, `count` of them (fewer where rounding ends the march).

@@ -71,11 +71,12 @@ MediaPhysics mediaPhysics(const RenderScene& render) {
 // How volpath's camera rays find a dome (render/lamp_sampling.h).
 std::string skyPointsReason(const RenderScene& render, const std::string& integrator) {
     if (integrator != "volpath" || !samplesSky(render)) return "";
-    return skyPointsFork(render) ? "; camera rays draw 4 points per medium for the dome, weighed "
-                                   "against delta tracking's, each lit one starting a path of "
-                                   "its own"
-                                 : "; camera rays draw 4 points per medium for the dome, weighed "
-                                   "against delta tracking's";
+    return skyPointsFork(render)
+               ? "; camera rays draw 4 points per medium for the dome by a march of their optical "
+                 "depth, weighed against delta tracking's, each lit one on a thin ray starting a "
+                 "path of its own"
+               : "; camera rays draw 4 points per medium for the dome by a march of their optical "
+                 "depth, weighed against delta tracking's";
 }
 
 PhysicsTerm singleScatteringTerm(const RenderScene& render, const std::string& integrator,

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "volume/grid_lookup.h"
+#include "volume/nano_name_padding.h"
 
 namespace mirage {
 
@@ -16,8 +17,10 @@ using Handle = nanovdb::GridHandle<nanovdb::HostBuffer>;
 
 template <typename BuildT>
 Handle encode(const openvdb::FloatGrid& grid) {
-    return nanovdb::openToNanoVDB<nanovdb::HostBuffer, openvdb::FloatTree, BuildT>(
+    Handle handle = nanovdb::openToNanoVDB<nanovdb::HostBuffer, openvdb::FloatTree, BuildT>(
         grid, nanovdb::StatsMode::All, nanovdb::ChecksumMode::Partial);
+    zeroNamePadding(handle);
+    return handle;
 }
 
 // FpN with an absolute tolerance (grid units): NanoVDB's oracle tests all 512 values of a leaf,
@@ -25,7 +28,9 @@ Handle encode(const openvdb::FloatGrid& grid) {
 Handle encodeFpn(const openvdb::FloatGrid& grid, float tolerance) {
     nanovdb::OpenToNanoVDB<float, nanovdb::FpN, nanovdb::AbsDiff> converter;
     converter.oracle() = nanovdb::AbsDiff(tolerance);
-    return converter(grid, nanovdb::StatsMode::All, nanovdb::ChecksumMode::Partial, 0);
+    Handle handle = converter(grid, nanovdb::StatsMode::All, nanovdb::ChecksumMode::Partial, 0);
+    zeroNamePadding(handle);
+    return handle;
 }
 
 }  // namespace

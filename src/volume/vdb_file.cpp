@@ -30,6 +30,7 @@
 #include "core/grid_name.h"
 #include "volume/grid_lookup.h"
 #include "volume/load_progress.h"
+#include "volume/nano_name_padding.h"
 #include "volume/openvdb_describe.h"
 #include "volume/openvdb_expression.h"
 #include "volume/openvdb_read.h"
@@ -335,6 +336,7 @@ nanovdb::GridHandle<nanovdb::HostBuffer> toNanoVdb(
     } catch (const std::exception& e) {
         fail(path, "could not convert grid " + label + " to NanoVDB: " + boundedMessage(e.what()));
     }
+    zeroNamePadding(handle);
     *sanitized = sanitizeScalarVoxels(handle);
     return handle;
 }
@@ -543,6 +545,7 @@ static VectorGrid finishVectorGrid(const std::string& path, const std::string& l
     } catch (const std::exception& e) {
         fail(path, "could not convert grid " + label + " to NanoVDB: " + boundedMessage(e.what()));
     }
+    zeroNamePadding(handle);
     uint64_t zeroed = 0;
     const uint64_t changed = sanitizeVectorVoxels(handle, kMaxVoxelValue, &zeroed);
     if (changed > 0) {

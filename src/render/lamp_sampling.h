@@ -47,22 +47,21 @@
 // 12, relMSE against the reference): 0.0086 by the majorant, 0.0065 by the march (64 steps, a
 // fork where τ̂ ≤ 2); the edges of alpha < 0.03 0.044 → 0.022 per pixel.
 //
-// Forks (skyPointsFork: one medium, neither emissive nor fluorescent, no surfaces, domes
-// alone). The path also goes on from the lit point: a second path whose throughput
-// is its estimate's weight, and which carries the light scattered more than once off the camera
-// ray's thin stretches. The lit point then leaves the lights' phase-function strategy to that
-// path's escape, as every vertex past the camera ray does (MediumLights::SkyByEscape; a uniform
-// dome by the escape alone): one direction then carries the sky where it is open and the
-// cloud's light where it is not. The point's own shadow ray had scored the open sky or nothing,
-// a coin beside the second path (sky-white, 32 samples: relMSE 0.0054 → 0.0038, CPU −14 %;
-// alpha 0.1–0.3 0.020 → 0.0042 per pixel). Delta tracking's scattering point then goes on only with probability
-// w_dt(t), its weight taken as a roulette. A ray of marched depth above kForkDepth forks
-// nothing: there delta tracking's points take most of the light, and a second path of large
-// weight costs more variance than it saves. The second path's roulette measures its throughput
-// against the weight it started with (PathThroughput::rouletteScale): on a ray of alpha 0.02 the
-// lit point's weight is ~0.02, and a roulette against 1 kept one such path in five at 0.25 —
-// the pixel's multiple scattering a coin again (sky-white, 32 samples: relMSE 0.0065 → 0.0054;
-// alpha < 0.03 0.022 → 0.0046 per pixel).
+// Forks (skyPointsFork: one medium, neither emissive nor fluorescent, no surfaces, domes alone).
+// The path also goes on from the lit point: a second path whose throughput is its estimate's
+// weight, and which carries the light scattered more than once off the camera ray's thin stretches.
+// The lit point then leaves the lights' phase-function strategy to that path's escape, as every
+// vertex past the camera ray does (MediumLights::SkyByEscape; a uniform dome by the escape alone):
+// one direction then carries the sky where it is open and the cloud's light where it is not. The
+// point's own shadow ray had scored the open sky or nothing, a coin beside the second path
+// (sky-white, 32 samples: relMSE 0.0054 → 0.0038, CPU −14 %; alpha 0.1–0.3 0.020 → 0.0042 per
+// pixel). Delta tracking's scattering point then goes on only with probability w_dt(t), its weight
+// taken as a roulette. A ray of marched depth above kForkDepth forks nothing: there delta
+// tracking's points take most of the light, and a second path of large weight costs more variance
+// than it saves. The second path's roulette measures its throughput against the weight it started
+// with (PathThroughput::rouletteScale): on a ray of alpha 0.02 the lit point's weight is ~0.02, and
+// a roulette against 1 kept one such path in five at 0.25 — the pixel's multiple scattering a coin
+// again (sky-white, 32 samples: relMSE 0.0065 → 0.0054; alpha < 0.03 0.022 → 0.0046 per pixel).
 // Sky-white, noise between two seeds at 32 samples, by the fork's depth τ̂ (with the majorant's
 // points and forks the day before, 16: 0.0086): 1, 0.0065; 2, 0.0065; 5, 0.0075; 16, 0.0084.
 //

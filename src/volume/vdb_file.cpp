@@ -308,13 +308,27 @@ GridInfo openVdbGridInfo(const std::string& path, const FileLayout& layout, int 
     return info;
 }
 
+// NanoVDB's own converter: its failure named, what it leaves unwritten zeroed (its padding).
+template <typename GridT>
+nanovdb::GridHandle<nanovdb::HostBuffer> nanoVdbOf(const std::string& path,
+                                                   const std::string& label, const GridT& grid) {
+    try {
+        auto handle =
+            nanovdb::openToNanoVDB(grid, nanovdb::StatsMode::All, nanovdb::ChecksumMode::Partial);
+        zeroNamePadding(handle);
+        return handle;
+    } catch (const std::exception& e) {
+        fail(path, "could not convert grid " + label + " to NanoVDB: " + boundedMessage(e.what()));
+    }
+}
+
 // The NanoVDB grid of a fog volume from readFogVolume, under the voxel rule (what it changed in
-// *sanitized), at `streamed` where openvdb_to_nano.h encodes it, else float: its leaves read
-// from the file (`fileBytes` of it: the bar's length) as they are converted. With
-// `releaseLeaves` the OpenVDB grid keeps only its topology afterwards, so that a big grid's
-// values are never held twice; *leafMaximum is the largest value its leaves store. The grids
-// that converter does not take (a staggered class, a long name) go through NanoVDB's own, at
-// float, and *leafMaximum is nullopt. `leaves`: where the walk found the leaves' data.
+// *sanitized), at `streamed` where openvdb_to_nano.h encodes it, else float: its leaves read from
+// the file (`fileBytes` of it: the bar's length) as they are converted. With `releaseLeaves` the
+// OpenVDB grid keeps only its topology afterwards, so that a big grid's values are never held
+// twice; *leafMaximum is the largest value its leaves store. Grids that converter does not take (a
+// staggered class, a long name) go through NanoVDB's own, at float, *leafMaximum is nullopt.
+// `leaves`: where the walk found the leaves' data.
 nanovdb::GridHandle<nanovdb::HostBuffer> toNanoVdb(
     const std::string& path, const std::string& label, openvdb::FloatGrid& grid, uint64_t fileBytes,
     bool releaseLeaves, GridPrecision streamed, SanitizeCounts* sanitized,
@@ -329,14 +343,7 @@ nanovdb::GridHandle<nanovdb::HostBuffer> toNanoVdb(
     }
     *leafMaximum = std::nullopt;
     readLeavesInParallel(grid, fileBytes, path, label);
-    nanovdb::GridHandle<nanovdb::HostBuffer> handle;
-    try {
-        handle =
-            nanovdb::openToNanoVDB(grid, nanovdb::StatsMode::All, nanovdb::ChecksumMode::Partial);
-    } catch (const std::exception& e) {
-        fail(path, "could not convert grid " + label + " to NanoVDB: " + boundedMessage(e.what()));
-    }
-    zeroNamePadding(handle);
+    auto handle = nanoVdbOf(path, label, grid);
     *sanitized = sanitizeScalarVoxels(handle);
     return handle;
 }
@@ -534,18 +541,10 @@ VectorGrid loadVectorGrid(const std::string& path, const std::string& gridName) 
 static VectorGrid finishVectorGrid(const std::string& path, const std::string& label,
                                    const openvdb::Vec3SGrid& grid, bool staggered,
                                    const std::string& name) {
-    // Outside its active voxels a velocity field is still; a non-zero background would move
-    // all of space.
+    // Outside its active voxels a velocity field is still: a non-zero background moves all space.
     if (grid.background() != openvdb::Vec3s(0.f))
         fail(path, "grid " + label + " has a non-zero background vector, expected (0, 0, 0)");
-    nanovdb::GridHandle<nanovdb::HostBuffer> handle;
-    try {
-        handle =
-            nanovdb::openToNanoVDB(grid, nanovdb::StatsMode::All, nanovdb::ChecksumMode::Partial);
-    } catch (const std::exception& e) {
-        fail(path, "could not convert grid " + label + " to NanoVDB: " + boundedMessage(e.what()));
-    }
-    zeroNamePadding(handle);
+    auto handle = nanoVdbOf(path, label, grid);
     uint64_t zeroed = 0;
     const uint64_t changed = sanitizeVectorVoxels(handle, kMaxVoxelValue, &zeroed);
     if (changed > 0) {

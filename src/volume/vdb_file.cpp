@@ -238,8 +238,8 @@ nanovdb::GridHandle<nanovdb::HostBuffer> readNanoVdbGrid(const std::string& path
     // node arrays by the counts and offsets the file states: bound those by the buffer before
     // it reads a byte through them (a corrupt table size sent it far past the buffer).
     if (!vdbformat::nanoLayoutFits(*grid, record.nanoGridBytes))
-        fail(path, "corrupt: NanoVDB grid " + label + " has node tables that do not fit in its " +
-                       std::to_string(record.nanoGridBytes) + " bytes");
+        fail(path, "corrupt: NanoVDB grid " + label + " has node tables outside its " +
+                       std::to_string(record.nanoGridBytes) + " bytes or off 32-byte alignment");
     // Checksum, then every node pointer against the buffer's extent.
     std::string problem = nanovdb::GridValidator<float>::check(*grid, /*detailed=*/true);
     if (!problem.empty())

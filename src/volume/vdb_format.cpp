@@ -451,6 +451,11 @@ bool nanoLayoutFits(const nanovdb::FloatGrid& grid, uint64_t bytes) {
     const TreeT& tree = grid.tree();
     if (!fits(&tree, sizeof(TreeT))) return false;
     const auto* data = tree.data();
+    // Every node type is a multiple of NanoVDB's 32-byte alignment and the buffer starts on
+    // one: an offset off it is corrupt, and binding a node reference there is undefined
+    // behaviour before any bound is checked (fuzz_vdb found a root 8 bytes off).
+    for (uint64_t offset : data->mNodeOffset)
+        if (offset % NANOVDB_DATA_ALIGNMENT != 0) return false;
     if (data->mNodeOffset[3] > bytes) return false;
     const auto* root = reinterpret_cast<const uint8_t*>(data) + data->mNodeOffset[3];
     if (!fits(root, sizeof(nanovdb::FloatTree::RootType))) return false;

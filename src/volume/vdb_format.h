@@ -90,8 +90,8 @@ std::string valueTypeOf(const GridRecord& record);
 std::string nanoVersionString(uint32_t packed);
 
 // True when a NanoVDB float grid's fixed-size parts, its root's tile table and each level's
-// node array lie within the `bytes` of its buffer (a corrupt file's offsets, checked before any
-// NanoVDB accessor follows them).
+// node array lie within the `bytes` of its buffer, each on NanoVDB's 32-byte alignment (a
+// corrupt file's offsets, checked before any NanoVDB accessor follows them).
 bool nanoLayoutFits(const nanovdb::FloatGrid& grid, uint64_t bytes);
 
 // Names of a grid's fields for `mirage info` and messages: its compression, a NanoVDB grid

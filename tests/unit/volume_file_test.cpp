@@ -227,6 +227,35 @@ TEST(VolumeFile, NanoVdbGridsWrittenFromOneHandleLoadEach) {
     EXPECT_EQ(second.grid()->gridCount(), 1u);
 }
 
+TEST(VolumeFile, NanoVdbNodeOffsetOffAlignmentIsCorrupt) {
+    // The tree's node offsets (four uint64 at the start of TreeData, after the grid's fixed
+    // part) are multiples of 32 in any file NanoVDB writes. The root's 8 bytes early still reads
+    // a plausible tile count (the bounding box's max y, 1) and fits the buffer: it is refused
+    // before a node is read through it, not left to the checksum.
+    const std::string dir = test::tempDir();
+    TestGridSpec spec;
+    spec.voxels = {{0, 0, 0, 1.0}, {9, 1, 2, 2.0}};
+    writeTestGrid(dir + "/a.vdb", spec);
+    const FloatGrid grid = loadFloatGrid(dir + "/a.vdb", "density");
+    const uint64_t size = grid.grid()->gridSize();
+    nanovdb::HostBuffer buffer = nanovdb::HostBuffer::create(size);
+    std::memcpy(buffer.data(), grid.grid(), size);
+    const std::string good = dir + "/good.nvdb";
+    nanovdb::io::writeGrid(good, nanovdb::GridHandle<nanovdb::HostBuffer>(std::move(buffer)),
+                           nanovdb::io::Codec::NONE);
+    std::string bytes = readBytes(good);
+    const size_t rootOffsetAt = bytes.size() - size + sizeof(nanovdb::GridData) + 3 * 8;
+    uint64_t rootOffset = 0;
+    std::memcpy(&rootOffset, &bytes[rootOffsetAt], 8);
+    ASSERT_EQ(rootOffset % 32, 0u);
+    rootOffset -= 8;
+    std::memcpy(&bytes[rootOffsetAt], &rootOffset, 8);
+    const std::string bad = dir + "/offset.nvdb";
+    writeBytes(bad, bytes);
+    EXPECT_EQ(loadFloatGrid(good, "#0").activeVoxels(), 2u);
+    expectFileError([&] { loadFloatGrid(bad, "#0"); }, bad, "off 32-byte alignment");
+}
+
 TEST(VolumeFile, NanoVdbSizeBeyondAnyCompressionRatioIsRefused) {
     // The metadata's uncompressed size (first field after the 16-byte segment header) is what
     // Mirage allocates before decompressing; no codec reaches 1032:1.

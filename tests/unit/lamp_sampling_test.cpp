@@ -13,6 +13,7 @@
 
 #include "chi_square.h"
 #include "light/dome_light.h"
+#include "render/light_lobes.h"
 #include "test_support.h"
 
 using namespace mirage;
@@ -307,5 +308,42 @@ TEST(LampSampling, TheDomesPointsStayQuietWhereTheMajorantIsLoose) {
                     depth, sky.mean, sky.se, dist.mean, dist.se);
         EXPECT_NEAR(sky.mean, dist.mean, 4 * std::hypot(sky.se, dist.se)) << depth;
         EXPECT_LT(sky.se * 8, dist.se) << depth;
+    }
+}
+
+// A wisp (optical depth 0.2 along the ray) beside a dense slab, in a cloud's medium (albedo
+// 0.99, g = 0.85) under a sky map with a small sun: its paths are guided (render/light_lobes.h:
+// guidesPaths), and the camera ray's points for the sky and their second path are theirs too,
+// the second path guided as the first (a lobe walk from the lit point, and its share in the
+// next vertex's weights). The mean stays that of delta tracking's points alone, per wavelength
+// (without that share, the walk's light counted twice: +13 %), and the noise falls (2.3× here).
+// Until 2026-11-30 guided paths drew no such points, and both estimates here were the same.
+TEST(LampSampling, TheDomesPointsForkGuidedPathsUnderASun) {
+    RenderScene scene;
+    scene.media.push_back(
+        test::gridMedium([](int, int j, int) { return j == 17 || j == 18 ? 3.f : 0.05f; }, 0, 31,
+                         kH, 0.04f, 4.f, 0.85f));
+    LatLongImage sky;
+    sky.width = 256;
+    sky.height = 128;
+    sky.rgb.assign(size_t(sky.width) * sky.height * 3, 0.2f);
+    for (int c = 0; c < 3; ++c) sky.rgb[3 * (size_t(40) * sky.width + 100) + c] = 4e4f;
+    DomeSettings hidden;
+    hidden.cameraVisible = false;
+    scene.lights.push_back(makeDomeLight(sky, 1.f, Mat3(), hidden));
+    ASSERT_TRUE(guidesPaths(scene));
+    ASSERT_TRUE(skyPointsFork(scene));
+    const Ray ray{Vec3(-0.2f, float(16 * kH), 0.5f), Vec3(1, 0, 0), kInfinity};
+    const auto volpath = makeVolPathIntegrator(16);
+    scene.equiangular = true;
+    const auto points = test::estimateAlongRayPerWavelength(*volpath, scene, ray, 160000);
+    scene.equiangular = false;
+    const auto dist = test::estimateAlongRayPerWavelength(*volpath, scene, ray, 160000);
+    for (int k = 0; k < kSpectrumSamples; ++k) {
+        std::printf("λ%d: the sky's points %.5g ± %.2g, delta tracking's %.5g ± %.2g\n", k,
+                    points[k].mean, points[k].se, dist[k].mean, dist[k].se);
+        EXPECT_NEAR(points[k].mean, dist[k].mean, 4 * std::hypot(points[k].se, dist[k].se))
+            << "λ" << k;
+        EXPECT_LT(points[k].se * 1.5, dist[k].se) << "λ" << k;
     }
 }

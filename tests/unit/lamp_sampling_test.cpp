@@ -276,6 +276,18 @@ TEST(LampSampling, TheDomesPointsOnTheCameraRayKeepTheMeanAndLowerTheNoise) {
     }
 }
 
+namespace {
+
+// The grid's rows j = 17 and 18 a slab of density 3, the rest a wisp of density `wisp`; σs = 4
+// per unit density, σa and the phase function's g as given. A ray along x at y = 16 h crosses
+// the wisp in majorant cells that hold the slab.
+std::unique_ptr<Medium> wispBesideSlab(float wisp, float sigmaA, float g) {
+    return test::gridMedium([wisp](int, int j, int) { return j == 17 || j == 18 ? 3.f : wisp; },
+                            0, 31, kH, sigmaA, 4.f, g);
+}
+
+}  // namespace
+
 // A thin wisp beside a dense slab: the majorant cells the camera ray crosses hold the slab's
 // density, 1000 times the wisp's, so the majorant's optical depth along the ray (about 12)
 // says nothing of its real one (0.012). The dome's points lie uniformly in the ray's marched
@@ -290,9 +302,7 @@ TEST(LampSampling, TheDomesPointsOnTheCameraRayKeepTheMeanAndLowerTheNoise) {
 // tracking's alone; a thirteenth now.
 TEST(LampSampling, TheDomesPointsStayQuietWhereTheMajorantIsLoose) {
     RenderScene scene;
-    scene.media.push_back(
-        test::gridMedium([](int, int j, int) { return j == 17 || j == 18 ? 3.f : 0.003f; }, 0, 31,
-                         kH, 0.02f, 4.f, 0.6f));
+    scene.media.push_back(wispBesideSlab(0.003f, 0.02f, 0.6f));
     DomeSettings hidden;
     hidden.cameraVisible = false;
     scene.lights.push_back(makeDomeLight(Spectrum(1.f), hidden));
@@ -320,9 +330,7 @@ TEST(LampSampling, TheDomesPointsStayQuietWhereTheMajorantIsLoose) {
 // Until 2026-11-30 guided paths drew no such points, and both estimates here were the same.
 TEST(LampSampling, TheDomesPointsForkGuidedPathsUnderASun) {
     RenderScene scene;
-    scene.media.push_back(
-        test::gridMedium([](int, int j, int) { return j == 17 || j == 18 ? 3.f : 0.05f; }, 0, 31,
-                         kH, 0.04f, 4.f, 0.85f));
+    scene.media.push_back(wispBesideSlab(0.05f, 0.04f, 0.85f));
     LatLongImage sky;
     sky.width = 256;
     sky.height = 128;

@@ -74,7 +74,7 @@ std::string skyPointsReason(const RenderScene& render, const std::string& integr
     return skyPointsFork(render)
                ? "; camera rays draw 4 points per medium for the dome by a march of their optical "
                  "depth, weighed against delta tracking's, each lit one on a thin ray starting a "
-                 "path of its own"
+                 "path of its own (guided where paths are)"
                : "; camera rays draw 4 points per medium for the dome by a march of their optical "
                  "depth, weighed against delta tracking's";
 }
@@ -103,6 +103,19 @@ std::string lampLobesReason(const RenderScene& render, const std::string& integr
     return buf;
 }
 
+// Where volpath's paths are guided by lobe walks towards lights of a narrow lobe
+// (render/light_lobes.h): a forward medium and a lamp, a sun, or a sky map with a sun. Walks are
+// straight: a [refraction] field turns them off.
+std::string lobeWalksReason(const Scene& scene, const std::string& integrator) {
+    if (integrator != "volpath" || scene.refraction || !guidesPaths(scene.render)) return "";
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "; paths guided (a forward phase function): %.0f %% of medium vertices "
+                  "start a straight walk towards the lamps and suns",
+                  100.f * lobeWalkStart(scene.render));
+    return buf;
+}
+
 // Emissive media light the scene too: their light scatters like a light's (photons from the
 // medium in the photon pass, emission at every collision in volpath).
 PhysicsTerm multipleScatteringTerm(const Scene& scene, const std::string& integrator,
@@ -114,7 +127,8 @@ PhysicsTerm multipleScatteringTerm(const Scene& scene, const std::string& integr
             : multiple ? "integrator '" + integrator + "' follows paths of up to " +
                              std::to_string(scene.maxDepth) + " scattering events" +
                              (m.emission ? ", emitted light included" : "") +
-                             lampLobesReason(scene.render, integrator)
+                             lampLobesReason(scene.render, integrator) +
+                             lobeWalksReason(scene, integrator)
                        : "nothing scatters or nothing lights the scene"};
 }
 

@@ -225,6 +225,35 @@ TEST(SceneLoad, InfoSaysWhenContinuationsHeadTowardsALampInside) {
               std::string::npos);
 }
 
+// `mirage info` says when volpath's paths are guided by lobe walks (render/light_lobes.h): a
+// cloud's forward medium (g = 0.85, albedo 0.99: a walk from a quarter of the vertices) under a
+// sun, not the isotropic smoke under it, nor the cloud under a uniform dome (no lobe).
+TEST(SceneLoad, InfoSaysWhenPathsAreGuided) {
+    std::string dir = test::tempDir();
+    fogAsset(dir);
+    writeFile(dir, "cloud.toml",
+              "name = \"cloud\"\n[[component]]\ngrid = \"density\"\nsigma_a = 0.01\n"
+              "sigma_s = 0.99\ng = 0.85\n");
+    auto reason = [&](const std::string& shader, const std::string& light) {
+        const std::string p = writeFile(
+            dir, "guided.toml",
+            "[[volume]]\nfile = \"fog.vdb\"\nshader = \"" + shader + "\"\n[[light]]\n" + light);
+        ColorPipeline color;
+        const Scene s = loadScene(p, LoadOptions{1, {"render.integrator=volpath"}}, color);
+        for (const auto& t : s.physics())
+            if (t.name == "multiple scattering") return t.why;
+        return std::string();
+    };
+    const std::string sun = "type = \"sun\"\ndirection = [0, -1, 0]\nirradiance = 1\n";
+    const std::string cloud = reason("cloud.toml", sun);
+    EXPECT_NE(cloud.find("paths guided (a forward phase function): 25 % of medium vertices"),
+              std::string::npos)
+        << cloud;
+    EXPECT_EQ(reason("smoke", sun).find("guided"), std::string::npos);
+    EXPECT_EQ(reason("cloud.toml", "type = \"dome\"\ncolor = [1, 1, 1]\n").find("guided"),
+              std::string::npos);
+}
+
 TEST(EndToEnd, SceneAndBareVdbRenderFiniteNonBlackExr) {
     std::string dir = test::tempDir();
     std::string vdb = fogAsset(dir);

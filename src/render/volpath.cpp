@@ -248,14 +248,12 @@ private:
         path.guided = camera.guided;
         path.walkStart = camera.walkStart;
         const LightLobes lobes =
-            path.guided ? LightLobes(scene, x.at.p, path.wavelengths) : LightLobes();
-        if (!lobes.empty() && (path.walkStart >= 1.f || sampler.get1D() < path.walkStart))
-            walkFromMedium(scene, lobes, x.at, path, mMaxDepth, sampler, ts, fork.rec);
+            path.guided ? walkFrom(scene, x.at, path, sampler, ts, fork.rec) : LightLobes();
         float pdf;
         const Vec3 dir = samplePhase(ts.tracking.medium(x.at.medium), x.at, path.ray.d, sampler,
                                      &path.throughput, &pdf);
         path.leaveSkyToEscape(pdf, 1.f, x.sky.rate);
-        path.lobeRatios = lobes.empty() ? 0.f : path.walkStart * lobes.pdf(dir) / pdf;
+        path.lobeRatios = walkShare(lobes, path, dir, pdf);
         path.ray = Ray{x.at.p, dir, kInfinity};
         path.depth = 1;
         return fork;
@@ -350,6 +348,22 @@ private:
         return f;
     }
 
+    // A lobe walk from the guided medium vertex x, started with the path's probability
+    // walkStart (render/lobe_walk.h); the lights' lobes at x, for walkShare.
+    LightLobes walkFrom(const RenderScene& scene, const Collision& x, const CameraPath& path,
+                        Sampler& sampler, ThreadState& ts, const PathRecorder& rec) const {
+        const LightLobes lobes(scene, x.p, path.wavelengths);
+        if (!lobes.empty() && (path.walkStart >= 1.f || sampler.get1D() < path.walkStart))
+            walkFromMedium(scene, lobes, x, path, mMaxDepth, sampler, ts, rec);
+        return lobes;
+    }
+    // The walk's share in the weights of the vertex the continuation dir (drawn with density
+    // pdf) reaches: its density of dir, in the walk's expected count, against pdf.
+    static float walkShare(const LightLobes& lobes, const CameraPath& path, const Vec3& dir,
+                           float pdf) {
+        return lobes.empty() ? 0.f : path.walkStart * lobes.pdf(dir) / pdf;
+    }
+
     // A real scattering event at x: next-event estimation, weighed against the lobe walks of the
     // run x belongs to and the segment's points towards the lamps, a line sample of the emissive
     // media's light (render/line_emission.h), a lobe walk of its own where paths are guided, and
@@ -392,16 +406,13 @@ private:
             path.lobeRatios = 0.f;
             return;
         }
-        const LightLobes lobes(scene, x.p, path.wavelengths);
-        if (!lobes.empty() && (path.walkStart >= 1.f || sampler.get1D() < path.walkStart))
-            walkFromMedium(scene, lobes, x, path, mMaxDepth, sampler, ts, rec);
+        const LightLobes lobes = walkFrom(scene, x, path, sampler, ts, rec);
         float pdf;
         const Vec3 dir = samplePhase(m, x, path.ray.d, sampler, &path.throughput, &pdf);
         if (escapes) path.leaveSkyToEscape(pdf, share, sky.rate);
         // Walks from earlier vertices pass this one even where no light has a lobe (outside a
         // spot's cone): their share decays all the same.
-        path.lobeRatios = kLobeWalkGoesOn * ratios +
-                          (lobes.empty() ? 0.f : path.walkStart * lobes.pdf(dir) / pdf);
+        path.lobeRatios = kLobeWalkGoesOn * ratios + walkShare(lobes, path, dir, pdf);
         path.emissionWeight = line ? flightEmissionWeight(*line, x.p, dir, pdf, ts.tracking) : 1.f;
         path.ray = Ray{x.p, dir, kInfinity};
     }

@@ -1,11 +1,12 @@
 // Grid expressions: an OpenVDB AX snippet (remap, threshold, combine) that a scene's [[volume]]
 // or a shader gives as `expression`, run on the OpenVDB grids of one file after they are read
 // and before they become NanoVDB (vdb_file.h, loadFloatGrids). Mirage writes no expression
-// parser of its own: AX parses, compiles (LLVM JIT) and runs the code.
+// parser of its own: AX parses, compiles (LLVM JIT) and runs the code, in Mirage's AX module
+// (volume/ax_module.h), loaded the first time a scene has an expression.
 //
 // AX writes only where the target grid is already active: an expression changes values, never
-// topology. This header does not include OpenVDB; grid_expression.cpp (the one translation unit
-// with AX headers) does.
+// topology. This header does not include OpenVDB, nor does grid_expression.cpp: only vdb_file.cpp
+// (volume/openvdb_expression.h) and the module.
 #pragma once
 
 #include <string>
@@ -38,5 +39,10 @@ ExpressionAccess expressionAccess(const GridExpression& expression);
 
 // "reads 'density', 'flame'; writes 'density'": for `mirage info` and messages.
 std::string describeAccess(const ExpressionAccess& access);
+
+// runGridExpression (volume/openvdb_expression.h) with its grids, an openvdb::GridPtrVec,
+// behind a void*, so that grid_expression.cpp needs no OpenVDB header.
+double runGridExpressionOn(const GridExpression& expression, void* grids,
+                           const std::string& file);
 
 }  // namespace mirage

@@ -1,6 +1,5 @@
-// Running a grid expression on OpenVDB grids: the seam between the two translation units that
-// compile OpenVDB, vdb_file.cpp (which reads the grids) and grid_expression.cpp (the only one
-// with OpenVDB AX headers). It includes OpenVDB: include it from those two files only.
+// Running a grid expression on OpenVDB grids, for vdb_file.cpp, which reads the grids. It
+// includes OpenVDB: include it from there only.
 #pragma once
 
 #include <openvdb/openvdb.h>
@@ -16,7 +15,9 @@ namespace mirage {
 // its name in the file. Returns the seconds spent compiling and running. Throws MirageError at
 // expression.where, naming `file`, with AX's message (bounded) when the code does not compile
 // or does not run.
-double runGridExpression(const GridExpression& expression, openvdb::GridPtrVec& grids,
-                         const std::string& file);
+inline double runGridExpression(const GridExpression& expression, openvdb::GridPtrVec& grids,
+                                const std::string& file) {
+    return runGridExpressionOn(expression, &grids, file);
+}
 
 }  // namespace mirage

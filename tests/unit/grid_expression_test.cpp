@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/module.h"
 #include "film/color.h"
 #include "film/image_io.h"
 #include "scene/scene.h"
@@ -296,6 +297,25 @@ TEST(GridExpression, ThresholdChangesTheRender) {
     EXPECT_EQ(gone.second, 0.0);
     EXPECT_GT(core.second, 0.0);
     EXPECT_LT(core.second, plain.second);
+}
+
+// AX comes from Mirage's module, loaded when a scene first has an expression (volume/ax_module.h):
+// the command does not link libopenvdb_ax (LLVM's relocations at every start), and a module
+// that cannot be found is one message naming it, what needed it and where it was looked for.
+TEST(GridExpression, AxIsAModuleLoadedOnDemand) {
+    std::string dynamic;
+    ASSERT_EQ(test::runCommand("readelf -d " + test::mirageBinary(), &dynamic), 0);
+    EXPECT_NE(dynamic.find("libtbb"), std::string::npos) << dynamic;
+    EXPECT_EQ(dynamic.find("openvdb_ax"), std::string::npos) << dynamic;
+    try {
+        moduleEntry("libmirage_absent.so", "entry", "testing modules");
+        FAIL() << "expected a MirageError";
+    } catch (const MirageError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("testing modules need Mirage's module libmirage_absent.so"),
+                  std::string::npos) << m;
+        EXPECT_NE(m.find("/libmirage_absent.so"), std::string::npos) << m;
+    }
 }
 
 }  // namespace

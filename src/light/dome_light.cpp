@@ -31,6 +31,7 @@
 #include "core/distribution.h"
 #include "core/error.h"
 #include "core/sampling.h"
+#include "light/radiance_hdr.h"
 #include "spectrum/spectrum_sampling.h"
 
 namespace mirage {
@@ -369,6 +370,8 @@ std::unique_ptr<PhotonProjection> DomeLight::projection(const ProjectionTargets&
 }  // namespace
 
 LatLongImage readLatLongImage(const std::string& path) {
+    RadianceHdr hdr;
+    if (readRadianceHdr(path, &hdr)) return LatLongImage{hdr.width, hdr.height, std::move(hdr.rgb)};
     auto in = OIIO::ImageInput::open(path);
     if (!in) throw MirageError(path + ": cannot read the dome image: " + OIIO::geterror());
     const OIIO::ImageSpec& spec = in->spec();

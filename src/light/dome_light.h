@@ -28,7 +28,8 @@ struct LatLongImage {
 };
 
 // Reads an image file (anything OpenImageIO reads: .hdr, .exr, …) as RGB (a grey image as
-// grey, extra channels ignored). Throws MirageError naming the file when it cannot.
+// grey, extra channels ignored); Radiance .hdr pictures through light/radiance_hdr.h, the same
+// values faster. Throws MirageError naming the file when it cannot.
 LatLongImage readLatLongImage(const std::string& path);
 
 struct DomeSettings {

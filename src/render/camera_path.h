@@ -14,6 +14,8 @@
 
 namespace mirage {
 
+class SunShade;
+
 // Where a camera path is between two vertices: its ray and throughput (PathSegment), and what
 // its vertices so far decide about the next ones.
 struct CameraPath : PathSegment {
@@ -39,6 +41,7 @@ struct CameraPath : PathSegment {
         escapeSkyRate = skyRate;
     }
     bool skyDark = false;  // SkyDraws::dark, carried to the next medium vertex
+    const SunShade* sunShade = nullptr;  // SkyDraws::shade: the frame's, where it has one
     // Lobe walks (render/lobe_walk.h): whether the path draws them, the
     // probability s that a medium vertex starts one (lobeWalkStart), and the sum
     // Σ_j s r_j q^(k−1−j) over the medium vertices of the run the current ray ends.

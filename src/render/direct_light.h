@@ -12,6 +12,7 @@
 namespace mirage {
 
 class LampSampling;
+class SunShade;
 
 // What a medium point's estimate covers.
 enum class MediumLights {
@@ -31,12 +32,16 @@ inline float powerHeuristic(float a, float b) {
 
 // Where a path's medium vertices leave the lights at infinity to their escapes
 // (MediumLights::SkyByEscape), whether a vertex also draws those lights' own samples: with
-// probability `rate`, 1 unless the last sample the path drew found no light (`dark`), then
-// kDarkSkyRate (direct_light.cpp says why). The path keeps `dark` from vertex to vertex; the
-// vertex's rate weighs its escape (skyAtEscape).
+// probability `rate`: under a sky with a sun, SunShade::drawRate at the vertex; else 1 unless the
+// last sample the path drew found no light (`dark`), then kDarkSkyRate (direct_light.cpp says
+// why). The path keeps `dark` from vertex to vertex; the vertex's rate weighs its escape
+// (skyAtEscape).
 struct SkyDraws {
     bool dark = false;  // in: the path's last drawn sample found no light; out: this vertex's
-    float rate = 1.f;   // out: the probability this vertex drew them with
+    // in: where the scene's sun is hidden (render/sun_shade.h), which then sets the rate by the
+    // vertex's position instead of `dark`; null where the scene has none.
+    const SunShade* shade = nullptr;
+    float rate = 1.f;  // out: the probability this vertex drew them with
 };
 
 // Σ_lights p(−wi, wo) · Li · T(shadow ray). wo is the direction the light leaves towards the

@@ -32,7 +32,7 @@ void lobeWalk(const RenderScene& scene, CameraPath walk, int maxDepth, Sampler& 
         // continuation, which goes on with probability q: its escape counts 1/q of itself.
         const bool escapes = !ts.curved && walk.depth + 1 < maxDepth;
         const float share = 1.f / (1.f + walk.lobeRatios);
-        SkyDraws sky{walk.skyDark};
+        SkyDraws sky{walk.skyDark, walk.sunShade};
         rec.litInMedium(throughput.beta * share,
                         directLightMedium(scene, *y, -walk.ray.d, sampler, ts, nullptr,
                                           escapes ? MediumLights::SkyByEscape

@@ -47,6 +47,10 @@ struct RenderScene {
     // Whether volpath's medium vertices sample the emissive media as a light, by line
     // integration ([render] emission_sampling, render/line_emission.h).
     bool emissionSampling = true;
+    // Whether volpath's vertices draw the lights at infinity at a rate from where a sky's sun is
+    // hidden (render/sun_shade.h) rather than by the path's last draw alone; false only in tests,
+    // which compare the two.
+    bool sunShade = true;
 
     bool hasSurfaces() const { return geometry && !geometry->empty(); }
     bool holdout(size_t medium) const {

@@ -76,6 +76,7 @@
 #include "render/flight_emission.h"
 #include "render/line_emission.h"
 #include "render/lobe_walk.h"
+#include "render/sun_shade.h"
 #include "transport/path_vertex.h"
 #include "transport/reemission.h"
 
@@ -125,9 +126,12 @@ public:
     // The emissive media's power grid, where the scene has one and samples it
     // (render/line_emission.h); built per frame, from the still grids.
     // The lamps inside media whose lobes the continuations draw from (render/light_lobes.h).
+    // Where the sky's sun is hidden from the media, which sets how often vertices draw the
+    // lights at infinity (render/sun_shade.h).
     void preprocess(const RenderScene& scene, uint64_t) override {
         mEmission = scene.emissionSampling ? EmissionLight::forScene(scene) : nullptr;
         mLamps = lampsInMedia(scene);
+        mSunShade = SunShade::forScene(scene);
     }
 
     RadianceSample Li(const RenderScene& scene, const Ray& cameraRay, const SampledWavelengths& w,
@@ -138,6 +142,7 @@ public:
         // Lobe walks (render/light_lobes.h) are straight: where paths bend, none is drawn.
         path.guided = !ts.curved && guidesPaths(scene);
         if (path.guided) path.walkStart = lobeWalkStart(scene);
+        path.sunShade = mSunShade.get();
         std::optional<Fork> fork;
         trace(scene, sampler, ts, path, rec, &fork);
         if (fork) trace(scene, sampler, ts, fork->path, fork->rec, nullptr);
@@ -245,6 +250,7 @@ private:
         fork.rec.scatteredInMedium(x.at.t);
         path.specularChain = false;
         path.skyDark = x.sky.dark;
+        path.sunShade = camera.sunShade;
         path.guided = camera.guided;
         path.walkStart = camera.walkStart;
         const LightLobes lobes =
@@ -380,7 +386,7 @@ private:
         const bool last = path.depth + 1 >= mMaxDepth;
         const bool escapes = !ts.curved && !last;
         const float share = lamps.skyWeight(x) / (1.f + ratios);
-        SkyDraws sky{path.skyDark};
+        SkyDraws sky{path.skyDark, path.sunShade};
         rec.litInMedium(
             path.throughput.beta / (1.f + ratios),
             directLightMedium(scene, x, -path.ray.d, sampler, ts, lamps.empty() ? nullptr : &lamps,
@@ -513,6 +519,7 @@ private:
     mutable std::atomic<uint64_t> mCapped{0};
     std::unique_ptr<EmissionLight> mEmission;  // null: emission found by flights alone
     std::vector<MediumLamp> mLamps;            // empty: continuations by the phase function
+    std::unique_ptr<SunShade> mSunShade;       // null: the sky's draws by SkyDraws::dark
 };
 
 }  // namespace

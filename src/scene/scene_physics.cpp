@@ -1,5 +1,6 @@
 // Scene::physics: the physics terms a scene switches on, each with the reason `mirage info`
 // gives. A scene pays only for what it uses (docs/design.md), and this is where it says which.
+#include <cmath>
 #include <cstdio>
 
 #include "core/text.h"
@@ -7,6 +8,7 @@
 #include "render/achromatic_film.h"
 #include "render/lamp_sampling.h"
 #include "render/light_lobes.h"
+#include "render/sun_shade.h"
 #include "scene/scene.h"
 #include "volume/grid_expression.h"
 
@@ -116,6 +118,20 @@ std::string lobeWalksReason(const Scene& scene, const std::string& integrator) {
     return buf;
 }
 
+// Where volpath's vertices draw a sky's samples at a rate from the sun's shade
+// (render/sun_shade.h).
+std::string sunShadeReason(const RenderScene& render, const std::string& integrator) {
+    if (integrator != "volpath" || !SunShade::sunOf(render)) return "";
+    char buf[240];
+    std::snprintf(buf, sizeof buf,
+                  "; medium vertices draw the sky's own samples at a rate from the sun's optical "
+                  "depth over the media (a %d³ grid: every vertex where it is lit, %.0f %% past "
+                  "depth %.1f)",
+                  SunShade::kResolution, 100.f * SunShade::kLeastRate,
+                  std::log(SunShade::kRateScale / SunShade::kLeastRate));
+    return buf;
+}
+
 // Emissive media light the scene too: their light scatters like a light's (photons from the
 // medium in the photon pass, emission at every collision in volpath).
 PhysicsTerm multipleScatteringTerm(const Scene& scene, const std::string& integrator,
@@ -128,7 +144,8 @@ PhysicsTerm multipleScatteringTerm(const Scene& scene, const std::string& integr
                              std::to_string(scene.maxDepth) + " scattering events" +
                              (m.emission ? ", emitted light included" : "") +
                              lampLobesReason(scene.render, integrator) +
-                             lobeWalksReason(scene, integrator)
+                             lobeWalksReason(scene, integrator) +
+                             sunShadeReason(scene.render, integrator)
                        : "nothing scatters or nothing lights the scene"};
 }
 

@@ -33,12 +33,18 @@ float depthAlong(TrackingContext& ctx, const Vec3& p, const Vec3& d) {
     return std::min(tau, SunShade::kDepthCap);
 }
 
+// The box the grid lies over: the media's world bounds.
+Bounds3 mediaBounds(const RenderScene& scene) {
+    Bounds3 bounds;
+    for (const auto& m : scene.media) bounds.expand(m->worldBounds());
+    return bounds;
+}
+
 }  // namespace
 
 std::optional<Vec3> SunShade::sunOf(const RenderScene& scene) {
     if (!scene.sunShade) return std::nullopt;
-    Bounds3 bounds;
-    for (const auto& m : scene.media) bounds.expand(m->worldBounds());
+    const Bounds3 bounds = mediaBounds(scene);
     for (int a = 0; a < 3; ++a)  // no media, or a medium without bounds: no grid to lay
         if (!std::isfinite(bounds.lo[a]) || !std::isfinite(bounds.hi[a]) ||
             !(bounds.hi[a] > bounds.lo[a]))
@@ -53,8 +59,8 @@ std::unique_ptr<SunShade> SunShade::forScene(const RenderScene& scene) {
     return sun ? std::make_unique<SunShade>(scene, *sun) : nullptr;
 }
 
-SunShade::SunShade(const RenderScene& scene, const Vec3& towardsSun, int res) : mRes(res) {
-    for (const auto& m : scene.media) mBounds.expand(m->worldBounds());
+SunShade::SunShade(const RenderScene& scene, const Vec3& towardsSun, int res)
+    : mBounds(mediaBounds(scene)), mRes(res) {
     mDepth.resize(size_t(res) * res * res);
     // One slice of cells per task, each with its own medium contexts; every cell's depth is a
     // function of its centre alone, so the grid is the same for any thread count.

@@ -25,6 +25,7 @@
 #   sky-hdr     the same cloud under a lat-long HDR sky with a small sun (pipeline/sky_hdr.py)
 #   lamp-point  a point light inside thin-to-medium smoke
 #   lamp-spot   a spot light there
+#   lamp-sphere a sphere light there (radius 2 m; Cycles' a point light at its centre)
 #   fire        fire lighting its own smoke by blackbody emission
 #   haze        thin haze, a spot light's beam seen from the side
 #   Each regime is one scene, tests/bench/race_<regime>.toml (the sun's smoke1_race.toml), whose
@@ -54,7 +55,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 DATA=${MIRAGE_SHARED_DATA:-../shared/data}
 CYCLES_PY="$(realpath -m "$DATA/../tools/cycles_vdb.py")"
-REGIMES="sun sky-white sky-hdr lamp-point lamp-spot fire haze"
+REGIMES="sun sky-white sky-hdr lamp-point lamp-spot lamp-sphere fire haze"
 MODE=${1:-single}
 case " single multiple both all check $REGIMES " in
   *" $MODE "*) ;;

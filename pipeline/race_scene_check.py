@@ -15,8 +15,9 @@ Checked, without running either renderer:
   shader's g;
 - the lights: Cycles' sun (--sun-strength > 0) along the Mirage sun's reversed direction
   (--sun-dir points at the sun, Mirage's direction is the light's travel); a point light at the
-  same position; a spot light at the same position and direction with Cycles' full cone angle
-  twice Mirage's half angle; a white world (--world-color) where Mirage has a constant dome of
+  same position (a Mirage sphere light's centre: cycles_vdb.py's lights have radius 0); a spot
+  light at the same position and direction with Cycles' full cone angle twice Mirage's half
+  angle; a white world (--world-color) where Mirage has a constant dome of
   that colour, an HDR world (--world-hdr sky.cycles.hdr) where its dome's map is the same sky in
   Mirage's convention (sky.mirage.hdr, pipeline/sky_hdr.py); no light Cycles has and Mirage not;
 - fire: Cycles' --temperature-grid is the grid Mirage binds to the shader's temperature slot.

@@ -29,7 +29,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from race_ratio import curves_of, time_to  # noqa: E402
 from relmse import read_rgba  # noqa: E402
 
-REGIMES = ["sun", "sky-white", "sky-hdr", "lamp-point", "lamp-spot", "fire", "haze"]
+REGIMES = ["sun", "sky-white", "sky-hdr", "lamp-point", "lamp-spot", "lamp-sphere", "fire",
+           "haze"]
 SPPS = [4, 16, 64, 256]
 SERIES = [("mirage default", "given samples"), ("mirage timed", "given a time")]
 ERRATIC = 1.5

@@ -168,6 +168,48 @@ double opticalDepth(const FloatGrid& g, const Vec3& a, const Vec3& b, double sig
     return sigmaT * sum * length(b - a) / n;
 }
 
+double quadratureAlongRay(const FloatGrid& g, const Ray& ray, double t0, double t1, double nearest,
+                          double D, double sigmaT, const std::function<double(const Vec3&)>& f) {
+    auto acc = g.accessor();
+    const double ta = std::atan((t0 - nearest) / D), tb = std::atan((t1 - nearest) / D);
+    const int n = 8000;
+    double sum = 0.0, tau = 0.0, tPrev = t0;
+    for (int i = 0; i < n; ++i) {
+        const double theta = ta + (tb - ta) * (i + 0.5) / n;
+        const double t = nearest + D * std::tan(theta);
+        tau += sigmaT * g.sample(acc, ray.at(float(0.5 * (t + tPrev)))) * (t - tPrev);
+        tPrev = t;
+        sum += std::exp(-tau) * f(ray.at(float(t))) * D / (std::cos(theta) * std::cos(theta));
+    }
+    return sum * (tb - ta) / n;
+}
+
+RenderScene unitCubeScene(float sigmaS, float g) {
+    RenderScene scene;
+    scene.media.push_back(gridMedium([](int, int, int) { return 1.f; }, 0, 15, 0.125, 0.f, sigmaS,
+                                     g, Transform::translate(Vec3d(-1.0))));
+    return scene;
+}
+
+LatLongImage flatSky(int width, int height, float value) {
+    LatLongImage img;
+    img.width = width;
+    img.height = height;
+    img.rgb.assign(size_t(width) * size_t(height) * 3, value);
+    return img;
+}
+
+void expectBothNear(const char* what, double expected, const RayEstimate& equiangular,
+                    const RayEstimate& distance) {
+    std::printf("%s: expected %.5g; equiangular %.5g ± %.2g (largest %.1f × mean); distance "
+                "%.5g ± %.2g (largest %.1f × mean)\n",
+                what, expected, equiangular.mean, equiangular.se,
+                equiangular.largest / equiangular.mean, distance.mean, distance.se,
+                distance.largest / distance.mean);
+    EXPECT_NEAR(equiangular.mean, expected, 4 * equiangular.se + 0.01 * expected) << what;
+    EXPECT_NEAR(distance.mean, expected, 4 * distance.se + 0.01 * expected) << what;
+}
+
 std::unique_ptr<Medium> gridMedium(const std::function<float(int, int, int)>& value, int lo, int hi,
                                    double h, float sigmaA, float sigmaS, float g,
                                    const Transform& objectToWorld) {

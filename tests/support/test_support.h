@@ -57,6 +57,7 @@ std::string shippedSceneCopy(const std::string& dir, const std::string& name,
 #include <functional>
 
 #include "film/film.h"
+#include "light/dome_light.h"
 #include "medium/medium.h"
 #include "render/renderer.h"
 #include "volume/grid_lookup.h"
@@ -84,6 +85,20 @@ std::unique_ptr<Medium> gridMedium(const std::function<float(int, int, int)>& va
 // steps on the grid's own trilinear field: the closed forms the estimators are checked against.
 double opticalDepth(const FloatGrid& g, const Vec3& a, const Vec3& b, double sigmaT);
 
+// A scene of one medium: a 2 m cube of unit density about the origin (voxels of 1/8 m, faces
+// fading over half a voxel), gridMedium(1, σa 0, σs sigmaS, HG g); no light.
+RenderScene unitCubeScene(float sigmaS, float g);
+
+// A lat-long sky map of width × height pixels, every one `value` in each channel.
+LatLongImage flatSky(int width, int height, float value);
+
+// ∫ e^−τ(0, t) f(ray(t)) dt over [t0, t1] (τ = sigmaT × the grid's value along the ray), in the
+// angle θ the ray subtends at a point `D` from it nearest at t = `nearest` (t = nearest +
+// D tan θ, 8000 steps): the single scattering of a lamp's peak by quadrature, smooth where its
+// 1/d² is not; f is σs ρ p times the light arriving at the point.
+double quadratureAlongRay(const FloatGrid& g, const Ray& ray, double t0, double t1, double nearest,
+                          double D, double sigmaT, const std::function<double(const Vec3&)>& f);
+
 // The numbers of path i of an estimate averaged over paths 0, 1, …: with Sobol, the paths are
 // the samples of one pixel (one low-discrepancy sequence); with random, independent streams.
 inline Sampler pathSampler(SamplerKind kind, uint64_t seed, uint64_t i) {
@@ -108,6 +123,11 @@ struct RayEstimate {
 };
 RayEstimate estimateAlongRay(const Integrator& integrator, const RenderScene& scene,
                              const Ray& ray, int samples);
+// Prints `what`: the expected value, each estimate and its largest sample against its mean,
+// and checks both means against `expected` within 4 standard errors and 1 %: an estimator with
+// its lamp sampling (equiangular) and without.
+void expectBothNear(const char* what, double expected, const RayEstimate& equiangular,
+                    const RayEstimate& distance);
 // The same for each of the path's wavelengths, L[0] … L[3] (the hero and its rotations): the
 // checks of a spectral estimator per channel.
 std::array<RayEstimate, kSpectrumSamples> estimateAlongRayPerWavelength(

@@ -241,22 +241,14 @@ void expectWhiteFurnace(const RenderScene& scene, uint64_t seed, const std::stri
 
 // A scene of the furnace: the dome, then a 2 m cube of unit density, albedo 1.
 RenderScene furnaceScene(std::unique_ptr<Light> dome, float sigmaS, float g) {
-    RenderScene scene;
+    RenderScene scene = test::unitCubeScene(sigmaS, g);
     scene.lights.push_back(std::move(dome));
-    scene.media.push_back(test::gridMedium([](int, int, int) { return 1.f; }, 0, 15, 0.125, 0.f,
-                                           sigmaS, g, Transform::translate(Vec3d(-1.0))));
     return scene;
 }
 
 // A dome image of one colour: not uniform to the renderer (Light::uniformRadiance), so its
 // own samples are drawn too.
-LatLongImage oneColourImage() {
-    LatLongImage img;
-    img.width = 16;
-    img.height = 8;
-    img.rgb.assign(size_t(img.width) * img.height * 3, 1.f);
-    return img;
-}
+LatLongImage oneColourImage() { return test::flatSky(16, 8, 1.f); }
 
 }  // namespace
 
@@ -321,10 +313,7 @@ TEST(DomeLight, WhiteFurnaceOfAForwardMediumWithLobeWalks) {
 // constant dome, have none.
 TEST(DomeLight, FindsTheSunInAMap) {
     const int w = 512, h = 256;
-    LatLongImage img;
-    img.width = w;
-    img.height = h;
-    img.rgb.assign(size_t(w) * h * 3, 0.3f);
+    LatLongImage img = test::flatSky(w, h, 0.3f);
     // A sun of 3 × 3 pixels about column 300, row 80 (35.2° above the horizon).
     // The pixel's centre by the convention of dome_light.h (pixelOf above, inverted).
     const float theta = kPi * 80.5f / h, phi = 2 * kPi * 300.5f / w;

@@ -129,26 +129,15 @@ double quadrature(const Medium& medium, const Ray& ray, const Vec3& lamp, double
     const double sigmaT = kSigmaA + kSigmaS;
     const double delta = dot(lamp - ray.o, ray.d);
     const double D = length(ray.o + ray.d * float(delta) - lamp);
-    const double t0 = 0.0, t1 = 1.4;  // the ray from x = −0.2 to 1.2 crosses the box
-    const double ta = std::atan((t0 - delta) / D), tb = std::atan((t1 - delta) / D);
-    const int n = 8000;
-    double sum = 0.0, tau = 0.0, tPrev = t0;
-    for (int i = 0; i < n; ++i) {
-        const double theta = ta + (tb - ta) * (i + 0.5) / n;
-        const double t = delta + D * std::tan(theta);
-        tau += sigmaT * grid.sample(acc, ray.at(float(0.5 * (t + tPrev)))) * (t - tPrev);
-        tPrev = t;
-        const Vec3 x = ray.at(float(t));
+    // The ray from x = −0.2 to 1.2 crosses the box.
+    return test::quadratureAlongRay(grid, ray, 0.0, 1.4, delta, D, sigmaT, [&](const Vec3& x) {
         const double density = grid.sample(acc, x);
-        if (density <= 0) continue;
-        const Vec3 toLamp = lamp - x;
-        const double r = length(toLamp);
+        if (density <= 0) return 0.0;
+        const double r = length(lamp - x);
         const double p = 1.0 / (4 * kPi);  // isotropic
-        const double f = std::exp(-tau) * kSigmaS * density * p * intensity * falloff(x) *
-                         std::exp(-test::opticalDepth(grid, x, lamp, sigmaT)) / (r * r);
-        sum += f * D / (std::cos(theta) * std::cos(theta));
-    }
-    return sum * (tb - ta) / n;
+        return kSigmaS * density * p * intensity * falloff(x) *
+               std::exp(-test::opticalDepth(grid, x, lamp, sigmaT)) / (r * r);
+    });
 }
 
 // A homogeneous haze over the box and a margin, bluer than red: σs falls linearly from `blue`
@@ -184,13 +173,7 @@ TEST(LampSampling, PointLightInFogMatchesQuadratureWithoutFireflies) {
         quadrature(*scene.media[0], ray, lamp, I, [](const Vec3&) { return 1.0; });
     const Estimate eq = singleScattering(scene, ray, true, 40000);
     const Estimate dist = singleScattering(scene, ray, false, 40000);
-    std::printf(
-        "expected %.5g; equiangular %.5g ± %.2g (largest %.1f × mean); distance %.5g ± "
-        "%.2g (largest %.1f × mean)\n",
-        expected, eq.mean, eq.se, eq.largest / eq.mean, dist.mean, dist.se,
-        dist.largest / dist.mean);
-    EXPECT_NEAR(eq.mean, expected, 4 * eq.se + 0.01 * expected);
-    EXPECT_NEAR(dist.mean, expected, 4 * dist.se + 0.01 * expected);
+    test::expectBothNear("point light in fog", expected, eq, dist);
     // Bounded near the lamp: the equiangular points carry the 1/r² peak.
     EXPECT_LT(eq.largest, 60 * eq.mean);
     EXPECT_LT(eq.se * 4, dist.se) << "equiangular's standard error is not 4× below distance's";
@@ -216,10 +199,7 @@ TEST(LampSampling, SpotBeamSeenFromTheSideMatchesQuadrature) {
     const double expected = quadrature(*scene.media[0], ray, lamp, I, falloff);
     const Estimate eq = singleScattering(scene, ray, true, 40000);
     const Estimate dist = singleScattering(scene, ray, false, 40000);
-    std::printf("expected %.5g; equiangular %.5g ± %.2g; distance %.5g ± %.2g\n", expected, eq.mean,
-                eq.se, dist.mean, dist.se);
-    EXPECT_NEAR(eq.mean, expected, 4 * eq.se + 0.01 * expected);
-    EXPECT_NEAR(dist.mean, expected, 4 * dist.se + 0.01 * expected);
+    test::expectBothNear("spot beam from the side", expected, eq, dist);
     // The beam is a small part of the ray: points drawn inside it are the win.
     EXPECT_LT(eq.se * 2, dist.se);
 }

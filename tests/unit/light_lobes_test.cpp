@@ -78,10 +78,7 @@ TEST(LightLobes, GuideOnlyForwardMediaUnderLights) {
 // start at every vertex of a sea's paths, at fewer of a cloud's (lobeWalkStart).
 TEST(LightLobes, GuideToASunInASkyMapAndStartFewerWalksInClouds) {
     const auto sky = [](bool sun) {
-        LatLongImage img;
-        img.width = 256;
-        img.height = 128;
-        img.rgb.assign(size_t(img.width) * img.height * 3, 0.2f);
+        LatLongImage img = test::flatSky(256, 128, 0.2f);
         if (sun)
             for (int c = 0; c < 3; ++c) img.rgb[3 * (size_t(40) * img.width + 100) + c] = 4e4f;
         return makeDomeLight(img, 1.f, Mat3(), DomeSettings{});

@@ -40,7 +40,9 @@ TEST(SkyProfile, StratifiedPointsFollowTheProfile) {
             // Never in a step of no medium; the density the strata's own.
             ASSERT_GT(p.sigma[k], 0.f) << t[j];
             EXPECT_FLOAT_EQ(pdf[j], kStrata * p.sigma[k] / p.depth);
-            if (j > 0) ASSERT_GT(t[j], t[j - 1]);
+            if (j > 0) {
+                ASSERT_GT(t[j], t[j - 1]);
+            }
             observed[size_t(std::min(int(x * kHalves), int(observed.size()) - 1))] += 1;
             ++placed;
         }

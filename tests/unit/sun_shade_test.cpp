@@ -19,27 +19,16 @@ namespace {
 
 const Mat3 kXyz;
 
-// A 2 m cube of unit density about the origin (voxels of 1/8 m), σs sigmaS, HG g.
-RenderScene cubeScene(float sigmaS, float g) {
-    RenderScene scene;
-    scene.media.push_back(test::gridMedium([](int, int, int) { return 1.f; }, 0, 15, 0.125, 0.f,
-                                           sigmaS, g, Transform::translate(Vec3d(-1.0))));
-    return scene;
-}
-
 // A sky of 0.2 with a sun: one pixel of 300 at row 4 of 16 (45° up), which holds most of the
 // dome's power (Light::lobe).
 LatLongImage sunnySky() {
-    LatLongImage img;
-    img.width = 32;
-    img.height = 16;
-    img.rgb.assign(size_t(img.width) * img.height * 3, 0.2f);
+    LatLongImage img = test::flatSky(32, 16, 0.2f);
     for (int k = 0; k < 3; ++k) img.rgb[size_t(4 * img.width + 11) * 3 + size_t(k)] = 300.f;
     return img;
 }
 
 TEST(SunShade, OpticalDepthOfAHomogeneousCubeIsItsChordTowardsTheSun) {
-    RenderScene scene = cubeScene(1.5f, 0.f);
+    RenderScene scene = test::unitCubeScene(1.5f, 0.f);
     const Vec3 up = normalize(Vec3(0.3f, 1.f, 0.2f));
     const SunShade shade(scene, up);
     // Inside, away from the faces' half-voxel fall-off: τ = σt × the distance to the face the
@@ -59,14 +48,14 @@ TEST(SunShade, OpticalDepthOfAHomogeneousCubeIsItsChordTowardsTheSun) {
             }
     // Outside the medium on the sun's side nothing hides it; deep in a dense cube everything.
     EXPECT_EQ(shade.drawRate(Vec3(0.f, 0.99f, 0.f)), 1.f);
-    RenderScene dense = cubeScene(40.f, 0.f);
+    RenderScene dense = test::unitCubeScene(40.f, 0.f);
     const SunShade deep(dense, up);
     EXPECT_EQ(deep.opticalDepth(Vec3(0.f)), SunShade::kDepthCap);
     EXPECT_EQ(deep.drawRate(Vec3(0.f)), SunShade::kLeastRate);
 }
 
 TEST(SunShade, TheSameGridForAnyThreadCount) {
-    RenderScene scene = cubeScene(6.f, 0.f);
+    RenderScene scene = test::unitCubeScene(6.f, 0.f);
     const Vec3 d = normalize(Vec3(-0.4f, 0.8f, 0.5f));
     std::unique_ptr<SunShade> one, two;
     tbb::task_arena(1).execute([&] { one = std::make_unique<SunShade>(scene, d, 24); });
@@ -83,7 +72,7 @@ TEST(SunShade, TheSameGridForAnyThreadCount) {
 // depths): a draw counted once read +0.11 ± 0.02 of 0.48 unguided, +0.21 ± 0.08 of 0.85 guided
 // over 6000 paths (30 000 here).
 void expectSameMean(float g) {
-    RenderScene on = cubeScene(8.f, g), off = cubeScene(8.f, g);
+    RenderScene on = test::unitCubeScene(8.f, g), off = test::unitCubeScene(8.f, g);
     on.lights.push_back(makeDomeLight(sunnySky(), 1.f, kXyz, {}));
     off.lights.push_back(makeDomeLight(sunnySky(), 1.f, kXyz, {}));
     off.sunShade = false;

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# Fuzzes the scene parser and the VDB loading path with libFuzzer: builds the targets with clang
+# Fuzzes the scene parser, the VDB loading path and the light files Mirage parses itself (IES
+# profiles, RGBE sky maps) with libFuzzer: builds the targets with clang
 # (ASan + UBSan, -DMIRAGE_FUZZ=ON, in build-fuzz/) and runs each for FUZZ_SECONDS. Exits non-zero
 # if a target finds a crash, a sanitizer error, a leak, a timeout or an out-of-memory, and keeps
 # the input that caused it in out/fuzz/findings/. New interesting inputs go to out/fuzz/corpus/;
 # FUZZ_MERGE=1 merges those that add coverage into tests/fuzz/corpus/ (the corpus in the
 # repository, which ctest replays with the normal build: tests/unit/fuzz_corpus_test.cpp).
-# Environment: FUZZ_SECONDS (default 60 per target), FUZZ_TARGETS (default "scene vdb"),
+# Environment: FUZZ_SECONDS (default 60 per target), FUZZ_TARGETS (default "scene vdb lights"),
 # FUZZ_RSS_MB (default 2048), MIRAGE_JOBS (build jobs, default: cores). FUZZ_RUNS=N with
 # FUZZ_SEED=S (default 1) runs N inputs from seed S instead of a time: the same inputs on every
 # machine, so a CI run is reproducible here (.ci/run uses it for the scene target).
@@ -14,7 +15,7 @@ cd "$(dirname "$0")/.."
 pipeline/install-deps.sh fuzz
 
 SECONDS_PER_TARGET=${FUZZ_SECONDS:-60}
-TARGETS=${FUZZ_TARGETS:-"scene vdb"}
+TARGETS=${FUZZ_TARGETS:-"scene vdb lights"}
 RSS_MB=${FUZZ_RSS_MB:-2048}
 BUILD_DIR=build-fuzz
 OUT=out/fuzz
@@ -46,6 +47,8 @@ for t in $TARGETS; do
         -artifact_prefix="$OUT/findings/$t-")
   # Scene files are text: the dictionary of TOML syntax and Mirage's keys speeds the search.
   if [ "$t" = scene ]; then args+=(-dict=tests/fuzz/scene.dict -max_len=4096); fi
+  # Light files: small profiles and pictures reach every branch of both parsers.
+  if [ "$t" = lights ]; then args+=(-max_len=2048); fi
   # OpenVDB allocates the compressed size a corrupt leaf claims (terabytes) and ASan's operator
   # new aborts where a normal build throws std::bad_alloc, which Mirage reports as one message.
   # Fork mode with -ignore_ooms keeps fuzzing past those; each is still saved in findings/ and

@@ -1,5 +1,6 @@
 #include "light/radiance_hdr.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -114,9 +115,11 @@ bool readRadianceHdr(const std::string& path, RadianceHdr* out) {
         throw MirageError(path + ": cannot read the file");
     int width = 0, height = 0;
     if (!readHeader(f, &width, &height)) return false;
-    // Every scanline takes at least its 4-byte start and, per plane, 2 bytes a 127-pixel run:
-    // a header promising more than the file holds is refused before its pixels are allocated.
-    if (double(height) * (4.0 + 8.0 * std::ceil(width / 127.0)) > double(f.data.size() - f.at))
+    // Every scanline takes at least its 4 bytes a pixel (flat) or its 4-byte start and, per
+    // plane, 2 bytes a 127-pixel run (encoded): a header promising more than the file holds is
+    // refused before its pixels are allocated.
+    const double leastPerLine = std::min(4.0 * width, 4.0 + 8.0 * std::ceil(width / 127.0));
+    if (double(height) * leastPerLine > double(f.data.size() - f.at))
         throw MirageError(path + ": the RGBE picture is truncated");
     std::vector<unsigned char> line(size_t(width) * 4);
     std::vector<float> rgb(size_t(width) * size_t(height) * 3);

@@ -9,6 +9,8 @@
 
 #include "core/error.h"
 #include "film/color.h"
+#include "light/ies_file.h"
+#include "light/radiance_hdr.h"
 #include "scene/scene.h"
 #include "tools/asset_writer.h"
 #include "volume/vdb_file.h"
@@ -24,6 +26,7 @@ constexpr int kAssetResolution = 8;
 // Files the inputs write; the grids of a scene may name any of the caches below.
 constexpr const char* kSceneName = "scene.toml";
 constexpr const char* kVdbName = "input.vdb";
+constexpr const char* kHdrName = "input.hdr";
 // A corrupt index could list thousands of grids; a few cover every code path.
 constexpr size_t kMaxGridsLoaded = 4;
 
@@ -98,6 +101,22 @@ bool runVdbInput(const uint8_t* data, size_t size) {
     } catch (const MirageError&) {
         return false;
     }
+}
+
+bool runLightFileInput(const uint8_t* data, size_t size) {
+    bool read = false;
+    try {
+        IesProfile::parse(std::string(reinterpret_cast<const char*>(data), size), "input.ies");
+        read = true;
+    } catch (const MirageError&) {
+    }
+    const std::string path = writeInput(kHdrName, data, size);
+    try {
+        RadianceHdr sky;
+        read = readRadianceHdr(path, &sky) || read;
+    } catch (const MirageError&) {
+    }
+    return read;
 }
 
 }  // namespace mirage::fuzz

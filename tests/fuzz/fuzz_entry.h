@@ -1,9 +1,10 @@
-// The entry points that the libFuzzer targets (fuzz_scene.cpp, fuzz_vdb.cpp, clang only) and
+// The entry points that the libFuzzer targets (fuzz_scene.cpp, fuzz_vdb.cpp, fuzz_lights.cpp,
+// clang only) and
 // the corpus replay test (tests/unit/fuzz_corpus_test.cpp, every build) share, so a crash the
 // fuzzer found stays caught by ctest once its input joins tests/fuzz/corpus/.
 //
-// Contract under test (docs/design.md, "Conventions"): arbitrary bytes given as a scene file or
-// as a VDB file either load or raise MirageError; anything else escaping (another exception type, a
+// Contract under test (docs/design.md, "Conventions"): arbitrary bytes given as a scene file, a
+// VDB file or a light's file (IES profile, RGBE sky map) either load or raise MirageError; anything else escaping (another exception type, a
 // crash, undefined behaviour under the sanitizers) is a finding.
 #pragma once
 
@@ -23,6 +24,11 @@ bool runSceneInput(const uint8_t* data, size_t size);
 // validateVdbFile (header and offset scan), inspectVdbFile, and loadFloatGrid on each listed
 // grid (at most a few). Returns true if at least one grid loaded.
 bool runVdbInput(const uint8_t* data, size_t size);
+
+// Runs `data` through the light files Mirage parses itself: as the text of an IES LM-63
+// profile (IesProfile::parse) and as a Radiance RGBE sky map (readRadianceHdr). Returns true if
+// either read it.
+bool runLightFileInput(const uint8_t* data, size_t size);
 
 // The private folder the entry points write to (created on first use, removed at exit).
 const std::string& scratchFolder();

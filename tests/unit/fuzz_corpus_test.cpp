@@ -1,4 +1,4 @@
-// Replays the fuzzing corpus (tests/fuzz/corpus/{scene,vdb}) through the entry points the
+// Replays the fuzzing corpus (tests/fuzz/corpus/{scene,vdb,lights}) through the entry points the
 // libFuzzer targets use (tests/fuzz/fuzz_entry.cpp), built with the project's own compiler, so
 // an input that once crashed Mirage stays a regression test without clang. Every input must
 // either load or be refused with a MirageError; any other exception fails the test, and a crash
@@ -64,6 +64,15 @@ TEST(FuzzCorpus, VdbInputsLoadOrFailWithMirageError) {
     ASSERT_GE(count, 4) << "the VDB corpus lost its seeds";
     // The generated fog spheres (OpenVDB float and half, NanoVDB raw and zip) must all load.
     EXPECT_GE(accepted, 4) << accepted << " of " << count << " VDB inputs loaded";
+}
+
+TEST(FuzzCorpus, LightFileInputsLoadOrFailWithMirageError) {
+    int count = 0;
+    const int accepted = replay("lights", mirage::fuzz::runLightFileInput, count);
+    ASSERT_GE(count, 5) << "the light files' corpus lost its seeds";
+    // The seeds: two IES profiles (TILT=NONE and TILT=INCLUDE) and three RGBE pictures (flat,
+    // run-length encoded, a header without FORMAT), each read by one of the two parsers.
+    EXPECT_GE(accepted, 5) << accepted << " of " << count << " light files read";
 }
 
 }  // namespace

@@ -71,6 +71,22 @@ TEST(RadianceHdr, BothEncodingsGiveTheMantissaTimesTheExponent) {
     }
 }
 
+// Pictures narrower than a run-length scanline's 12-byte least hold 4 bytes a pixel: a 1 × 1
+// and a 2 × 2 picture are read, not refused as truncated (the fuzz corpus's seed found it).
+TEST(RadianceHdr, TinyFlatPicturesAreRead) {
+    for (int w : {1, 2}) {
+        const std::string path =
+            writeHdr("tiny" + std::to_string(w) + ".hdr", w, w, false, sample);
+        RadianceHdr hdr;
+        ASSERT_TRUE(readRadianceHdr(path, &hdr)) << path;
+        ASSERT_EQ(hdr.width, w);
+        ASSERT_EQ(hdr.height, w);
+        for (int j = 0; j < w; ++j)
+            for (int i = 0; i < w; ++i)
+                EXPECT_EQ(hdr.rgb[size_t(3 * (j * w + i))], expected(sample(i, j), 0));
+    }
+}
+
 // OIIO 2.4's reader is one ulp low at three exponents (40, 223 and 226: values near 1e-29 and
 // 1e26, found by reading every exponent), exact elsewhere; a sky's pixels lie far inside.
 TEST(RadianceHdr, TheSameFloatsAsOpenImageIO) {

@@ -20,6 +20,7 @@
 // the pixel's power, then λ within it); its weight L̄(ω) / (p(ω) ∫ L̄) with L̄ = ∫ L dλ has mean 1
 // (exactly 1 for the constant dome, whose directions are uniform on the sphere).
 #include "light/dome_light.h"
+#include "light/light_common.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -199,7 +200,7 @@ public:
                           mHeight, mTotal);
         std::string s = buf;
         if (mSettings.rotationDeg != 0.f)
-            s += ", rotated " + std::to_string(mSettings.rotationDeg) + "°";
+            s += ", rotated " + numStr(mSettings.rotationDeg) + "°";
         if (!mSettings.cameraVisible) s += ", hidden from the camera";
         return s;
     }

@@ -91,10 +91,10 @@ public:
     std::string describe() const override {
         const char* kind = mProfile.spot() ? "spot" : "point";
         std::string s = std::string(mR > 0.f ? "sphere " : "") + kind + " light at " + vecStr(mP);
-        if (mR > 0.f) s += ", radius " + std::to_string(mR) + " m";
+        if (mR > 0.f) s += ", radius " + numStr(mR) + " m";
         if (mProfile.spot()) s += " towards " + vecStr(mProfile.axis());
         if (mProfile.photometric()) s += ", IES profile";
-        return s + ", " + std::to_string(mPower) + " W";
+        return s + ", " + numStr(mPower) + " W";
     }
 
     const Spectrum* spectrum() const override { return &mI; }

@@ -1,5 +1,5 @@
 // What the light types share beyond the Light interface (light.h): the integral of a spectral
-// power distribution, and a vector as text for describe().
+// power distribution, and vectors and numbers as text for describe().
 #pragma once
 
 #include <string>
@@ -14,5 +14,7 @@ double powerIntegral(const Spectrum& s);
 
 // "(x, y, z)".
 std::string vecStr(const Vec3& v);
+// A number for describe(): six significant digits, no trailing zeros ("4e+06", "2", "0.25").
+std::string numStr(double v);
 
 }  // namespace mirage

@@ -33,6 +33,12 @@ std::string vecStr(const Vec3& v) {
     return buf;
 }
 
+std::string numStr(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+}
+
 namespace {
 
 class DistantLight : public Light {
@@ -76,7 +82,7 @@ public:
     }
     std::unique_ptr<PhotonProjection> projection(const ProjectionTargets& t) const override;
     std::string describe() const override {
-        return "distant light along " + vecStr(mDir) + ", " + std::to_string(mE) + " W/m²";
+        return "distant light along " + vecStr(mDir) + ", " + numStr(mE) + " W/m²";
     }
     float irradiance() const { return mE; }
     const Vec3& direction() const { return mDir; }
@@ -180,8 +186,8 @@ public:
         return mPower > 0.f;
     }
     std::string describe() const override {
-        return "quad light at " + vecStr(mCorner) + ", " + std::to_string(mArea) + " m², " +
-               std::to_string(mPower) + " W";
+        return "quad light at " + vecStr(mCorner) + ", " + numStr(mArea) + " m², " +
+               numStr(mPower) + " W";
     }
 
     const Spectrum* spectrum() const override { return &mL; }

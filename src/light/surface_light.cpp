@@ -3,6 +3,7 @@
 
 #include "core/sampling.h"
 #include "core/surface_epsilon.h"
+#include "light/light_common.h"
 
 namespace mirage {
 
@@ -95,7 +96,7 @@ bool SurfaceLight::emitPhoton(const Bounds3&, Sampler& s, PhotonEmission* out) c
 
 std::string SurfaceLight::describe() const {
     return "emissive surfaces: " + std::to_string(triangleCount()) + " triangles, " +
-           std::to_string(mPower) + " W";
+           numStr(mPower) + " W";
 }
 
 }  // namespace mirage

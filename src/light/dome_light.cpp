@@ -20,7 +20,6 @@
 // the pixel's power, then λ within it); its weight L̄(ω) / (p(ω) ∫ L̄) with L̄ = ∫ L dλ has mean 1
 // (exactly 1 for the constant dome, whose directions are uniform on the sphere).
 #include "light/dome_light.h"
-#include "light/light_common.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -32,6 +31,7 @@
 #include "core/distribution.h"
 #include "core/error.h"
 #include "core/sampling.h"
+#include "light/light_common.h"
 #include "light/radiance_hdr.h"
 #include "spectrum/spectrum_sampling.h"
 

@@ -47,7 +47,7 @@ std::string makeFogSphere(const std::string& dir, int resolution) {
 }
 
 std::string writeFogSphereScene(const std::string& dir, const std::string& film,
-                                const std::string& render) {
+                                const std::string& render, const std::string& light) {
     makeFogSphere(dir);
     std::ofstream f(dir + "/scene.toml");
     f << "[film]\n"
@@ -55,8 +55,22 @@ std::string writeFogSphereScene(const std::string& dir, const std::string& film,
       << render << "\n"
       << "[camera]\nposition = [0, 1, 4]\nlook_at = [0, 1, 0]\nfov = 35\n"
          "[[volume]]\nfile = \"fog.vdb\"\nshader = \"smoke\"\ndensity_scale = 3\n"
-         "[[light]]\ntype = \"sun\"\ndirection = [0.6, -0.7, -0.4]\nirradiance = 1476\n";
+         "[[light]]\n"
+      << (light.empty() ? "type = \"sun\"\ndirection = [0.6, -0.7, -0.4]\nirradiance = 1476\n"
+                        : light + "\n");
     return dir + "/scene.toml";
+}
+
+std::string writeSunnySky(const std::string& dir) {
+    const std::string path = dir + "/sunny.hdr";
+    std::ofstream hdr(path, std::ios::binary);
+    hdr << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 16 +X 32\n";
+    for (int p = 0; p < 32 * 16; ++p) {
+        const bool sunPixel = p == 4 * 32 + 11;
+        const char m = char(sunPixel ? 150 : 204), e = char(sunPixel ? 137 : 126);
+        hdr << m << m << m << e;  // 300 = 150/256 × 2^9, 0.2 = 204/256 × 2^−2
+    }
+    return path;
 }
 
 std::string shippedScene(const std::string& name) {
@@ -201,11 +215,11 @@ LatLongImage flatSky(int width, int height, float value) {
 
 void expectBothNear(const char* what, double expected, const RayEstimate& equiangular,
                     const RayEstimate& distance) {
-    std::printf("%s: expected %.5g; equiangular %.5g ± %.2g (largest %.1f × mean); distance "
-                "%.5g ± %.2g (largest %.1f × mean)\n",
-                what, expected, equiangular.mean, equiangular.se,
-                equiangular.largest / equiangular.mean, distance.mean, distance.se,
-                distance.largest / distance.mean);
+    std::printf(
+        "%s: expected %.5g; equiangular %.5g ± %.2g (largest %.1f × mean); distance "
+        "%.5g ± %.2g (largest %.1f × mean)\n",
+        what, expected, equiangular.mean, equiangular.se, equiangular.largest / equiangular.mean,
+        distance.mean, distance.se, distance.largest / distance.mean);
     EXPECT_NEAR(equiangular.mean, expected, 4 * equiangular.se + 0.01 * expected) << what;
     EXPECT_NEAR(distance.mean, expected, 4 * distance.se + 0.01 * expected) << what;
 }

@@ -32,10 +32,14 @@ std::string sourceDir();
 // DIR/fog.vdb and returns that path; a failure is a test failure.
 std::string makeFogSphere(const std::string& dir, int resolution = 16);
 // DIR/scene.toml: the fog sphere of makeFogSphere(dir) with the smoke shader (density_scale 3)
-// under a sun, seen from (0, 1, 4); `film` and `render` are the bodies of its [film] and
-// [render] tables (TOML lines). Returns the scene's path.
+// under a sun, or under the [[light]] whose body `light` is, seen from (0, 1, 4); `film` and
+// `render` are the bodies of its [film] and [render] tables (TOML lines). Returns the scene's
+// path.
 std::string writeFogSphereScene(const std::string& dir, const std::string& film,
-                                const std::string& render);
+                                const std::string& render, const std::string& light = "");
+// DIR/sunny.hdr, a sky map with a sun (Light::lobe): 32 × 16 pixels of 0.2 and one of 300 at
+// row 4 (45° up), in flat RGBE scanlines. Returns its path.
+std::string writeSunnySky(const std::string& dir);
 
 // A scene shipped in assets/scenes/ of the source tree.
 std::string shippedScene(const std::string& name);

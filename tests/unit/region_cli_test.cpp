@@ -1,5 +1,6 @@
 // Regions of a frame end to end (mirage render --region, mirage assemble): a region's pixels are
-// the same bits as those pixels of a whole-frame render on 1 and on 2 threads; its EXR's data
+// the same bits as those pixels of a whole-frame render on 1 and on 2 threads (under a sky with
+// a sun too, whose shade volpath lays over the media per frame); its EXR's data
 // window is the region and its display window the frame; a killed region resumes to the same
 // bits; regions assemble into the frame bit for bit, and assembly refuses missing, overlapping
 // and foreign regions with a message naming them.
@@ -89,6 +90,31 @@ TEST(RegionCli, RegionPixelsAreTheFullRendersBitsOnOneAndTwoThreads) {
                   full.spec.get_string_attribute("mirage:fingerprint"));
         EXPECT_EQ(differences(region, full), 0u) << threads << " thread(s)";
     }
+}
+
+// Under a sky map with a sun, volpath's vertices draw the sky at a rate from the sun's shade, a
+// grid laid over the media with the frame (render/sun_shade.h): a region builds the same grid,
+// so its pixels are still the frame's bits.
+TEST(RegionCli, ARegionUnderASkyWithASunIsTheFullRendersBits) {
+    const std::string dir = test::tempDir();
+    test::writeSunnySky(dir);
+    const std::string scene = test::writeFogSphereScene(
+        dir, "resolution = [40, 24]\ntile_size = 8\nspp = 2\nseed = 3", "integrator = \"volpath\"",
+        "type = \"dome\"\nmap = \"sunny.hdr\"");
+    std::string out;
+    ASSERT_EQ(mirage("info '" + scene + "'", &out), 0) << out;
+    EXPECT_NE(out.find("at a rate from the sun's optical depth"), std::string::npos) << out;
+    ASSERT_EQ(mirage("render '" + scene + "' -q --float -o '" + dir + "/full.exr'", &out), 0)
+        << out;
+    const std::string path = dir + "/region.exr";
+    ASSERT_EQ(
+        mirage("render '" + scene + "' -q --float --region 5,3,27,19 --threads 2 -o '" + path + "'",
+               &out),
+        0)
+        << out;
+    const Exr full = readAll(dir + "/full.exr"), region = readAll(path);
+    EXPECT_GT(full.at(20, 12, 3), 0.f) << "the sphere is not in the frame";
+    EXPECT_EQ(differences(region, full), 0u);
 }
 
 TEST(RegionCli, AKilledRegionResumesToTheSameBits) {

@@ -255,15 +255,7 @@ TEST(SceneLoad, InfoSaysWhenPathsAreGuided) {
     // A sky map with a sun (a pixel of 300 in a sky of 0.2, flat RGBE scanlines): its samples
     // are drawn at a rate from the sun's shade over the media (render/sun_shade.h); not under a
     // distant sun.
-    {
-        std::ofstream hdr(dir + "/sunny.hdr", std::ios::binary);
-        hdr << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 16 +X 32\n";
-        for (int p = 0; p < 32 * 16; ++p) {
-            const bool sunPixel = p == 4 * 32 + 11;
-            const char m = char(sunPixel ? 150 : 204), e = char(sunPixel ? 137 : 126);
-            hdr << m << m << m << e;  // 300 = 150/256 × 2^9, 0.2 = 204/256 × 2^−2
-        }
-    }
+    test::writeSunnySky(dir);
     const std::string shaded = "; medium vertices draw the sky's own samples at a rate from the "
                                "sun's optical depth over the media (a 64³ grid: every vertex "
                                "where it is lit, 10 % past depth 3.7)";
